@@ -1,0 +1,91 @@
+!> fastcontact — the public modern API (SPEC §6).
+!!
+!! A contact problem is a [[fc_problem]]: material, grid, undeformed distance, loading and
+!! solver settings.  [[solve]] builds (or reuses) the influence operator and its
+!! preconditioner and solves the normal contact problem; errors come back through
+!! `stat`/`errmsg`, never by stopping.
+!!
+!! ```fortran
+!! use fastcontact
+!! type(fc_problem) :: prob
+!! type(fc_normal_result) :: res
+!! call set_material(prob, 82000.0_dp, 82000.0_dp, 0.28_dp, 0.28_dp, stat, errmsg)
+!! call make_grid(prob%grid, 64, 64, -10.0_dp, 10.0_dp, -6.0_dp, 6.0_dp, stat, errmsg)
+!! prob%h0 = quadratic_gap(prob%grid, 300.0_dp, 163.0_dp)
+!! prob%approach = 0.1091_dp
+!! call solve(prob, res, stat, errmsg)
+!! ```
+module fastcontact
+    use fc_kinds
+    use fc_geometry
+    use fc_influence
+    use fc_norm
+    use fc_hertz
+    implicit none
+    private
+
+    public :: dp, pi, msg_len, FC_CONVERGED, FC_NOT_CONVERGED, FC_DIVERGED, FC_ERROR, status_name
+    public :: fc_grid, make_grid, quadratic_gap, punch_rough_gap, wavy_gap, read_gap_table, rough_heights
+    public :: fc_rough_params, h_no_contact
+    public :: fc_material, combine_material, rigid_modulus
+    public :: fc_normal_settings, fc_normal_result, fc_normal_operator, build_normal_operator, solve_normal
+    public :: fc_hertz_solution, hertz_from_approach, hertz_from_force, elliptic_ke
+
+    !> One normal contact problem and its reusable operator.
+    type, public :: fc_problem
+        type(fc_material) :: material            !! body constants (combined by set_material)
+        type(fc_grid) :: grid                    !! potential contact area
+        real(dp), allocatable :: h0(:, :)        !! undeformed distance without approach [mm]
+        logical :: force_prescribed = .false.    !! .true.: use fn, else approach
+        real(dp) :: approach = 0                 !! prescribed approach δ [mm]
+        real(dp) :: fn = 0                       !! prescribed total normal force [N]
+        type(fc_normal_settings) :: settings     !! solver choice and tolerances
+        type(fc_normal_operator) :: operator     !! cached A^zz and preconditioner
+    end type fc_problem
+
+    public :: set_material, solve
+
+contains
+
+    !> Set and combine the constants of both bodies (g ≥ 1e29: rigid).
+    subroutine set_material(prob, g1, g2, nu1, nu2, stat, errmsg)
+        type(fc_problem), intent(inout) :: prob
+        real(dp), intent(in) :: g1, g2, nu1, nu2
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        prob%material%g1 = g1; prob%material%g2 = g2
+        prob%material%nu1 = nu1; prob%material%nu2 = nu2
+        call combine_material(prob%material, stat, errmsg)
+    end subroutine set_material
+
+    !> Solve the normal contact problem of `prob`.  The operator is rebuilt only when the
+    !! grid or the material changed since the previous call.
+    subroutine solve(prob, res, stat, errmsg)
+        type(fc_problem), intent(inout) :: prob
+        type(fc_normal_result), intent(out) :: res
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        if (.not. allocated(prob%h0)) then
+            stat = 1; errmsg = 'solve: undeformed distance h0 not set'; return
+        end if
+        if (prob%material%g <= 0) then
+            call combine_material(prob%material, stat, errmsg)
+            if (stat /= 0) return
+        end if
+        if (needs_rebuild(prob)) call build_normal_operator(prob%operator, prob%material, prob%grid)
+        if (prob%force_prescribed) then
+            call solve_normal(prob%operator, prob%h0, prob%settings, res, stat, errmsg, fn=prob%fn)
+        else
+            call solve_normal(prob%operator, prob%h0, prob%settings, res, stat, errmsg, approach=prob%approach)
+        end if
+    end subroutine solve
+
+    logical function needs_rebuild(prob)
+        type(fc_problem), intent(in) :: prob
+        associate (og => prob%operator%grid, g => prob%grid, om => prob%operator%material, m => prob%material)
+            needs_rebuild = .not. prob%operator%a_zz%built() .or. og%nx /= g%nx .or. og%ny /= g%ny &
+                .or. og%dx /= g%dx .or. og%dy /= g%dy .or. om%g /= m%g .or. om%nu /= m%nu
+        end associate
+    end function needs_rebuild
+
+end module fastcontact

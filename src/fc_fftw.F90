@@ -1,0 +1,18 @@
+!> Thin wrapper around FFTW's Fortran 2003 interface.
+!!
+!! The header is pulled in with the preprocessor (`#include`), which fpm handles
+!! without extra flags; only the handful of routines fastcontact uses are public.
+module fc_fftw
+    use, intrinsic :: iso_c_binding
+    implicit none
+    private
+
+#include "fftw3.f03"
+
+    public :: c_ptr, c_null_ptr, c_associated, c_int
+    public :: fftw_plan_dft_r2c_2d, fftw_plan_dft_c2r_2d
+    public :: fftw_execute_dft_r2c, fftw_execute_dft_c2r
+    public :: fftw_destroy_plan
+    public :: FFTW_ESTIMATE, FFTW_MEASURE, FFTW_UNALIGNED, FFTW_DESTROY_INPUT
+
+end module fc_fftw

@@ -1,0 +1,284 @@
+!> Potential contact grid and undeformed distance (SPEC §2, thesis §2.2.4–2.2.5).
+!!
+!! The potential contact area is the rectangle [xmin,xmax]×[ymin,ymax] divided into
+!! nx×ny cell-centred elements; element (i,j) has its centre at
+!! (xmin+(i-½)dx, ymin+(j-½)dy).  The undeformed distance `h0` returned here does not
+!! contain the approach: the solvers use h = h0 − δ.
+module fc_geometry
+    use fc_kinds, only: dp, i8, pi, msg_len
+    implicit none
+    private
+
+    !> Grid of the potential contact area (units: mm).
+    type, public :: fc_grid
+        integer :: nx = 0            !! elements in x
+        integer :: ny = 0            !! elements in y
+        real(dp) :: xmin = 0, xmax = 0, ymin = 0, ymax = 0  !! outer edges [mm]
+        real(dp) :: dx = 0, dy = 0   !! element size [mm]
+    contains
+        procedure :: x => grid_x
+        procedure :: y => grid_y
+        procedure :: n => grid_n
+        procedure :: area => grid_area
+    end type fc_grid
+
+    !> Undeformed distance that keeps an element out of contact (outside a punch).
+    real(dp), parameter, public :: h_no_contact = 1.0e20_dp
+
+    !> Parameters of the random rough surface, thesis eqs. (2.13)–(2.16).
+    type, public :: fc_rough_params
+        real(dp) :: sigma = 0.1_dp    !! target standard deviation of heights [mm]
+        real(dp) :: gamma = 0.8_dp    !! amplitude decay factor, 0 < gamma ≤ 1
+        integer :: m_modes = 12       !! number of modes in x (M)
+        integer :: n_modes = 10       !! number of modes in y (N)
+        integer :: seed = 2015        !! seed of the portable generator
+    end type fc_rough_params
+
+    public :: make_grid, quadratic_gap, rough_heights, punch_rough_gap, wavy_gap, read_gap_table
+
+    integer(i8), parameter :: rng_a = 48271_i8, rng_m = 2147483647_i8
+
+contains
+
+    !> Build a grid, validating sizes and extents.
+    subroutine make_grid(grid, nx, ny, xmin, xmax, ymin, ymax, stat, errmsg)
+        type(fc_grid), intent(out) :: grid
+        integer, intent(in) :: nx, ny
+        real(dp), intent(in) :: xmin, xmax, ymin, ymax
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        stat = 0; errmsg = ''
+        if (nx < 1 .or. ny < 1) then
+            stat = 1; write (errmsg, '(a,i0,a,i0)') 'grid: nx and ny must be >= 1, got nx = ', nx, ', ny = ', ny
+            return
+        end if
+        if (.not. (xmax > xmin) .or. .not. (ymax > ymin)) then
+            stat = 1; write (errmsg, '(a,4(es12.4))') 'grid: need xmax > xmin and ymax > ymin, got ', xmin, xmax, ymin, ymax
+            return
+        end if
+        grid%nx = nx; grid%ny = ny
+        grid%xmin = xmin; grid%xmax = xmax; grid%ymin = ymin; grid%ymax = ymax
+        grid%dx = (xmax - xmin)/nx
+        grid%dy = (ymax - ymin)/ny
+    end subroutine make_grid
+
+    !> x coordinate of the centre of column i [mm].
+    elemental real(dp) function grid_x(self, i)
+        class(fc_grid), intent(in) :: self
+        integer, intent(in) :: i
+        grid_x = self%xmin + (i - 0.5_dp)*self%dx
+    end function grid_x
+
+    !> y coordinate of the centre of row j [mm].
+    elemental real(dp) function grid_y(self, j)
+        class(fc_grid), intent(in) :: self
+        integer, intent(in) :: j
+        grid_y = self%ymin + (j - 0.5_dp)*self%dy
+    end function grid_y
+
+    !> Number of elements.
+    pure integer function grid_n(self)
+        class(fc_grid), intent(in) :: self
+        grid_n = self%nx*self%ny
+    end function grid_n
+
+    !> Element area dx·dy [mm²].
+    pure real(dp) function grid_area(self)
+        class(fc_grid), intent(in) :: self
+        grid_area = self%dx*self%dy
+    end function grid_area
+
+    !> Quadratic (Hertzian) profile h0 = (x−x0)²/(2 rx) + (y−y0)²/(2 ry) [mm].
+    !! A radius of 0 or a huge radius means "flat in that direction" (thesis §2.5.1).
+    pure function quadratic_gap(grid, rx, ry, x0, y0) result(h0)
+        type(fc_grid), intent(in) :: grid
+        real(dp), intent(in) :: rx, ry          !! relative radii of curvature [mm]
+        real(dp), intent(in), optional :: x0, y0 !! centre of the profile [mm]
+        real(dp) :: h0(grid%nx, grid%ny)
+        real(dp) :: cx, cy, ax, ay, xc, yc
+        integer :: i, j
+        xc = 0; yc = 0
+        if (present(x0)) xc = x0
+        if (present(y0)) yc = y0
+        ax = 0; ay = 0
+        if (rx > 0) ax = 0.5_dp/rx
+        if (ry > 0) ay = 0.5_dp/ry
+        do j = 1, grid%ny
+            cy = grid%y(j) - yc
+            do i = 1, grid%nx
+                cx = grid%x(i) - xc
+                h0(i, j) = ax*cx**2 + ay*cy**2
+            end do
+        end do
+    end function quadratic_gap
+
+    !> Next uniform number in (0,1) of the portable MINSTD generator (reproducible
+    !! on every compiler, unlike `random_number`).
+    subroutine next_uniform(state, r)
+        integer(i8), intent(inout) :: state
+        real(dp), intent(out) :: r
+        state = mod(rng_a*state, rng_m)
+        r = real(state, dp)/real(rng_m, dp)
+    end subroutine next_uniform
+
+    !> Rough surface heights z(x,y), thesis eqs. (2.13)–(2.16), on the whole grid.
+    !! The amplitudes are scaled so that R(0,0) = sigma² exactly (eq. 2.16); the
+    !! rectangle [0,lx]×[0,ly] of eq. (2.13) is the potential contact area.
+    subroutine rough_heights(grid, par, z)
+        type(fc_grid), intent(in) :: grid
+        type(fc_rough_params), intent(in) :: par
+        real(dp), intent(out) :: z(grid%nx, grid%ny)
+        real(dp) :: amp(par%m_modes, par%n_modes), phx(par%m_modes, par%n_modes), phy(par%m_modes, par%n_modes)
+        real(dp) :: r, lx, ly, r00, xi, yj
+        real(dp), allocatable :: cx(:), cy(:)
+        integer(i8) :: state
+        integer :: m, n, i, j
+        state = max(1_i8, mod(int(abs(par%seed), i8), rng_m - 1) + 1)
+        do n = 1, par%n_modes
+            do m = 1, par%m_modes
+                call next_uniform(state, r); phx(m, n) = 2*pi*r
+                call next_uniform(state, r); phy(m, n) = 2*pi*r
+                call next_uniform(state, r); amp(m, n) = r*par%gamma**(m + n - 2)
+            end do
+        end do
+        r00 = 0.25_dp*sum(amp**2)                        ! eq. (2.15) with the trial amplitudes
+        amp = amp*par%sigma/sqrt(r00)                     ! eq. (2.16)
+        lx = grid%xmax - grid%xmin
+        ly = grid%ymax - grid%ymin
+        allocate (cx(grid%nx), cy(grid%ny))
+        z = 0
+        do n = 1, par%n_modes
+            do m = 1, par%m_modes
+                do i = 1, grid%nx
+                    xi = grid%x(i) - grid%xmin
+                    cx(i) = cos(2*pi*m*xi/lx + phx(m, n))
+                end do
+                do j = 1, grid%ny
+                    yj = grid%y(j) - grid%ymin
+                    cy(j) = cos(2*pi*n*yj/ly + phy(m, n))
+                end do
+                do j = 1, grid%ny
+                    z(:, j) = z(:, j) + amp(m, n)*cx*cy(j)
+                end do
+            end do
+        end do
+    end subroutine rough_heights
+
+    !> Flat rigid circular punch of diameter `diameter` on a rough surface (thesis §2.5.2):
+    !! h0 = −z inside the punch, `h_no_contact` outside (the approach δ is added by the solver).
+    subroutine punch_rough_gap(grid, diameter, par, h0)
+        type(fc_grid), intent(in) :: grid
+        real(dp), intent(in) :: diameter   !! punch diameter D [mm]
+        type(fc_rough_params), intent(in) :: par
+        real(dp), intent(out) :: h0(grid%nx, grid%ny)
+        real(dp) :: z(grid%nx, grid%ny)
+        integer :: i, j
+        call rough_heights(grid, par, z)
+        do j = 1, grid%ny
+            do i = 1, grid%nx
+                if (grid%x(i)**2 + grid%y(j)**2 <= 0.25_dp*diameter**2) then
+                    h0(i, j) = -z(i, j)
+                else
+                    h0(i, j) = h_no_contact
+                end if
+            end do
+        end do
+    end subroutine punch_rough_gap
+
+    !> Wavy surface h0 = A·(1 − cos(2πx/λx)·cos(2πy/λy)) (Johnson §13.2); λ ≤ 0 means flat
+    !! in that direction.
+    pure function wavy_gap(grid, amplitude, wavelength_x, wavelength_y) result(h0)
+        type(fc_grid), intent(in) :: grid
+        real(dp), intent(in) :: amplitude, wavelength_x, wavelength_y  !! [mm]
+        real(dp) :: h0(grid%nx, grid%ny)
+        real(dp) :: fx, fy
+        integer :: i, j
+        do j = 1, grid%ny
+            fy = 1
+            if (wavelength_y > 0) fy = cos(2*pi*grid%y(j)/wavelength_y)
+            do i = 1, grid%nx
+                fx = 1
+                if (wavelength_x > 0) fx = cos(2*pi*grid%x(i)/wavelength_x)
+                h0(i, j) = amplitude*(1 - fx*fy)
+            end do
+        end do
+    end function wavy_gap
+
+    !> Read nx·ny undeformed distances [mm] from a text file, x running fastest.
+    !! Blank lines and lines starting with '#' or '!' are skipped; several values per
+    !! line are allowed.
+    subroutine read_gap_table(filename, grid, h0, stat, errmsg)
+        character(len=*), intent(in) :: filename
+        type(fc_grid), intent(in) :: grid
+        real(dp), intent(out) :: h0(grid%nx, grid%ny)
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        character(len=4096) :: line
+        real(dp) :: vals(grid%nx*grid%ny)
+        real(dp) :: buf(512)
+        integer :: unit, ios, nread, k, nline, lineno
+        stat = 0; errmsg = ''
+        open (newunit=unit, file=filename, status='old', action='read', iostat=ios)
+        if (ios /= 0) then
+            stat = 1; errmsg = "cannot open table file '"//trim(filename)//"'"
+            return
+        end if
+        nread = 0; lineno = 0
+        do
+            read (unit, '(a)', iostat=ios) line
+            if (ios /= 0) exit
+            lineno = lineno + 1
+            line = adjustl(line)
+            if (len_trim(line) == 0) cycle
+            if (line(1:1) == '#' .or. line(1:1) == '!') cycle
+            nline = count_numbers(line)
+            if (nline < 0) then
+                stat = 1; write (errmsg, '(a,i0,a)') "table file '"//trim(filename)//"', line ", lineno, ': not a number'
+                close (unit); return
+            end if
+            if (nread + nline > size(vals)) then
+                stat = 1; write (errmsg, '(a,i0,a)') "table file '"//trim(filename)//"' has more than nx*ny = ", &
+                    size(vals), ' values'
+                close (unit); return
+            end if
+            read (line, *) (buf(k), k=1, nline)
+            vals(nread + 1:nread + nline) = buf(1:nline)
+            nread = nread + nline
+        end do
+        close (unit)
+        if (nread /= size(vals)) then
+            stat = 1; write (errmsg, '(a,i0,a,i0)') "table file '"//trim(filename)//"' has ", nread, &
+                ' values, expected nx*ny = ', size(vals)
+            return
+        end if
+        h0 = reshape(vals, [grid%nx, grid%ny])
+    end subroutine read_gap_table
+
+    !> Count whitespace/comma separated reals on a line; −1 if one does not parse.
+    integer function count_numbers(line) result(cnt)
+        character(len=*), intent(in) :: line
+        integer :: i, start, ios
+        real(dp) :: v
+        logical :: in_tok
+        cnt = 0; in_tok = .false.; start = 1
+        do i = 1, len_trim(line) + 1
+            if (i <= len_trim(line)) then
+                if (line(i:i) /= ' ' .and. line(i:i) /= ',' .and. line(i:i) /= char(9)) then
+                    if (.not. in_tok) then
+                        in_tok = .true.; start = i
+                    end if
+                    cycle
+                end if
+            end if
+            if (in_tok) then
+                read (line(start:i - 1), *, iostat=ios) v
+                if (ios /= 0) then
+                    cnt = -1; return
+                end if
+                cnt = cnt + 1; in_tok = .false.
+            end if
+        end do
+        if (cnt > 512) cnt = -1
+    end function count_numbers
+
+end module fc_geometry

@@ -1,0 +1,35 @@
+!> Kinds, constants and status codes shared by every fastcontact module.
+module fc_kinds
+    use, intrinsic :: iso_fortran_env, only: real64, int64
+    implicit none
+    private
+
+    integer, parameter, public :: dp = real64   !! working real kind
+    integer, parameter, public :: i8 = int64    !! counters that may exceed 2^31
+    real(dp), parameter, public :: pi = 3.141592653589793238462643383279502884_dp
+
+    !> Solver and API status codes (SPEC §3, §5: JSON `status`).
+    integer, parameter, public :: FC_CONVERGED = 0      !! solution meets the tolerance
+    integer, parameter, public :: FC_NOT_CONVERGED = 1  !! maxit reached or stagnation detected
+    integer, parameter, public :: FC_DIVERGED = 2       !! residual grew without bound / NaN
+    integer, parameter, public :: FC_ERROR = 3          !! invalid input or internal error
+
+    integer, parameter, public :: msg_len = 512         !! length of error messages
+
+    public :: status_name
+
+contains
+
+    !> Name of a status code as written to the JSON summary.
+    pure function status_name(status) result(name)
+        integer, intent(in) :: status
+        character(len=:), allocatable :: name
+        select case (status)
+        case (FC_CONVERGED);     name = 'converged'
+        case (FC_NOT_CONVERGED); name = 'not_converged'
+        case (FC_DIVERGED);      name = 'diverged'
+        case default;            name = 'error'
+        end select
+    end function status_name
+
+end module fc_kinds

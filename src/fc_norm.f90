@@ -1,0 +1,456 @@
+!> Normal contact problem: the LCP e = h + A p ≥ 0, p ≥ 0, e·p = 0 (thesis §2.2, SPEC §2–§3).
+!!
+!! Two solvers share one operator object ([[fc_normal_operator]], built once per grid and
+!! material and reused across calls):
+!!
+!! * `norm` — Kalker's NORM: active set + CG (thesis §2.3).  Each active-set iteration
+!!   solves A_CC p_C = −h_C by conjugate gradients (optionally truncated to `inner_maxit`
+!!   steps, thesis Table 2.8), then removes negative pressures and adds penetrating
+!!   exterior elements.
+!! * `bccg` — bound-constrained CG (NormCG): projected, preconditioned CG on the free set
+!!   F = {p > 0} ∪ {e < 0}.  A step that drives a pressure negative clips it to zero; any
+!!   change of F restarts from the preconditioned steepest-descent direction.  The
+!!   preconditioner is the Toeplitz approximation of A⁻¹ from the inverse Fourier symbol
+!!   of A on the doubled grid (the construction of thesis §3.3.1 in 2D), applied to the
+!!   residual masked to F, with a coarse correction on the indicator of the contact set
+!!   (deflation of the smooth mode that the infinite-domain inverse misrepresents).
+!!
+!! Prescribed total force: the Polonsky–Keer constraint inside the iteration — search
+!! directions are projected onto Σ_F d = 0, pressures are rescaled to the force after a
+!! clip, and the approach is the mean gap over the contact set.  NORM uses the same
+!! constraint in its inner CG (Kalker solves p and δ together).
+!!
+!! Residual (both solvers): ‖g‖₂/‖h_F‖₂, g the gap on the free set — thesis (2.18) with
+!! the norm taken over the free set.
+module fc_norm
+    use fc_kinds
+    use fc_geometry, only: fc_grid, h_no_contact
+    use fc_influence
+    implicit none
+    private
+
+    !> Settings of the normal solvers.
+    type, public :: fc_normal_settings
+        character(len=8) :: solver = 'bccg'  !! 'bccg' or 'norm'
+        real(dp) :: tol = 1.0e-5_dp           !! relative gap residual ‖g‖/‖h_F‖
+        integer :: maxit = 1000               !! BCCG iterations / NORM active-set iterations
+        integer :: inner_maxit = 0            !! NORM: CG steps per active-set iteration (0: until converged)
+        logical :: precondition = .true.      !! BCCG: FFT-based preconditioner
+        logical :: deflation = .true.         !! BCCG: coarse correction on the contact indicator
+    end type fc_normal_settings
+
+    !> Influence operator A^zz and the preconditioner for one grid and material.
+    type, public :: fc_normal_operator
+        type(fc_grid) :: grid
+        type(fc_material) :: material
+        type(fc_bttb) :: a_zz     !! A^zz as an FFT product
+        type(fc_bttb) :: precond  !! Toeplitz approximation of (A^zz)⁻¹
+        real(dp) :: setup_seconds = 0
+    contains
+        procedure :: destroy => normal_operator_destroy
+    end type fc_normal_operator
+
+    !> Result of a normal solve.
+    type, public :: fc_normal_result
+        real(dp), allocatable :: pn(:, :)   !! pressure per element [N/mm²]
+        real(dp), allocatable :: gap(:, :)  !! deformed distance e = h0 − δ + A p [mm]
+        real(dp) :: approach = 0            !! δ [mm]
+        real(dp) :: fn = 0                  !! total normal force [N]
+        real(dp) :: pmax = 0                !! maximum pressure [N/mm²]
+        integer :: ncon = 0                 !! elements with p > 0
+        integer :: status = FC_ERROR        !! FC_CONVERGED, FC_NOT_CONVERGED, FC_DIVERGED, FC_ERROR
+        integer :: iterations = 0           !! CG iterations (BCCG) / total inner CG steps (NORM)
+        integer :: outer_iterations = 0     !! NORM active-set iterations (BCCG: changes of the free set)
+        integer :: matvecs = 0              !! products with A (FFT pairs), preconditioner not counted
+        integer :: precond_applications = 0 !! products with the preconditioner
+        real(dp) :: residual = huge(1.0_dp) !! final relative residual
+        real(dp) :: cpu_seconds = 0         !! solve time (excludes operator set-up)
+        character(len=msg_len) :: message = ''
+        real(dp), allocatable :: history(:) !! residual per iteration
+    end type fc_normal_result
+
+    public :: build_normal_operator, solve_normal
+
+contains
+
+    !> Build A^zz and its preconditioner for `grid` and `material` (combined constants
+    !! already set by [[combine_material]]).
+    subroutine build_normal_operator(nop, material, grid)
+        type(fc_normal_operator), intent(inout) :: nop
+        type(fc_material), intent(in) :: material
+        type(fc_grid), intent(in) :: grid
+        integer :: t0, t1, rate
+        call system_clock(t0, rate)
+        call nop%destroy()
+        nop%grid = grid
+        nop%material = material
+        call build_bttb(nop%a_zz, IC_ZZ, material, grid)
+        call build_inverse_toeplitz(IC_ZZ, material, grid, nop%precond)
+        call system_clock(t1)
+        nop%setup_seconds = real(t1 - t0, dp)/rate
+    end subroutine build_normal_operator
+
+    subroutine normal_operator_destroy(self)
+        class(fc_normal_operator), intent(inout) :: self
+        call self%a_zz%destroy()
+        call self%precond%destroy()
+    end subroutine normal_operator_destroy
+
+    !> Solve the normal contact problem for undeformed distance h0 (without approach) with
+    !! either a prescribed `approach` δ [mm] or a prescribed total force `fn` [N].
+    !! `p_start` (optional) warm-starts the iteration.
+    subroutine solve_normal(nop, h0, settings, res, stat, errmsg, approach, fn, p_start)
+        type(fc_normal_operator), intent(inout) :: nop
+        real(dp), intent(in) :: h0(:, :)
+        type(fc_normal_settings), intent(in) :: settings
+        type(fc_normal_result), intent(out) :: res
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        real(dp), intent(in), optional :: approach, fn
+        real(dp), intent(in), optional :: p_start(:, :)
+        integer :: nx, ny, t0, t1, rate
+        logical :: force_mode
+        real(dp) :: delta
+        stat = 0; errmsg = ''
+        nx = nop%grid%nx; ny = nop%grid%ny
+        if (.not. nop%a_zz%built()) then
+            stat = 1; errmsg = 'solve_normal: operator not built'; return
+        end if
+        if (size(h0, 1) /= nx .or. size(h0, 2) /= ny) then
+            stat = 1; write (errmsg, '(a,2(i0,1x),a,2(i0,1x))') 'solve_normal: h0 has shape ', shape(h0), &
+                'but the grid is ', nx, ny
+            return
+        end if
+        if (present(approach) .eqv. present(fn)) then
+            stat = 1; errmsg = 'solve_normal: give exactly one of approach and fn'; return
+        end if
+        force_mode = present(fn)
+        if (force_mode) then
+            if (.not. (fn > 0)) then
+                stat = 1; write (errmsg, '(a,es12.4,a)') 'normal: fn = ', fn, ' must be > 0'; return
+            end if
+            delta = 0
+        else
+            delta = approach
+            if (.not. any(h0 - delta <= 0 .and. h0 < 0.5_dp*h_no_contact)) then
+                stat = 1; write (errmsg, '(a,es12.4,a)') 'normal: approach = ', approach, &
+                    ' gives no contact (h0 − approach > 0 everywhere)'
+                return
+            end if
+        end if
+        if (.not. (settings%tol > 0)) then
+            stat = 1; write (errmsg, '(a,es12.4,a)') 'solver: tol = ', settings%tol, ' must be > 0'; return
+        end if
+        if (settings%maxit < 1) then
+            stat = 1; write (errmsg, '(a,i0,a)') 'solver: maxit = ', settings%maxit, ' must be >= 1'; return
+        end if
+        allocate (res%pn(nx, ny), res%gap(nx, ny))
+        res%pn = 0
+        if (present(p_start)) then
+            if (all(shape(p_start) == [nx, ny])) res%pn = max(0.0_dp, p_start)
+        end if
+        nop%a_zz%nproducts = 0; nop%precond%nproducts = 0
+        call system_clock(t0, rate)
+        select case (settings%solver)
+        case ('bccg')
+            call run_bccg(nop, h0, settings, force_mode, delta, fn_or_zero(), res)
+        case ('norm')
+            call run_norm(nop, h0, settings, force_mode, delta, fn_or_zero(), res)
+        case default
+            stat = 1; errmsg = "solver: normal = '"//trim(settings%solver)//"' is not one of 'bccg', 'norm'"
+            return
+        end select
+        call system_clock(t1)
+        res%cpu_seconds = real(t1 - t0, dp)/rate
+        res%matvecs = nop%a_zz%nproducts
+        res%precond_applications = nop%precond%nproducts
+        res%fn = sum(res%pn)*nop%grid%area()
+        res%pmax = maxval(res%pn)
+        res%ncon = count(res%pn > 0)
+    contains
+        real(dp) function fn_or_zero()
+            fn_or_zero = 0
+            if (present(fn)) fn_or_zero = fn
+        end function fn_or_zero
+    end subroutine solve_normal
+
+    !> Bound-constrained preconditioned CG (see module header).
+    subroutine run_bccg(nop, h0, settings, force_mode, delta_in, fn, res)
+        type(fc_normal_operator), intent(inout) :: nop
+        real(dp), intent(in) :: h0(:, :)
+        type(fc_normal_settings), intent(in) :: settings
+        logical, intent(in) :: force_mode
+        real(dp), intent(in) :: delta_in, fn
+        type(fc_normal_result), intent(inout) :: res
+        real(dp), dimension(size(h0, 1), size(h0, 2)) :: p, u, g, z, d, q, e0, aone
+        logical, dimension(size(h0, 1), size(h0, 2)) :: free, free_old, allowed
+        real(dp) :: delta, area, alpha, beta, gz, gz_old, dq, hnorm, rnorm, r0, best, dden, eone, sone
+        integer :: it, since_best, nfree
+        logical :: restart, clipped
+        real(dp), allocatable :: hist(:)
+        area = nop%grid%area()
+        allowed = h0 < 0.5_dp*h_no_contact
+        p = res%pn
+        delta = delta_in
+        if (force_mode .and. sum(p) <= 0) then
+            ! start from a uniform pressure on the elements that can touch
+            where (allowed) p = 1
+            p = p*fn/(area*sum(p))
+        end if
+        call nop%a_zz%apply(p, u)
+        allocate (hist(settings%maxit))
+        free_old = .false.
+        d = 0; gz_old = 1; r0 = -1; best = huge(1.0_dp); since_best = 0
+        res%status = FC_NOT_CONVERGED
+        res%outer_iterations = 0
+        do it = 1, settings%maxit
+            e0 = h0 + u
+            if (force_mode) then
+                if (count(p > 0) > 0) delta = sum(e0, mask=p > 0)/count(p > 0)
+            end if
+            g = e0 - delta
+            free = allowed .and. (p > 0 .or. g < 0)
+            nfree = count(free)
+            where (.not. free) g = 0
+            hnorm = sqrt(sum((h0 - delta)**2, mask=free))
+            rnorm = sqrt(sum(g**2))
+            if (nfree == 0 .or. hnorm <= 0) then
+                res%message = 'no element in contact'
+                res%status = FC_NOT_CONVERGED
+                exit
+            end if
+            res%residual = rnorm/hnorm
+            hist(it) = res%residual
+            res%iterations = it - 1
+            if (res%residual /= res%residual .or. res%residual > 1.0e8_dp) then
+                res%status = FC_DIVERGED
+                res%message = 'BCCG diverged (residual not finite or > 1e8)'
+                exit
+            end if
+            if (res%residual <= settings%tol) then
+                res%status = FC_CONVERGED
+                res%message = 'converged'
+                exit
+            end if
+            if (res%residual < 0.999_dp*best) then
+                best = res%residual; since_best = 0
+            else
+                since_best = since_best + 1
+                if (since_best > 100) then
+                    res%message = 'BCCG stagnated: no residual decrease in 100 iterations'
+                    exit
+                end if
+            end if
+            if (it == settings%maxit) then
+                write (res%message, '(a,i0,a)') 'BCCG not converged in maxit = ', settings%maxit, ' iterations'
+                exit
+            end if
+            restart = any(free .neqv. free_old)
+            if (restart) res%outer_iterations = res%outer_iterations + 1
+            ! preconditioned gradient z = P M P g (P: projection onto Σ_F = 0 in force mode)
+            if (force_mode) call project_mean(g, free)
+            if (settings%precondition) then
+                call nop%precond%apply(g, z)
+                where (.not. free) z = 0
+                if (settings%deflation .and. .not. force_mode) then
+                    ! coarse correction on the contact indicator: z += 1_F (1_Fᵀ g)/(1_Fᵀ A 1_F)
+                    if (restart) then
+                        where (free)
+                            aone = 1
+                        elsewhere
+                            aone = 0
+                        end where
+                        sone = sum(aone)
+                        call nop%a_zz%apply(aone, q)
+                        eone = sum(q, mask=free)
+                    end if
+                    where (free) z = z + sum(g)/eone
+                end if
+            else
+                z = g
+            end if
+            if (force_mode) call project_mean(z, free)
+            gz = sum(g*z)
+            if (restart .or. it == 1) then
+                d = -z
+            else
+                beta = max(0.0_dp, gz/gz_old)
+                d = -z + beta*d
+                where (.not. free) d = 0
+            end if
+            free_old = free
+            gz_old = gz
+            call nop%a_zz%apply(d, q)
+            dq = sum(d*q)
+            if (.not. (dq > 0)) then
+                res%status = FC_DIVERGED
+                res%message = 'BCCG: search direction with non-positive curvature'
+                exit
+            end if
+            dden = sum(g*d)
+            alpha = -dden/dq
+            p = p + alpha*d
+            clipped = any(p < 0)
+            if (clipped) then
+                p = max(p, 0.0_dp)
+                if (force_mode) then
+                    if (sum(p) > 0) p = p*fn/(area*sum(p))
+                end if
+                call nop%a_zz%apply(p, u)
+            else
+                u = u + alpha*q
+            end if
+        end do
+        res%approach = delta
+        res%pn = p
+        res%gap = h0 - delta + u
+        where (.not. allowed) res%gap = h_no_contact
+        allocate (res%history(max(0, min(it, settings%maxit))), source=hist(1:max(0, min(it, settings%maxit))))
+    end subroutine run_bccg
+
+    !> Subtract the mean over the free set (projection onto Σ_F x = 0).
+    pure subroutine project_mean(x, free)
+        real(dp), intent(inout) :: x(:, :)
+        logical, intent(in) :: free(:, :)
+        integer :: nf
+        nf = count(free)
+        if (nf > 0) then
+            where (free)
+                x = x - sum(x, mask=free)/nf
+            elsewhere
+                x = 0
+            end where
+        end if
+    end subroutine project_mean
+
+    !> Kalker's NORM: active set + CG (thesis §2.3).
+    subroutine run_norm(nop, h0, settings, force_mode, delta_in, fn, res)
+        type(fc_normal_operator), intent(inout) :: nop
+        real(dp), intent(in) :: h0(:, :)
+        type(fc_normal_settings), intent(in) :: settings
+        logical, intent(in) :: force_mode
+        real(dp), intent(in) :: delta_in, fn
+        type(fc_normal_result), intent(inout) :: res
+        real(dp), dimension(size(h0, 1), size(h0, 2)) :: p, u, r, d, q, h
+        logical, dimension(size(h0, 1), size(h0, 2)) :: con, con_new, allowed
+        real(dp) :: delta, area, alpha, beta, rr, rr_old, dq, hnorm, rnorm, inner_tol, e
+        integer :: outer, inner, inner_max, ncon, total_inner, i, j
+        logical :: changed
+        real(dp), allocatable :: hist(:)
+        area = nop%grid%area()
+        allowed = h0 < 0.5_dp*h_no_contact
+        delta = delta_in
+        p = res%pn
+        if (force_mode) then
+            con = allowed
+            if (any(p > 0)) con = p > 0
+        else
+            con = allowed .and. (h0 - delta <= 0)
+            if (any(p > 0)) con = p > 0 .or. con
+        end if
+        where (.not. con) p = 0
+        ncon = count(con)
+        inner_max = settings%inner_maxit
+        if (inner_max <= 0) inner_max = max(50, ncon)
+        inner_tol = 0.1_dp*settings%tol
+        allocate (hist(settings%maxit))
+        total_inner = 0
+        res%status = FC_NOT_CONVERGED
+        do outer = 1, settings%maxit
+            res%outer_iterations = outer
+            ncon = count(con)
+            if (ncon == 0) then
+                res%message = 'NORM: contact area became empty'
+                exit
+            end if
+            if (force_mode) then
+                where (con)
+                    p = max(p, 0.0_dp)
+                end where
+                if (sum(p) <= 0) then
+                    where (con) p = 1
+                end if
+                p = p*fn/(area*sum(p))
+            end if
+            ! --- CG on A_CC p_C = −h_C (force mode: on Σ_C p = fn/area, δ = mean gap) ---
+            call nop%a_zz%apply(p, u)
+            if (force_mode) delta = sum(h0 + u, mask=con)/ncon
+            h = h0 - delta
+            r = 0
+            where (con) r = -(h + u)
+            if (force_mode) call project_mean(r, con)
+            hnorm = sqrt(sum(h**2, mask=con))
+            rr = sum(r*r)
+            d = r
+            do inner = 1, inner_max
+                if (sqrt(rr) <= inner_tol*hnorm) exit
+                call nop%a_zz%apply(d, q)
+                where (.not. con) q = 0
+                if (force_mode) call project_mean(q, con)
+                dq = sum(d*q)
+                if (.not. (dq > 0)) exit
+                alpha = rr/dq
+                p = p + alpha*d
+                r = r - alpha*q
+                rr_old = rr
+                rr = sum(r*r)
+                beta = rr/rr_old
+                d = r + beta*d
+                total_inner = total_inner + 1
+            end do
+            call nop%a_zz%apply(p, u)
+            if (force_mode) delta = sum(h0 + u, mask=con)/ncon
+            h = h0 - delta
+            ! residual over the contact set and sign conditions
+            rnorm = sqrt(sum((h + u)**2, mask=con .and. p >= 0))
+            hnorm = sqrt(sum(h**2, mask=con))
+            res%residual = rnorm/max(hnorm, tiny(1.0_dp))
+            hist(outer) = res%residual
+            if (res%residual /= res%residual .or. res%residual > 1.0e8_dp) then
+                res%status = FC_DIVERGED
+                res%message = 'NORM diverged (residual not finite or > 1e8)'
+                exit
+            end if
+            ! active-set update (thesis §2.4.1 step 4): (a) drop negative pressures,
+            ! (b) add exterior elements that penetrate
+            con_new = con
+            changed = .false.
+            do j = 1, size(h0, 2)
+                do i = 1, size(h0, 1)
+                    if (con(i, j)) then
+                        if (p(i, j) < 0) then
+                            con_new(i, j) = .false.; p(i, j) = 0; changed = .true.
+                        end if
+                    else if (allowed(i, j)) then
+                        e = h(i, j) + u(i, j)
+                        if (e < 0) then
+                            con_new(i, j) = .true.; changed = .true.
+                        end if
+                    end if
+                end do
+            end do
+            con = con_new
+            if (.not. changed .and. res%residual <= settings%tol) then
+                res%status = FC_CONVERGED
+                res%message = 'converged'
+                exit
+            end if
+            if (outer == settings%maxit) then
+                write (res%message, '(a,i0,a)') 'NORM not converged in maxit = ', settings%maxit, ' active-set iterations'
+            end if
+        end do
+        if (res%status /= FC_CONVERGED .and. len_trim(res%message) == 0) res%message = 'NORM not converged'
+        res%iterations = total_inner
+        p = max(p, 0.0_dp)
+        call nop%a_zz%apply(p, u)
+        if (force_mode) then
+            if (count(p > 0) > 0) delta = sum(h0 + u, mask=p > 0)/count(p > 0)
+        end if
+        res%approach = delta
+        res%pn = p
+        res%gap = h0 - delta + u
+        where (.not. allowed) res%gap = h_no_contact
+        allocate (res%history(min(res%outer_iterations, settings%maxit)), source=hist(1:min(res%outer_iterations, settings%maxit)))
+    end subroutine run_norm
+
+end module fc_norm

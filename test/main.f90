@@ -1,0 +1,32 @@
+!> Test runner: `fpm test` runs every suite; `fpm test -- SUITE [TEST]` runs one.
+!! Ends with the line `N passed, N failed` and a non-zero exit status on any failure.
+program tester
+    use fc_testing, only: run_suite, unittest_type
+    use test_influence, only: collect_influence
+    use test_hertz, only: collect_hertz
+    use test_normal, only: collect_normal
+    implicit none
+    character(len=64) :: suite, only
+    integer :: npass, nfail
+    type(unittest_type), allocatable :: tests(:)
+    suite = ''; only = ''
+    if (command_argument_count() >= 1) call get_command_argument(1, suite)
+    if (command_argument_count() >= 2) call get_command_argument(2, only)
+    npass = 0; nfail = 0
+    if (want('influence')) then
+        call collect_influence(tests); call run_suite('influence', tests, only, npass, nfail)
+    end if
+    if (want('hertz')) then
+        call collect_hertz(tests); call run_suite('hertz', tests, only, npass, nfail)
+    end if
+    if (want('normal')) then
+        call collect_normal(tests); call run_suite('normal', tests, only, npass, nfail)
+    end if
+    write (*, '(i0,a,i0,a)') npass, ' passed, ', nfail, ' failed'
+    if (nfail > 0 .or. npass == 0) error stop 1
+contains
+    logical function want(name)
+        character(len=*), intent(in) :: name
+        want = len_trim(suite) == 0 .or. trim(suite) == name
+    end function want
+end program tester
