@@ -1,0 +1,116 @@
+!> Suite `hertz`: analytic elliptic Hertz solution and rough-surface generation.
+module test_hertz
+    use fc_kinds, only: dp, pi
+    use fc_hertz
+    use fc_geometry
+    use fc_testing
+    implicit none
+    private
+    public :: collect_hertz
+
+contains
+
+    subroutine collect_hertz(tests)
+        type(unittest_type), allocatable, intent(out) :: tests(:)
+        tests = [ &
+            new_unittest('elliptic_integrals', test_elliptic), &
+            new_unittest('test_I_reference_numbers', test_reference), &
+            new_unittest('cattaneo_sphere_numbers', test_sphere), &
+            new_unittest('force_approach_roundtrip', test_roundtrip), &
+            new_unittest('rough_surface_sigma_and_seed', test_rough), &
+            new_unittest('grid_centres_and_profiles', test_grid) ]
+    end subroutine collect_hertz
+
+    !> K(m), E(m) against tabulated values (Abramowitz & Stegun 17.3, 15 digits).
+    subroutine test_elliptic(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(dp) :: k, e
+        call elliptic_ke(0.0_dp, k, e)
+        call check(error, k, pi/2, 'K(0)', rel=1e-15_dp)
+        call check(error, e, pi/2, 'E(0)', rel=1e-15_dp)
+        call elliptic_ke(0.5_dp, k, e)
+        call check(error, k, 1.854074677301372_dp, 'K(0.5)', rel=1e-14_dp)
+        call check(error, e, 1.350643881047675_dp, 'E(0.5)', rel=1e-14_dp)
+        call elliptic_ke(0.99_dp, k, e)
+        call check(error, k, 3.695637362989875_dp, 'K(0.99)', rel=1e-13_dp)
+        call check(error, e, 1.015993545025224_dp, 'E(0.99)', rel=1e-13_dp)
+    end subroutine test_elliptic
+
+    !> Test I (SPEC §4): a = 6.0020, b = 3.9992, p0 = 1631.2, F = 82004 (rounded as given).
+    subroutine test_reference(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_hertz_solution) :: s
+        s = hertz_from_approach(1/600.0_dp, 1/326.0_dp, 82000/0.72_dp, 0.1091_dp)
+        call check(error, s%a, 6.0020_dp, 'a', abs=0.5e-4_dp)
+        call check(error, s%b, 3.9992_dp, 'b', abs=0.5e-4_dp)
+        call check(error, s%p0, 1631.2_dp, 'p0', abs=0.05_dp)
+        call check(error, s%fn, 82004.0_dp, 'F', abs=0.5_dp)
+        call check(error, s%pressure(0.0_dp, 0.0_dp), s%p0, 'p(0,0) = p0', rel=1e-15_dp)
+        call check(error, s%pressure(6.1_dp, 0.0_dp), 0.0_dp, 'p outside ellipse', abs=0.0_dp)
+    end subroutine test_reference
+
+    !> Cattaneo sphere (SPEC §4): R = 50, G = 200, ν = 0.42, Fn = 9.1954 → a = 1, δ = 0.02, p0 = 4.3905.
+    subroutine test_sphere(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_hertz_solution) :: s
+        s = hertz_from_force(0.01_dp, 0.01_dp, 200/0.58_dp, 9.1954_dp)
+        call check(error, s%a, 1.0_dp, 'a', abs=1e-4_dp)
+        call check(error, s%b, 1.0_dp, 'b', abs=1e-4_dp)
+        call check(error, s%approach, 0.02_dp, 'delta', abs=1e-6_dp)
+        call check(error, s%p0, 4.3905_dp, 'p0', abs=1e-4_dp)
+    end subroutine test_sphere
+
+    !> Prescribed force and prescribed approach are inverse to each other; axes swap
+    !! when Ry > Rx.
+    subroutine test_roundtrip(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_hertz_solution) :: s1, s2, s3
+        s1 = hertz_from_approach(1/600.0_dp, 1/326.0_dp, 1.0e5_dp, 0.05_dp)
+        s2 = hertz_from_force(1/600.0_dp, 1/326.0_dp, 1.0e5_dp, s1%fn)
+        call check(error, s2%approach, 0.05_dp, 'approach round trip', rel=1e-12_dp)
+        s3 = hertz_from_approach(1/326.0_dp, 1/600.0_dp, 1.0e5_dp, 0.05_dp)
+        call check(error, s3%a, s1%b, 'swapped axes a', rel=1e-12_dp)
+        call check(error, s3%b, s1%a, 'swapped axes b', rel=1e-12_dp)
+        call check(error, s3%fn, s1%fn, 'swapped axes F', rel=1e-12_dp)
+    end subroutine test_roundtrip
+
+    !> Eq. (2.16) sets R(0,0) = σ²; sampled on a grid finer than the highest mode
+    !! (nx > 2M, ny > 2N) the discrete mean is 0 and the discrete variance is exactly σ².
+    !! The same seed gives the same surface; another seed another one.
+    subroutine test_rough(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_grid) :: grid
+        type(fc_rough_params) :: par
+        real(dp) :: z(64, 64), z2(64, 64)
+        integer :: stat
+        character(len=200) :: msg
+        call make_grid(grid, 64, 64, -6.0_dp, 6.0_dp, -5.0_dp, 5.0_dp, stat, msg)
+        call rough_heights(grid, par, z)
+        call check(error, sum(z)/size(z), 0.0_dp, 'mean height', abs=1e-14_dp)
+        call check(error, sqrt(sum(z**2)/size(z)), par%sigma, 'sampled sigma', rel=1e-12_dp)
+        call rough_heights(grid, par, z2)
+        call check(error, all(z == z2), 'same seed reproduces the surface')
+        par%seed = 7
+        call rough_heights(grid, par, z2)
+        call check(error, maxval(abs(z - z2)) > 0.01_dp, 'another seed gives another surface')
+    end subroutine test_rough
+
+    !> Element centres at xmin + (i−½)dx (SPEC §5) and the quadratic profile.
+    subroutine test_grid(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_grid) :: grid
+        real(dp), allocatable :: h(:, :)
+        integer :: stat
+        character(len=200) :: msg
+        call make_grid(grid, 4, 2, -2.0_dp, 2.0_dp, 0.0_dp, 1.0_dp, stat, msg)
+        call check(error, grid%x(1), -1.5_dp, 'x(1)', abs=1e-15_dp)
+        call check(error, grid%y(2), 0.75_dp, 'y(2)', abs=1e-15_dp)
+        h = quadratic_gap(grid, 2.0_dp, 0.0_dp)
+        call check(error, h(1, 1), 1.5_dp**2/4, 'h = x²/(2 rx), flat in y', rel=1e-15_dp)
+        call make_grid(grid, 0, 2, -2.0_dp, 2.0_dp, 0.0_dp, 1.0_dp, stat, msg)
+        call check(error, stat /= 0 .and. index(msg, 'nx') > 0, 'nx = 0 rejected: '//trim(msg))
+        call make_grid(grid, 2, 2, 2.0_dp, 2.0_dp, 0.0_dp, 1.0_dp, stat, msg)
+        call check(error, stat /= 0, 'empty extent rejected')
+    end subroutine test_grid
+
+end module test_hertz
