@@ -1,0 +1,299 @@
+!> The batch driver `fastcontact CASES.nml [--out DIR]` (SPEC §5) as a library routine,
+!! so that tests can run it in-process.
+!!
+!! Every case in the file is solved in order.  Per good case DIR/<name>.json (summary) and,
+!! unless `&output table = .false.`, DIR/<name>.csv (element table) are written, plus a
+!! readable report on `report_unit`.  A case with bad input gets a message on `error_unit`
+!! naming group, key and value, no outputs (stale files of that name are removed), and the
+!! driver continues with the next case.
+!!
+!! Exit code: 0 all cases converged; 1 a case had an input error (or the command line /
+!! case file was bad); 2 no input error but a solver did not converge or diverged.
+module fc_driver
+    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit_default => error_unit
+    use fc_kinds, only: dp, msg_len, FC_CONVERGED, status_name
+    use fc_geometry, only: fc_grid
+    use fc_influence, only: fc_material
+    use fc_norm, only: fc_normal_operator, fc_normal_result, build_normal_operator, solve_normal
+    use fc_hertz, only: hertz_from_approach, hertz_from_force
+    use fc_input, only: fc_case_chunk, fc_case_input, read_case_file, apply_case, validate_case, setup_case, fmt_real
+    use fc_output, only: fc_case_summary, write_case_json, write_case_csv, write_case_report
+    implicit none
+    private
+
+    integer, parameter, public :: EXIT_OK = 0           !! all cases converged
+    integer, parameter, public :: EXIT_INPUT_ERROR = 1  !! bad command line, file or case input
+    integer, parameter, public :: EXIT_NOT_CONVERGED = 2 !! a solver did not converge / diverged
+
+    public :: run_driver, driver_usage
+
+contains
+
+    !> Usage text of the driver.
+    function driver_usage() result(text)
+        character(len=:), allocatable :: text
+        character(len=*), parameter :: nl = new_line('a')
+        text = 'usage: fastcontact CASES.nml [--out DIR]'//nl// &
+            '       fastcontact --help'//nl//nl// &
+            'Solves every case of the namelist file CASES.nml in order (groups &case, &material,'//nl// &
+            '&grid, &geometry, &normal, &solver, &output; a later case repeats only what changes)'//nl// &
+            'and writes DIR/<name>.json and DIR/<name>.csv per case (DIR: --out, else &output dir,'//nl// &
+            "else 'out').  See doc/namelist.md."//nl//nl// &
+            'Exit status: 0 all cases converged, 1 input error in some case, 2 some solver did not converge.'
+    end function driver_usage
+
+    !> Run the driver on the command-line arguments `args` (without the program name).
+    subroutine run_driver(args, exit_code, report_unit, error_unit)
+        character(len=*), intent(in) :: args(:)
+        integer, intent(out) :: exit_code
+        integer, intent(in), optional :: report_unit   !! report (default: stdout)
+        integer, intent(in), optional :: error_unit    !! error messages (default: stderr)
+        integer :: rep, err, i, k, stat, ncase_err, ncase_fail
+        character(len=:), allocatable :: case_file, out_dir
+        type(fc_case_chunk), allocatable :: cases(:)
+        type(fc_case_input) :: state
+        character(len=64), allocatable :: used(:)
+        character(len=64) :: name
+        character(len=msg_len) :: errmsg
+        type(fc_normal_operator) :: nop
+        integer :: case_status, nused_before
+        rep = output_unit; err = error_unit_default
+        if (present(report_unit)) rep = report_unit
+        if (present(error_unit)) err = error_unit
+        exit_code = EXIT_OK
+        ! ---- command line
+        i = 1
+        do while (i <= size(args))
+            select case (trim(args(i)))
+            case ('-h', '--help')
+                write (rep, '(a)') driver_usage()
+                return
+            case ('--out', '-o')
+                if (i == size(args)) then
+                    write (err, '(a)') 'fastcontact: --out needs a directory'
+                    write (err, '(a)') driver_usage()
+                    exit_code = EXIT_INPUT_ERROR; return
+                end if
+                out_dir = trim(args(i + 1)); i = i + 1
+            case default
+                if (len_trim(args(i)) > 6) then
+                    if (args(i)(1:6) == '--out=') then
+                        out_dir = trim(args(i)(7:)); i = i + 1; cycle
+                    end if
+                end if
+                if (args(i)(1:1) == '-' .or. allocated(case_file)) then
+                    write (err, '(a)') "fastcontact: unexpected argument '"//trim(args(i))//"'"
+                    write (err, '(a)') driver_usage()
+                    exit_code = EXIT_INPUT_ERROR; return
+                end if
+                case_file = trim(args(i))
+            end select
+            i = i + 1
+        end do
+        if (.not. allocated(case_file)) then
+            write (err, '(a)') 'fastcontact: no case file given'
+            write (err, '(a)') driver_usage()
+            exit_code = EXIT_INPUT_ERROR; return
+        end if
+        if (allocated(out_dir)) then
+            if (len_trim(out_dir) == 0) then
+                write (err, '(a)') 'fastcontact: --out needs a non-empty directory'
+                exit_code = EXIT_INPUT_ERROR; return
+            end if
+        end if
+        ! ---- read and split the file
+        call read_case_file(case_file, cases, stat, errmsg)
+        if (stat /= 0) then
+            write (err, '(a)') 'fastcontact: '//trim(case_file)//': '//trim(errmsg)
+            exit_code = EXIT_INPUT_ERROR; return
+        end if
+        allocate (used(0))
+        ncase_err = 0; ncase_fail = 0
+        do k = 1, size(cases)
+            call run_one_case(k, case_status)
+            select case (case_status)
+            case (0)
+            case (1); ncase_err = ncase_err + 1
+            case default; ncase_fail = ncase_fail + 1
+            end select
+        end do
+        call nop%destroy()
+        write (rep, '(a,i0,a,i0,a,i0,a,i0,a)') 'fastcontact: ', size(cases), ' case(s): ', &
+            size(cases) - ncase_err - ncase_fail, ' converged, ', ncase_fail, ' not converged, ', ncase_err, &
+            ' with input errors'
+        if (ncase_err > 0) then
+            exit_code = EXIT_INPUT_ERROR
+        else if (ncase_fail > 0) then
+            exit_code = EXIT_NOT_CONVERGED
+        end if
+    contains
+
+        !> Solve case k; case_status 0 converged, 1 input error, 2 solver failure.
+        subroutine run_one_case(k, case_status)
+            integer, intent(in) :: k
+            integer, intent(out) :: case_status
+            character(len=:), allocatable :: dir
+            type(fc_material) :: mat
+            type(fc_grid) :: grid
+            real(dp), allocatable :: h0(:, :)
+            type(fc_normal_result) :: res
+            type(fc_case_summary) :: s
+            integer :: t0, t1, t2, rate, j
+            real(dp) :: ca, cb
+            call system_clock(t0, rate)
+            case_status = 1
+            nused_before = size(used)
+            call apply_case(cases(k), k, state, name, stat, errmsg)
+            dir = output_dir()
+            if (stat /= 0) then
+                call case_error(); return
+            end if
+            do j = 1, size(used)
+                if (used(j) == state%name) then
+                    write (errmsg, '(a,i0,a)') "&case name = '"//trim(state%name)//"': already used by case ", j, &
+                        ' in this file (outputs would be overwritten)'
+                    call case_error(clean=.false.); return
+                end if
+            end do
+            used = [character(len=64) :: used, name]
+            call validate_case(state, stat, errmsg)
+            if (stat /= 0) then
+                call case_error(); return
+            end if
+            call setup_case(state, mat, grid, h0, stat, errmsg)
+            if (stat /= 0) then
+                call case_error(); return
+            end if
+            if (index(dir, "'") > 0) then
+                errmsg = "&output dir = '"//dir//"': quotes are not allowed in the directory name"
+                call case_error(clean=.false.); return
+            end if
+            call make_directory(dir, stat)
+            if (stat /= 0) then
+                errmsg = "&output dir = '"//dir//"': cannot create the directory"
+                call case_error(clean=.false.); return
+            end if
+            ! ---- solve (reuse the operator when grid and material are unchanged)
+            call system_clock(t1)
+            s%setup_seconds = 0
+            if (needs_rebuild(nop, mat, grid)) then
+                call build_normal_operator(nop, mat, grid)
+                s%setup_seconds = nop%setup_seconds
+            end if
+            if (state%force_prescribed) then
+                call solve_normal(nop, h0, state%settings, res, stat, errmsg, fn=state%fn)
+            else
+                call solve_normal(nop, h0, state%settings, res, stat, errmsg, approach=state%approach)
+            end if
+            call system_clock(t2)
+            if (stat /= 0) then
+                call case_error(); return
+            end if
+            ! ---- summary
+            s%name = state%name; s%title = state%title; s%problem = state%problem; s%geometry = state%kind
+            s%status = status_name(res%status); s%message = res%message; s%solver = state%settings%solver
+            s%material = mat; s%grid = grid; s%force_prescribed = state%force_prescribed
+            s%fn = res%fn; s%approach = res%approach; s%pmax = res%pmax
+            s%ncon = res%ncon; s%nadh = res%ncon; s%nslip = 0
+            s%iterations = res%iterations; s%outer_iterations = res%outer_iterations; s%matvecs = res%matvecs
+            s%residual = res%residual; s%tol = state%settings%tol
+            s%cpu_seconds_normal = real(t2 - t1, dp)/rate
+            s%notes = state%notes
+            if (mat%k /= 0) s%notes = s%notes//'K = '//fmt_real(mat%k)// &
+                ' /= 0: the normal problem is solved without the tangential coupling. '
+            if (state%kind == 'quadratic' .and. state%rx > 0 .and. state%ry > 0) then
+                ca = 0.5_dp/state%rx; cb = 0.5_dp/state%ry
+                s%has_hertz = .true.
+                if (state%force_prescribed) then
+                    s%hertz = hertz_from_force(ca, cb, mat%g/(1 - mat%nu), state%fn)
+                else
+                    s%hertz = hertz_from_approach(ca, cb, mat%g/(1 - mat%nu), state%approach)
+                end if
+            end if
+            ! ---- outputs
+            if (state%table) then
+                call write_case_csv(dir//'/'//trim(state%name)//'.csv', grid, res%pn, res%gap, stat, errmsg)
+                if (stat /= 0) then
+                    call case_error(); return
+                end if
+            else
+                call remove_file(dir//'/'//trim(state%name)//'.csv')
+            end if
+            call system_clock(t2)
+            s%cpu_seconds = real(t2 - t0, dp)/rate
+            call write_case_json(dir//'/'//trim(state%name)//'.json', s, stat, errmsg)
+            if (stat /= 0) then
+                call remove_file(dir//'/'//trim(state%name)//'.csv')
+                call case_error(); return
+            end if
+            call write_case_report(rep, s, res%pn)
+            if (res%status == FC_CONVERGED) then
+                case_status = 0
+            else
+                case_status = 2
+                write (err, '(a,i0,a)') 'fastcontact: case ', k, " '"//trim(state%name)//"': solver "// &
+                    trim(status_name(res%status))//': '//trim(res%message)
+            end if
+        end subroutine run_one_case
+
+        !> Report an input error of the current case and remove stale outputs.
+        subroutine case_error(clean)
+            logical, intent(in), optional :: clean
+            character(len=16) :: where
+            logical :: do_clean
+            do_clean = .true.
+            if (present(clean)) do_clean = clean
+            write (where, '(i0)') cases(k)%line
+            write (err, '(a,i0,a)') 'fastcontact: case ', k, " '"//trim(name)//"' (line "//trim(where)//'): '// &
+                trim(errmsg)
+            write (rep, '(a)') ' case '//trim(name)//'   *** ERROR *** '//trim(errmsg)
+            write (rep, '(a)') ''
+            ! never remove the outputs of an earlier case of the same name
+            if (do_clean .and. .not. any(used(1:nused_before) == name)) then
+                call remove_file(output_dir()//'/'//trim(name)//'.json')
+                call remove_file(output_dir()//'/'//trim(name)//'.csv')
+            end if
+        end subroutine case_error
+
+        function output_dir() result(d)
+            character(len=:), allocatable :: d
+            if (allocated(out_dir)) then
+                d = out_dir
+            else
+                d = trim(state%dir)
+            end if
+        end function output_dir
+    end subroutine run_driver
+
+    !> Whether the operator must be (re)built for this material and grid.
+    logical function needs_rebuild(nop, mat, grid)
+        type(fc_normal_operator), intent(in) :: nop
+        type(fc_material), intent(in) :: mat
+        type(fc_grid), intent(in) :: grid
+        needs_rebuild = .not. nop%a_zz%built() .or. nop%grid%nx /= grid%nx .or. nop%grid%ny /= grid%ny &
+            .or. nop%grid%dx /= grid%dx .or. nop%grid%dy /= grid%dy .or. nop%material%g /= mat%g &
+            .or. nop%material%nu /= mat%nu
+    end function needs_rebuild
+
+    !> mkdir -p DIR.
+    subroutine make_directory(dir, stat)
+        character(len=*), intent(in) :: dir
+        integer, intent(out) :: stat
+        integer :: cstat
+        stat = 0; cstat = 0
+        call execute_command_line("mkdir -p '"//dir//"'", exitstat=stat, cmdstat=cstat)
+        if (cstat /= 0) stat = cstat
+    end subroutine make_directory
+
+    !> Delete a file if it exists.
+    subroutine remove_file(path)
+        character(len=*), intent(in) :: path
+        logical :: exists
+        integer :: u, ios
+        inquire (file=path, exist=exists)
+        if (.not. exists) return
+        open (newunit=u, file=path, status='old', iostat=ios)
+        if (ios == 0) close (u, status='delete', iostat=ios)
+    end subroutine remove_file
+
+end module fc_driver

@@ -1,0 +1,1029 @@
+!> Namelist input of the batch driver (SPEC §5): splitting a case file into cases,
+!! pre-parsing and reading the namelist groups, inheritance from case to case, validation,
+!! and building the grid, material and undeformed distance of one case.
+!!
+!! A case starts at each `&case` group; the groups up to the next `&case` belong to it
+!! (groups before the first `&case` belong to the first case; a file without `&case` is
+!! one case).  Each case chunk is pre-parsed here — groups `&name ... /`, keys before `=`,
+!! case-insensitive, text in quotes and after `!` ignored — so that unknown groups and keys
+!! are reported by name, and each group is then read with a namelist READ from an internal
+!! unit holding that group only.
+!!
+!! Groups, keys and defaults (see also doc/namelist.md):
+!!
+!! * `&case name, title, problem` — name: file stem of the outputs, not inherited, default
+!!   `case<N>`; title: ''; problem: 'normal' (the only one supported so far).
+!! * `&material g1, g2, nu1, nu2, ic_file` — g1, g2 required (≥ 1e29: rigid);
+!!   nu1 = nu2 = 0.28; ic_file: not yet supported.
+!! * `&grid nx, ny, xmin, xmax, ymin, ymax` — all required (outer edges of the potential
+!!   contact area); strip2d: ny defaults to 1 and must be 1.  nx·ny ≤ 4096².
+!! * `&geometry kind, ...` — kind required: 'quadratic' (rx > 0, ry ≥ 0; 0 = flat),
+!!   'strip2d' (rx > 0, ny = 1), 'punch_rough' (diameter > 0, sigma = 0.1, gamma = 0.8,
+!!   m_modes = 12, n_modes = 10, seed = 2015), 'wavy' (amplitude > 0, wavelength_x = 0,
+!!   wavelength_y = 0; 0 = flat), 'table' (file: nx·ny values, x fastest).
+!! * `&normal approach | fn` — exactly one required; giving one clears the inherited other.
+!! * `&tangential mu, xi, eta, phi, fx, fy` — accepted, ignored for problem = 'normal'.
+!! * `&solver normal, tol, maxit, inner_maxit, precondition, deflation` (normal = 'bccg',
+!!   tol = 1e-5, maxit = 1000, inner_maxit = 0, precondition = deflation = .true.);
+!!   tangential, inner_k, cycle, omega, beta accepted and noted as ignored.
+!! * `&output dir, table` — dir = 'out' (the command line `--out` wins), table = .true.
+!!
+!! Every value persists from case to case except `name`.  A case with an input error does
+!! not change the inherited state: the next case inherits from the last good case.
+module fc_input
+    use fc_kinds, only: dp, i8, msg_len
+    use fc_geometry, only: fc_grid, fc_rough_params, make_grid, quadratic_gap, punch_rough_gap, wavy_gap, &
+        read_gap_table, h_no_contact
+    use fc_influence, only: fc_material, combine_material, rigid_modulus
+    use fc_norm, only: fc_normal_settings
+    implicit none
+    private
+
+    integer, parameter :: key_len = 32    !! longest key name kept
+    integer, parameter :: val_len = 512   !! longest value text kept
+    integer, parameter :: path_len = 256  !! file and directory names
+
+    !> Largest grid accepted (nx·ny).
+    integer(i8), parameter, public :: max_grid_elements = 4096_i8*4096_i8
+
+    !> One `key = value` of a group as written in the file.
+    type, public :: fc_nml_item
+        character(len=key_len) :: key = ''     !! lower-case key (subscripts removed)
+        character(len=val_len) :: value = ''   !! value text, trimmed
+    end type fc_nml_item
+
+    !> One namelist group as written in the file (comments removed, lines joined).
+    type, public :: fc_nml_group
+        character(len=key_len) :: name = ''          !! lower-case group name
+        integer :: line = 0                          !! line of the `&name`
+        character(len=:), allocatable :: text        !! `&name ... /` ready for a namelist READ
+        type(fc_nml_item), allocatable :: items(:)   !! keys in order of appearance
+    end type fc_nml_group
+
+    !> The groups of one case.
+    type, public :: fc_case_chunk
+        integer :: line = 0                          !! line of its `&case` (or first group)
+        type(fc_nml_group), allocatable :: groups(:)
+    end type fc_case_chunk
+
+    !> All input values of a case (inherited state); defaults as in the module header.
+    type, public :: fc_case_input
+        integer :: index = 0                       !! position of the case in the file
+        integer :: line = 0                        !! line where the case starts
+        ! &case
+        character(len=64) :: name = ''             !! output file stem (not inherited)
+        character(len=128) :: title = ''           !! free text for the report
+        character(len=32) :: problem = 'normal'    !! 'normal' ('tangential', 'normal+tangential': not yet)
+        ! &material
+        real(dp) :: g1 = 0, g2 = 0                 !! shear moduli [N/mm²] (≥ 1e29: rigid)
+        real(dp) :: nu1 = 0.28_dp, nu2 = 0.28_dp   !! Poisson ratios
+        character(len=path_len) :: ic_file = ''    !! influence coefficients from file (not yet)
+        ! &grid
+        integer :: nx = 0, ny = 0                  !! elements per direction
+        real(dp) :: xmin = 0, xmax = 0, ymin = 0, ymax = 0  !! outer edges [mm]
+        ! &geometry
+        character(len=16) :: kind = ''             !! quadratic, punch_rough, wavy, strip2d, table
+        real(dp) :: rx = 0, ry = 0                 !! radii of the quadratic profile [mm]
+        real(dp) :: diameter = 0                   !! punch diameter [mm]
+        type(fc_rough_params) :: rough             !! sigma, gamma, m_modes, n_modes, seed
+        real(dp) :: amplitude = 0                  !! wavy amplitude [mm]
+        real(dp) :: wavelength_x = 0, wavelength_y = 0  !! wavy wavelengths [mm] (0: flat)
+        character(len=path_len) :: file = ''       !! table file of h0
+        ! &normal
+        logical :: force_prescribed = .false.      !! fn given (else approach)
+        real(dp) :: approach = 0                   !! prescribed approach δ [mm]
+        real(dp) :: fn = 0                         !! prescribed normal force [N]
+        ! &tangential (accepted, not used yet)
+        real(dp) :: mu = 0, xi = 0, eta = 0, phi = 0, fx = 0, fy = 0
+        ! &solver
+        type(fc_normal_settings) :: settings       !! normal solver settings
+        character(len=16) :: tangential = 'tangcg' !! not used yet
+        integer :: inner_k = 3                     !! not used yet
+        character(len=16) :: cycle = 'V(1,1)'      !! not used yet
+        real(dp) :: omega = 0.8_dp, beta = 0.003_dp  !! not used yet
+        ! &output
+        character(len=path_len) :: dir = 'out'     !! output directory
+        logical :: table = .true.                  !! write the CSV table
+        ! bookkeeping
+        character(len=2*key_len + 1), allocatable :: given(:)  !! 'group:key' given so far
+        character(len=:), allocatable :: notes     !! remarks for the report (ignored keys)
+    end type fc_case_input
+
+    character(len=*), parameter :: known_groups = 'case material grid geometry normal tangential solver output'
+
+    public :: read_case_file, split_cases, apply_case, validate_case, setup_case, is_given, fmt_real
+
+contains
+
+    ! ---------------------------------------------------------------- file splitting ----
+
+    !> Read `filename` and split it into cases.  stat ≠ 0 for an unreadable file or a
+    !! syntax error (unterminated group, text that is not `key = value`).
+    subroutine read_case_file(filename, cases, stat, errmsg)
+        character(len=*), intent(in) :: filename
+        type(fc_case_chunk), allocatable, intent(out) :: cases(:)
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        character(len=:), allocatable :: text
+        integer, allocatable :: lines(:)
+        integer :: unit, ios, lineno, n
+        character(len=4096) :: buf
+        character(len=256) :: iomsg
+        logical :: in_quote
+        character :: quote
+        stat = 0; errmsg = ''
+        open (newunit=unit, file=filename, status='old', action='read', iostat=ios, iomsg=iomsg)
+        if (ios /= 0) then
+            stat = 1; errmsg = "cannot open case file '"//trim(filename)//"': "//trim(iomsg); return
+        end if
+        text = ''
+        allocate (lines(0))
+        lineno = 0; in_quote = .false.; quote = ' '
+        do
+            read (unit, '(a)', iostat=ios) buf
+            if (ios /= 0) exit
+            lineno = lineno + 1
+            call strip_comment(buf, in_quote, quote)
+            n = len_trim(buf)
+            text = text//buf(1:n)//' '
+            lines = [lines, spread(lineno, 1, n + 1)]
+        end do
+        close (unit)
+        call split_cases(text, lines, cases, stat, errmsg)
+    end subroutine read_case_file
+
+    !> Blank the part of `line` after a `!` that is outside quotes; quote state carries over.
+    subroutine strip_comment(line, in_quote, quote)
+        character(len=*), intent(inout) :: line
+        logical, intent(inout) :: in_quote
+        character, intent(inout) :: quote
+        integer :: i
+        do i = 1, len_trim(line)
+            if (line(i:i) == char(9)) line(i:i) = ' '
+            if (in_quote) then
+                if (line(i:i) == quote) in_quote = .false.
+            else if (line(i:i) == '"' .or. line(i:i) == "'") then
+                in_quote = .true.; quote = line(i:i)
+            else if (line(i:i) == '!') then
+                line(i:) = ''
+                return
+            end if
+        end do
+    end subroutine strip_comment
+
+    !> Split comment-free `text` (one string, `lines(k)` = file line of character k) into
+    !! groups, and the groups into cases at each `&case`.
+    subroutine split_cases(text, lines, cases, stat, errmsg)
+        character(len=*), intent(in) :: text
+        integer, intent(in) :: lines(:)
+        type(fc_case_chunk), allocatable, intent(out) :: cases(:)
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        type(fc_nml_group), allocatable :: groups(:)
+        type(fc_nml_group) :: g
+        integer :: i, n, start, gstart, k, ncase, j
+        integer, allocatable :: starts(:)
+        logical :: in_quote
+        character :: quote, c
+        stat = 0; errmsg = ''
+        allocate (groups(0))
+        n = len(text)
+        i = 1
+        do while (i <= n)
+            c = text(i:i)
+            if (c == ' ' .or. c == ',') then
+                i = i + 1; cycle
+            end if
+            if (c /= '&' .and. c /= '$') then
+                ! gfortran skips text between groups; we do the same but only up to a '&'
+                i = i + 1; cycle
+            end if
+            gstart = i
+            start = i + 1
+            k = start
+            do while (k <= n)
+                if (.not. is_ident_char(text(k:k))) exit
+                k = k + 1
+            end do
+            if (allocated(g%items)) deallocate (g%items)
+            g%name = lower(text(start:k - 1))
+            g%line = lines(min(gstart, size(lines)))
+            if (len_trim(g%name) == 0) then
+                stat = 1; write (errmsg, '(a,i0)') "'&' not followed by a group name at line ", g%line; return
+            end if
+            if (g%name == 'end') then
+                i = k; cycle
+            end if
+            ! find the closing '/' (or '&end' / '$end') outside quotes
+            in_quote = .false.; quote = ' '
+            j = k
+            do while (j <= n)
+                c = text(j:j)
+                if (in_quote) then
+                    if (c == quote) in_quote = .false.
+                else if (c == '"' .or. c == "'") then
+                    in_quote = .true.; quote = c
+                else if (c == '/') then
+                    exit
+                else if (c == '&' .or. c == '$') then
+                    if (lower(text(j + 1:min(n, j + 3))) == 'end') exit
+                    stat = 1
+                    write (errmsg, '(a,i0,a,i0)') 'group &'//trim(g%name)//' (line ', g%line, &
+                        ") is not terminated by '/' before the next group at line ", lines(j)
+                    return
+                end if
+                j = j + 1
+            end do
+            if (j > n) then
+                stat = 1
+                write (errmsg, '(a,i0,a)') 'group &'//trim(g%name)//' (line ', g%line, ") is not terminated by '/'"
+                return
+            end if
+            g%text = '&'//trim(g%name)//' '//text(k:j - 1)//' /'
+            call parse_items(g, text(k:j - 1), stat, errmsg)
+            if (stat /= 0) return
+            groups = [groups, g]
+            if (text(j:j) == '/') then
+                i = j + 1
+            else
+                i = j + 4
+            end if
+        end do
+        ! cases: one per &case; groups before the first &case belong to the first case
+        if (size(groups) == 0) then
+            stat = 1; errmsg = 'no namelist groups found in the case file'; return
+        end if
+        ncase = max(1, count(groups%name == 'case'))
+        allocate (cases(ncase), starts(ncase + 1))
+        k = 0
+        do i = 1, size(groups)
+            if (groups(i)%name == 'case') then
+                k = k + 1; starts(k) = i
+            end if
+        end do
+        starts(1) = 1
+        starts(ncase + 1) = size(groups) + 1
+        do k = 1, ncase
+            cases(k)%groups = groups(starts(k):starts(k + 1) - 1)
+            cases(k)%line = groups(starts(k))%line
+        end do
+    end subroutine split_cases
+
+    !> Find the `key = value` items in the body of a group.
+    subroutine parse_items(g, body, stat, errmsg)
+        type(fc_nml_group), intent(inout) :: g
+        character(len=*), intent(in) :: body
+        integer, intent(inout) :: stat
+        character(len=*), intent(inout) :: errmsg
+        integer :: i, n, k, kstart, depth, nitem
+        integer, allocatable :: kpos(:), epos(:)
+        logical :: in_quote
+        character :: quote, c
+        n = len(body)
+        allocate (kpos(0), epos(0))
+        in_quote = .false.; quote = ' '
+        do i = 1, n
+            c = body(i:i)
+            if (in_quote) then
+                if (c == quote) in_quote = .false.
+                cycle
+            end if
+            if (c == '"' .or. c == "'") then
+                in_quote = .true.; quote = c; cycle
+            end if
+            if (c /= '=') cycle
+            ! walk back: blanks, optional (subscript), identifier
+            k = i - 1
+            do while (k >= 1)
+                if (body(k:k) /= ' ') exit
+                k = k - 1
+            end do
+            if (k >= 1) then
+                if (body(k:k) == ')') then
+                    depth = 0
+                    do while (k >= 1)
+                        if (body(k:k) == ')') depth = depth + 1
+                        if (body(k:k) == '(') depth = depth - 1
+                        k = k - 1
+                        if (depth == 0) exit
+                    end do
+                    do while (k >= 1)
+                        if (body(k:k) /= ' ') exit
+                        k = k - 1
+                    end do
+                end if
+            end if
+            kstart = k
+            do while (kstart >= 1)
+                if (.not. (is_ident_char(body(kstart:kstart)) .or. body(kstart:kstart) == '%')) exit
+                kstart = kstart - 1
+            end do
+            kstart = kstart + 1
+            if (kstart > k) then
+                stat = 1
+                write (errmsg, '(a,i0,a)') 'group &'//trim(g%name)//' (line ', g%line, &
+                    "): '=' without a key name in '"//trim(shorten(body))//"'"
+                return
+            end if
+            kpos = [kpos, kstart]
+            epos = [epos, i]
+        end do
+        nitem = size(kpos)
+        allocate (g%items(nitem))
+        if (nitem == 0) then
+            if (len_trim(body) > 0) then
+                stat = 1
+                write (errmsg, '(a,i0,a)') 'group &'//trim(g%name)//' (line ', g%line, &
+                    "): expected 'key = value', got '"//trim(shorten(adjustl(body)))//"'"
+            end if
+            return
+        end if
+        if (len_trim(body(1:kpos(1) - 1)) > 0) then
+            stat = 1
+            write (errmsg, '(a,i0,a)') 'group &'//trim(g%name)//' (line ', g%line, &
+                "): expected 'key = value', got '"//trim(shorten(adjustl(body(1:kpos(1) - 1))))//"'"
+            return
+        end if
+        do k = 1, nitem
+            g%items(k)%key = key_of(body(kpos(k):epos(k) - 1))
+            if (k < nitem) then
+                g%items(k)%value = trim_value(body(epos(k) + 1:kpos(k + 1) - 1))
+            else
+                g%items(k)%value = trim_value(body(epos(k) + 1:))
+            end if
+        end do
+    contains
+        function key_of(s) result(key)
+            character(len=*), intent(in) :: s
+            character(len=key_len) :: key
+            integer :: p
+            p = index(s, '(')
+            if (p > 0) then
+                key = lower(adjustl(s(1:p - 1)))
+            else
+                key = lower(adjustl(s))
+            end if
+        end function key_of
+        function trim_value(s) result(v)
+            character(len=*), intent(in) :: s
+            character(len=val_len) :: v
+            integer :: m
+            v = adjustl(s)
+            m = len_trim(v)
+            do while (m > 0)
+                if (v(m:m) /= ',' .and. v(m:m) /= ' ') exit
+                v(m:m) = ' '
+                m = m - 1
+            end do
+        end function trim_value
+    end subroutine parse_items
+
+    ! ---------------------------------------------------------------- applying a case ----
+
+    !> Apply the groups of `chunk` on top of the inherited `state`.  On error `state` is
+    !! unchanged, `errmsg` names group, key and value, and `name` still returns the case
+    !! name when the `&case` group could be read (for removing stale outputs).
+    subroutine apply_case(chunk, icase, state, name, stat, errmsg)
+        type(fc_case_chunk), intent(in) :: chunk
+        integer, intent(in) :: icase              !! position of the case in the file
+        type(fc_case_input), intent(inout) :: state
+        character(len=*), intent(out) :: name
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        type(fc_case_input) :: s
+        integer :: ig, k, ios
+        character(len=256) :: iomsg
+        character(len=msg_len) :: where
+        logical :: has_fn, has_approach
+        stat = 0; errmsg = ''
+        s = state
+        if (.not. allocated(s%given)) allocate (s%given(0))
+        s%index = icase
+        s%line = chunk%line
+        s%name = ''
+        s%notes = ''
+        write (name, '(a,i0)') 'case', icase
+        do ig = 1, size(chunk%groups)
+            associate (g => chunk%groups(ig))
+                write (where, '(a,i0,a)') '&'//trim(g%name)//' (line ', g%line, ')'
+                if (index(' '//known_groups//' ', ' '//trim(g%name)//' ') == 0) then
+                    stat = 1
+                    if (size(g%items) > 0) then
+                        errmsg = 'unknown group '//trim(where)//" with key '"//trim(g%items(1)%key)//"' = "// &
+                            trim(g%items(1)%value)//'; known groups: '//known_groups
+                    else
+                        errmsg = 'unknown group '//trim(where)//'; known groups: '//known_groups
+                    end if
+                    return
+                end if
+                do k = 1, size(g%items)
+                    if (.not. known_key(g%name, g%items(k)%key)) then
+                        stat = 1
+                        errmsg = trim(where)//": unknown key '"//trim(g%items(k)%key)//"' (value "// &
+                            trim(g%items(k)%value)//'); known keys: '//keys_of(g%name)
+                        return
+                    end if
+                end do
+                if (g%name == 'normal') then
+                    has_fn = any(g%items%key == 'fn')
+                    has_approach = any(g%items%key == 'approach')
+                    if (has_fn .and. has_approach) then
+                        stat = 1
+                        errmsg = trim(where)//': give either approach or fn, not both (approach = '// &
+                            trim(item_value(g, 'approach'))//', fn = '//trim(item_value(g, 'fn'))//')'
+                        return
+                    end if
+                end if
+                call read_group(g%name, g%text, s, ios, iomsg)
+                if (ios /= 0) then
+                    stat = 1
+                    call blame_item(g, s, where, iomsg, errmsg)
+                    return
+                end if
+                do k = 1, size(g%items)
+                    call mark_given(s, g%name, g%items(k)%key)
+                end do
+                if (g%name == 'case' .and. len_trim(s%name) > 0) name = s%name
+                if (g%name == 'normal') then
+                    if (any(g%items%key == 'fn')) then
+                        s%force_prescribed = .true.; s%approach = 0
+                        call unmark_given(s, 'normal', 'approach')
+                    else if (any(g%items%key == 'approach')) then
+                        s%force_prescribed = .false.; s%fn = 0
+                        call unmark_given(s, 'normal', 'fn')
+                    end if
+                end if
+                if (g%name == 'solver') then
+                    do k = 1, size(g%items)
+                        select case (g%items(k)%key)
+                        case ('tangential', 'inner_k', 'cycle', 'omega', 'beta')
+                            s%notes = s%notes//'&solver '//trim(g%items(k)%key)//' = '//trim(g%items(k)%value)// &
+                                ' accepted but not used by the normal solvers yet. '
+                        end select
+                    end do
+                end if
+                if (g%name == 'tangential') s%notes = s%notes//'&tangential ignored for problem = normal. '
+            end associate
+        end do
+        if (len_trim(s%name) == 0) s%name = name
+        name = s%name
+        state = s
+    end subroutine apply_case
+
+    !> Value text of `key` in group `g` ('' if absent).
+    function item_value(g, key) result(v)
+        type(fc_nml_group), intent(in) :: g
+        character(len=*), intent(in) :: key
+        character(len=val_len) :: v
+        integer :: k
+        v = ''
+        do k = 1, size(g%items)
+            if (g%items(k)%key == key) v = g%items(k)%value
+        end do
+    end function item_value
+
+    !> After a failed READ of a group, read its items one by one to find the bad one.
+    subroutine blame_item(g, s, where, iomsg, errmsg)
+        type(fc_nml_group), intent(in) :: g
+        type(fc_case_input), intent(in) :: s
+        character(len=*), intent(in) :: where, iomsg
+        character(len=*), intent(out) :: errmsg
+        type(fc_case_input) :: tmp
+        integer :: k, ios
+        character(len=256) :: msg
+        do k = 1, size(g%items)
+            tmp = s
+            call read_group(g%name, '&'//trim(g%name)//' '//trim(g%items(k)%key)//' = '// &
+                trim(g%items(k)%value)//' /', tmp, ios, msg)
+            if (ios /= 0) then
+                errmsg = trim(where)//': cannot read '//trim(g%items(k)%key)//' = '//trim(g%items(k)%value)// &
+                    ' (wrong type or malformed value; gfortran: '//trim(msg)//')'
+                return
+            end if
+        end do
+        errmsg = trim(where)//': namelist read failed (gfortran: '//trim(iomsg)//')'
+    end subroutine blame_item
+
+    !> Dispatch a namelist READ of one group's text into the state.
+    subroutine read_group(name, text, s, ios, iomsg)
+        character(len=*), intent(in) :: name, text
+        type(fc_case_input), intent(inout) :: s
+        integer, intent(out) :: ios
+        character(len=*), intent(out) :: iomsg
+        ios = 0; iomsg = ''
+        select case (name)
+        case ('case');       call read_case_group(text, s, ios, iomsg)
+        case ('material');   call read_material_group(text, s, ios, iomsg)
+        case ('grid');       call read_grid_group(text, s, ios, iomsg)
+        case ('geometry');   call read_geometry_group(text, s, ios, iomsg)
+        case ('normal');     call read_normal_group(text, s, ios, iomsg)
+        case ('tangential'); call read_tangential_group(text, s, ios, iomsg)
+        case ('solver');     call read_solver_group(text, s, ios, iomsg)
+        case ('output');     call read_output_group(text, s, ios, iomsg)
+        case default
+            ios = 1; iomsg = 'unknown group &'//trim(name)
+        end select
+    end subroutine read_group
+
+    subroutine read_case_group(text, s, ios, iomsg)
+        character(len=*), intent(in) :: text
+        type(fc_case_input), intent(inout) :: s
+        integer, intent(out) :: ios
+        character(len=*), intent(out) :: iomsg
+        character(len=64) :: name
+        character(len=128) :: title
+        character(len=32) :: problem
+        namelist /case/ name, title, problem
+        name = s%name; title = s%title; problem = s%problem
+        read (text, nml=case, iostat=ios, iomsg=iomsg)
+        if (ios /= 0) return
+        s%name = name; s%title = title; s%problem = lower(problem)
+    end subroutine read_case_group
+
+    subroutine read_material_group(text, s, ios, iomsg)
+        character(len=*), intent(in) :: text
+        type(fc_case_input), intent(inout) :: s
+        integer, intent(out) :: ios
+        character(len=*), intent(out) :: iomsg
+        real(dp) :: g1, g2, nu1, nu2
+        character(len=path_len) :: ic_file
+        namelist /material/ g1, g2, nu1, nu2, ic_file
+        g1 = s%g1; g2 = s%g2; nu1 = s%nu1; nu2 = s%nu2; ic_file = s%ic_file
+        read (text, nml=material, iostat=ios, iomsg=iomsg)
+        if (ios /= 0) return
+        s%g1 = g1; s%g2 = g2; s%nu1 = nu1; s%nu2 = nu2; s%ic_file = ic_file
+    end subroutine read_material_group
+
+    subroutine read_grid_group(text, s, ios, iomsg)
+        character(len=*), intent(in) :: text
+        type(fc_case_input), intent(inout) :: s
+        integer, intent(out) :: ios
+        character(len=*), intent(out) :: iomsg
+        integer :: nx, ny
+        real(dp) :: xmin, xmax, ymin, ymax
+        namelist /grid/ nx, ny, xmin, xmax, ymin, ymax
+        nx = s%nx; ny = s%ny; xmin = s%xmin; xmax = s%xmax; ymin = s%ymin; ymax = s%ymax
+        read (text, nml=grid, iostat=ios, iomsg=iomsg)
+        if (ios /= 0) return
+        s%nx = nx; s%ny = ny; s%xmin = xmin; s%xmax = xmax; s%ymin = ymin; s%ymax = ymax
+    end subroutine read_grid_group
+
+    subroutine read_geometry_group(text, s, ios, iomsg)
+        character(len=*), intent(in) :: text
+        type(fc_case_input), intent(inout) :: s
+        integer, intent(out) :: ios
+        character(len=*), intent(out) :: iomsg
+        character(len=16) :: kind
+        real(dp) :: rx, ry, diameter, sigma, gamma, amplitude, wavelength_x, wavelength_y
+        integer :: m_modes, n_modes, seed
+        character(len=path_len) :: file
+        namelist /geometry/ kind, rx, ry, diameter, sigma, gamma, m_modes, n_modes, seed, amplitude, &
+            wavelength_x, wavelength_y, file
+        kind = s%kind; rx = s%rx; ry = s%ry; diameter = s%diameter
+        sigma = s%rough%sigma; gamma = s%rough%gamma; m_modes = s%rough%m_modes; n_modes = s%rough%n_modes
+        seed = s%rough%seed; amplitude = s%amplitude; wavelength_x = s%wavelength_x; wavelength_y = s%wavelength_y
+        file = s%file
+        read (text, nml=geometry, iostat=ios, iomsg=iomsg)
+        if (ios /= 0) return
+        s%kind = lower(kind); s%rx = rx; s%ry = ry; s%diameter = diameter
+        s%rough%sigma = sigma; s%rough%gamma = gamma; s%rough%m_modes = m_modes; s%rough%n_modes = n_modes
+        s%rough%seed = seed; s%amplitude = amplitude; s%wavelength_x = wavelength_x; s%wavelength_y = wavelength_y
+        s%file = file
+    end subroutine read_geometry_group
+
+    subroutine read_normal_group(text, s, ios, iomsg)
+        character(len=*), intent(in) :: text
+        type(fc_case_input), intent(inout) :: s
+        integer, intent(out) :: ios
+        character(len=*), intent(out) :: iomsg
+        real(dp) :: approach, fn
+        namelist /normal/ approach, fn
+        approach = s%approach; fn = s%fn
+        read (text, nml=normal, iostat=ios, iomsg=iomsg)
+        if (ios /= 0) return
+        s%approach = approach; s%fn = fn
+    end subroutine read_normal_group
+
+    subroutine read_tangential_group(text, s, ios, iomsg)
+        character(len=*), intent(in) :: text
+        type(fc_case_input), intent(inout) :: s
+        integer, intent(out) :: ios
+        character(len=*), intent(out) :: iomsg
+        real(dp) :: mu, xi, eta, phi, fx, fy
+        namelist /tangential/ mu, xi, eta, phi, fx, fy
+        mu = s%mu; xi = s%xi; eta = s%eta; phi = s%phi; fx = s%fx; fy = s%fy
+        read (text, nml=tangential, iostat=ios, iomsg=iomsg)
+        if (ios /= 0) return
+        s%mu = mu; s%xi = xi; s%eta = eta; s%phi = phi; s%fx = fx; s%fy = fy
+    end subroutine read_tangential_group
+
+    subroutine read_solver_group(text, s, ios, iomsg)
+        character(len=*), intent(in) :: text
+        type(fc_case_input), intent(inout) :: s
+        integer, intent(out) :: ios
+        character(len=*), intent(out) :: iomsg
+        character(len=16) :: normal, tangential, cycle
+        real(dp) :: tol, omega, beta
+        integer :: maxit, inner_maxit, inner_k
+        logical :: precondition, deflation
+        namelist /solver/ normal, tangential, tol, maxit, inner_maxit, precondition, deflation, inner_k, &
+            cycle, omega, beta
+        normal = s%settings%solver; tangential = s%tangential; tol = s%settings%tol; maxit = s%settings%maxit
+        inner_maxit = s%settings%inner_maxit; precondition = s%settings%precondition
+        deflation = s%settings%deflation; inner_k = s%inner_k; cycle = s%cycle; omega = s%omega; beta = s%beta
+        read (text, nml=solver, iostat=ios, iomsg=iomsg)
+        if (ios /= 0) return
+        normal = lower(normal)
+        if (len_trim(normal) > len(s%settings%solver)) normal = 'unknown:'//normal
+        s%settings%solver = normal; s%tangential = lower(tangential); s%settings%tol = tol
+        s%settings%maxit = maxit; s%settings%inner_maxit = inner_maxit; s%settings%precondition = precondition
+        s%settings%deflation = deflation; s%inner_k = inner_k; s%cycle = cycle; s%omega = omega; s%beta = beta
+    end subroutine read_solver_group
+
+    subroutine read_output_group(text, s, ios, iomsg)
+        character(len=*), intent(in) :: text
+        type(fc_case_input), intent(inout) :: s
+        integer, intent(out) :: ios
+        character(len=*), intent(out) :: iomsg
+        character(len=path_len) :: dir
+        logical :: table
+        namelist /output/ dir, table
+        dir = s%dir; table = s%table
+        read (text, nml=output, iostat=ios, iomsg=iomsg)
+        if (ios /= 0) return
+        s%dir = dir; s%table = table
+    end subroutine read_output_group
+
+    !> Keys of a group, blank separated.
+    function keys_of(group) result(keys)
+        character(len=*), intent(in) :: group
+        character(len=:), allocatable :: keys
+        select case (group)
+        case ('case');       keys = 'name title problem'
+        case ('material');   keys = 'g1 g2 nu1 nu2 ic_file'
+        case ('grid');       keys = 'nx ny xmin xmax ymin ymax'
+        case ('geometry')
+            keys = 'kind rx ry diameter sigma gamma m_modes n_modes seed amplitude wavelength_x wavelength_y file'
+        case ('normal');     keys = 'approach fn'
+        case ('tangential'); keys = 'mu xi eta phi fx fy'
+        case ('solver');     keys = 'normal tangential tol maxit inner_maxit precondition deflation inner_k cycle omega beta'
+        case ('output');     keys = 'dir table'
+        case default;        keys = ''
+        end select
+    end function keys_of
+
+    logical function known_key(group, key)
+        character(len=*), intent(in) :: group, key
+        known_key = index(' '//keys_of(group)//' ', ' '//trim(key)//' ') > 0 .and. len_trim(key) > 0
+    end function known_key
+
+    subroutine mark_given(s, group, key)
+        type(fc_case_input), intent(inout) :: s
+        character(len=*), intent(in) :: group, key
+        character(len=2*key_len + 1), allocatable :: tmp(:)
+        integer :: n
+        if (is_given(s, group, key)) return
+        n = 0
+        if (allocated(s%given)) n = size(s%given)
+        allocate (tmp(n + 1))
+        if (n > 0) tmp(1:n) = s%given
+        tmp(n + 1) = tag(group, key)
+        call move_alloc(tmp, s%given)
+    end subroutine mark_given
+
+    subroutine unmark_given(s, group, key)
+        type(fc_case_input), intent(inout) :: s
+        character(len=*), intent(in) :: group, key
+        character(len=2*key_len + 1), allocatable :: tmp(:)
+        if (.not. allocated(s%given)) return
+        allocate (tmp(count(s%given /= tag(group, key))))
+        tmp = pack(s%given, s%given /= tag(group, key))
+        call move_alloc(tmp, s%given)
+    end subroutine unmark_given
+
+    !> Whether `group:key` was given in this case or an earlier one.
+    logical function is_given(s, group, key)
+        type(fc_case_input), intent(in) :: s
+        character(len=*), intent(in) :: group, key
+        is_given = .false.
+        if (allocated(s%given)) is_given = any(s%given == tag(group, key))
+    end function is_given
+
+    function tag(group, key) result(t)
+        character(len=*), intent(in) :: group, key
+        character(len=2*key_len + 1) :: t
+        t = trim(group)//':'//trim(key)
+    end function tag
+
+    ! ---------------------------------------------------------------- validation ----
+
+    !> Check the values of a case; the message names group, key and value.
+    subroutine validate_case(s, stat, errmsg)
+        type(fc_case_input), intent(inout) :: s
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        integer :: i
+        stat = 1; errmsg = ''
+        ! &case
+        if (len_trim(s%name) == 0 .or. verify(trim(s%name), &
+            'abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.+') /= 0 .or. s%name(1:1) == '.') then
+            errmsg = "&case name = '"//trim(s%name)//"': use letters, digits, '_', '-', '.', '+' only (file name)"
+            return
+        end if
+        select case (s%problem)
+        case ('normal')
+        case ('tangential', 'normal+tangential')
+            errmsg = "&case problem = '"//trim(s%problem)//"': not yet supported (only 'normal')"; return
+        case default
+            errmsg = "&case problem = '"//trim(s%problem)//"': unknown problem; use 'normal'"; return
+        end select
+        ! &material
+        if (.not. is_given(s, 'material', 'g1')) then
+            errmsg = '&material g1: missing required value (shear modulus of body 1; >= 1e29 for rigid)'; return
+        end if
+        if (.not. is_given(s, 'material', 'g2')) then
+            errmsg = '&material g2: missing required value (shear modulus of body 2; >= 1e29 for rigid)'; return
+        end if
+        if (.not. (s%g1 > 0)) then
+            errmsg = '&material g1 = '//fmt_real(s%g1)//': must be > 0'; return
+        end if
+        if (.not. (s%g2 > 0)) then
+            errmsg = '&material g2 = '//fmt_real(s%g2)//': must be > 0'; return
+        end if
+        if (.not. (s%nu1 >= 0 .and. s%nu1 < 0.5_dp)) then
+            errmsg = '&material nu1 = '//fmt_real(s%nu1)//': must lie in [0, 0.5)'; return
+        end if
+        if (.not. (s%nu2 >= 0 .and. s%nu2 < 0.5_dp)) then
+            errmsg = '&material nu2 = '//fmt_real(s%nu2)//': must lie in [0, 0.5)'; return
+        end if
+        if (s%g1 >= rigid_modulus .and. s%g2 >= rigid_modulus) then
+            errmsg = '&material g1 = '//fmt_real(s%g1)//', g2 = '//fmt_real(s%g2)//': both bodies rigid'; return
+        end if
+        if (len_trim(s%ic_file) > 0) then
+            errmsg = "&material ic_file = '"//trim(s%ic_file)//"': not yet supported"; return
+        end if
+        ! &geometry kind first: strip2d decides ny
+        if (.not. is_given(s, 'geometry', 'kind')) then
+            errmsg = "&geometry kind: missing required value ('quadratic', 'punch_rough', 'wavy', 'strip2d', 'table')"
+            return
+        end if
+        select case (s%kind)
+        case ('quadratic', 'punch_rough', 'wavy', 'strip2d', 'table')
+        case default
+            errmsg = "&geometry kind = '"//trim(s%kind)//"': unknown; use 'quadratic', 'punch_rough', 'wavy', "// &
+                "'strip2d' or 'table'"
+            return
+        end select
+        ! &grid
+        if (s%kind == 'strip2d') then
+            if (.not. is_given(s, 'grid', 'ny')) s%ny = 1
+            if (s%ny /= 1) then
+                errmsg = '&grid ny = '//fmt_int(s%ny)//": must be 1 for &geometry kind = 'strip2d'"; return
+            end if
+        end if
+        do i = 1, 6
+            associate (key => grid_keys(i))
+                if (.not. is_given(s, 'grid', trim(key)) .and. .not. (key == 'ny' .and. s%kind == 'strip2d')) then
+                    errmsg = '&grid '//trim(key)//': missing required value'; return
+                end if
+            end associate
+        end do
+        if (s%nx < 1) then
+            errmsg = '&grid nx = '//fmt_int(s%nx)//': must be >= 1'; return
+        end if
+        if (s%ny < 1) then
+            errmsg = '&grid ny = '//fmt_int(s%ny)//': must be >= 1'; return
+        end if
+        if (.not. (s%xmax > s%xmin)) then
+            errmsg = '&grid xmax = '//fmt_real(s%xmax)//': must be > xmin = '//fmt_real(s%xmin)//' (empty grid)'; return
+        end if
+        if (.not. (s%ymax > s%ymin)) then
+            errmsg = '&grid ymax = '//fmt_real(s%ymax)//': must be > ymin = '//fmt_real(s%ymin)//' (empty grid)'; return
+        end if
+        if (int(s%nx, i8)*int(s%ny, i8) > max_grid_elements) then
+            errmsg = '&grid nx = '//fmt_int(s%nx)//', ny = '//fmt_int(s%ny)//': oversized grid (nx*ny > 4096*4096)'
+            return
+        end if
+        ! &geometry parameters
+        select case (s%kind)
+        case ('quadratic', 'strip2d')
+            if (.not. is_given(s, 'geometry', 'rx')) then
+                errmsg = "&geometry rx: missing required value for kind = '"//trim(s%kind)//"'"; return
+            end if
+            if (.not. (s%rx > 0)) then
+                errmsg = '&geometry rx = '//fmt_real(s%rx)//': must be > 0'; return
+            end if
+            if (s%kind == 'quadratic') then
+                if (.not. is_given(s, 'geometry', 'ry')) then
+                    errmsg = "&geometry ry: missing required value for kind = 'quadratic' (0: flat in y)"; return
+                end if
+                if (.not. (s%ry >= 0)) then
+                    errmsg = '&geometry ry = '//fmt_real(s%ry)//': must be >= 0 (0: flat in y)'; return
+                end if
+            end if
+        case ('punch_rough')
+            if (.not. is_given(s, 'geometry', 'diameter')) then
+                errmsg = "&geometry diameter: missing required value for kind = 'punch_rough'"; return
+            end if
+            if (.not. (s%diameter > 0)) then
+                errmsg = '&geometry diameter = '//fmt_real(s%diameter)//': must be > 0'; return
+            end if
+            if (.not. (s%rough%sigma >= 0)) then
+                errmsg = '&geometry sigma = '//fmt_real(s%rough%sigma)//': must be >= 0'; return
+            end if
+            if (.not. (s%rough%gamma > 0 .and. s%rough%gamma <= 1)) then
+                errmsg = '&geometry gamma = '//fmt_real(s%rough%gamma)//': must lie in (0, 1]'; return
+            end if
+            if (s%rough%m_modes < 1) then
+                errmsg = '&geometry m_modes = '//fmt_int(s%rough%m_modes)//': must be >= 1'; return
+            end if
+            if (s%rough%n_modes < 1) then
+                errmsg = '&geometry n_modes = '//fmt_int(s%rough%n_modes)//': must be >= 1'; return
+            end if
+        case ('wavy')
+            if (.not. is_given(s, 'geometry', 'amplitude')) then
+                errmsg = "&geometry amplitude: missing required value for kind = 'wavy'"; return
+            end if
+            if (.not. (s%amplitude > 0)) then
+                errmsg = '&geometry amplitude = '//fmt_real(s%amplitude)//': must be > 0'; return
+            end if
+        case ('table')
+            if (len_trim(s%file) == 0) then
+                errmsg = "&geometry file: missing required value for kind = 'table'"; return
+            end if
+            if (.not. file_exists(s%file)) then
+                errmsg = "&geometry file = '"//trim(s%file)//"': file not found"; return
+            end if
+        end select
+        ! &normal
+        if (.not. (is_given(s, 'normal', 'approach') .or. is_given(s, 'normal', 'fn'))) then
+            errmsg = '&normal approach, fn: missing required value (give approach or fn)'; return
+        end if
+        if (s%force_prescribed) then
+            if (.not. (s%fn > 0)) then
+                errmsg = '&normal fn = '//fmt_real(s%fn)//': must be > 0'; return
+            end if
+        else
+            if (s%approach /= s%approach .or. abs(s%approach) > huge(1.0_dp)) then
+                errmsg = '&normal approach = '//fmt_real(s%approach)//': not a finite number'; return
+            end if
+        end if
+        ! &solver
+        select case (s%settings%solver)
+        case ('bccg', 'norm')
+        case ('fmg')
+            errmsg = "&solver normal = 'fmg': not yet supported (use 'bccg' or 'norm')"; return
+        case default
+            errmsg = "&solver normal = '"//trim(s%settings%solver)//"': unknown solver; use 'bccg' or 'norm'"; return
+        end select
+        if (.not. (s%settings%tol > 0)) then
+            errmsg = '&solver tol = '//fmt_real(s%settings%tol)//': must be > 0'; return
+        end if
+        if (s%settings%maxit < 1) then
+            errmsg = '&solver maxit = '//fmt_int(s%settings%maxit)//': must be >= 1'; return
+        end if
+        if (s%settings%inner_maxit < 0) then
+            errmsg = '&solver inner_maxit = '//fmt_int(s%settings%inner_maxit)//': must be >= 0 (0: no limit)'; return
+        end if
+        ! &output
+        if (len_trim(s%dir) == 0) then
+            errmsg = "&output dir = '': must not be empty"; return
+        end if
+        stat = 0
+    contains
+        function grid_keys(k) result(key)
+            integer, intent(in) :: k
+            character(len=4) :: key
+            character(len=4), parameter :: keys(6) = ['nx  ', 'ny  ', 'xmin', 'xmax', 'ymin', 'ymax']
+            key = keys(k)
+        end function grid_keys
+    end subroutine validate_case
+
+    !> Build material, grid and undeformed distance h0 (without approach) of a validated
+    !! case, and check that contact is possible.
+    subroutine setup_case(s, material, grid, h0, stat, errmsg)
+        type(fc_case_input), intent(in) :: s
+        type(fc_material), intent(out) :: material
+        type(fc_grid), intent(out) :: grid
+        real(dp), allocatable, intent(out) :: h0(:, :)
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        character(len=msg_len) :: msg
+        real(dp) :: hmin
+        material%g1 = s%g1; material%g2 = s%g2; material%nu1 = s%nu1; material%nu2 = s%nu2
+        call combine_material(material, stat, msg)
+        if (stat /= 0) then
+            errmsg = '&'//trim(msg); return
+        end if
+        call make_grid(grid, s%nx, s%ny, s%xmin, s%xmax, s%ymin, s%ymax, stat, msg)
+        if (stat /= 0) then
+            errmsg = '&'//trim(msg); return
+        end if
+        allocate (h0(grid%nx, grid%ny), stat=stat)
+        if (stat /= 0) then
+            errmsg = '&grid nx = '//fmt_int(s%nx)//', ny = '//fmt_int(s%ny)//': cannot allocate the grid'; return
+        end if
+        select case (s%kind)
+        case ('quadratic')
+            h0 = quadratic_gap(grid, s%rx, s%ry)
+        case ('strip2d')
+            h0 = quadratic_gap(grid, s%rx, 0.0_dp)
+        case ('punch_rough')
+            call punch_rough_gap(grid, s%diameter, s%rough, h0)
+        case ('wavy')
+            h0 = wavy_gap(grid, s%amplitude, s%wavelength_x, s%wavelength_y)
+        case ('table')
+            call read_gap_table(s%file, grid, h0, stat, msg)
+            if (stat /= 0) then
+                errmsg = "&geometry file = '"//trim(s%file)//"': "//trim(msg); return
+            end if
+        end select
+        if (.not. any(h0 < 0.5_dp*h_no_contact)) then
+            stat = 1
+            errmsg = '&geometry kind = '''//trim(s%kind)//''': no element can come into contact '// &
+                '(e.g. punch diameter smaller than an element)'
+            return
+        end if
+        if (.not. s%force_prescribed) then
+            hmin = minval(h0, mask=h0 < 0.5_dp*h_no_contact)
+            if (.not. (hmin - s%approach <= 0)) then
+                stat = 1
+                errmsg = '&normal approach = '//fmt_real(s%approach)//': no contact possible (h0 - approach > 0 '// &
+                    'everywhere; min h0 = '//fmt_real(hmin)//')'
+                return
+            end if
+        end if
+        stat = 0; errmsg = ''
+    end subroutine setup_case
+
+    ! ---------------------------------------------------------------- helpers ----
+
+    logical function file_exists(path)
+        character(len=*), intent(in) :: path
+        inquire (file=trim(path), exist=file_exists)
+    end function file_exists
+
+    !> Short text of a real for messages.
+    function fmt_real(x) result(s)
+        real(dp), intent(in) :: x
+        character(len=:), allocatable :: s
+        character(len=40) :: buf
+        if (x /= x) then
+            s = 'NaN'; return
+        end if
+        if (abs(x) > huge(x)) then
+            s = merge('+Inf', '-Inf', x > 0); return
+        end if
+        if (x == 0 .or. (abs(x) >= 1.0e-3_dp .and. abs(x) < 1.0e7_dp)) then
+            write (buf, '(f0.8)') x
+            buf = adjustl(buf)
+            s = trim(buf)
+            do while (len(s) > 1 .and. s(len(s):len(s)) == '0')
+                s = s(1:len(s) - 1)
+            end do
+            if (s(len(s):len(s)) == '.') s = s//'0'
+            if (s(1:1) == '.') s = '0'//s
+            if (len(s) >= 2) then
+                if (s(1:2) == '-.') s = '-0'//s(2:)
+            end if
+        else
+            write (buf, '(es15.8)') x
+            s = trim(adjustl(buf))
+        end if
+    end function fmt_real
+
+    function fmt_int(i) result(s)
+        integer, intent(in) :: i
+        character(len=:), allocatable :: s
+        character(len=20) :: buf
+        write (buf, '(i0)') i
+        s = trim(buf)
+    end function fmt_int
+
+    pure logical function is_ident_char(c)
+        character, intent(in) :: c
+        is_ident_char = (c >= 'a' .and. c <= 'z') .or. (c >= 'A' .and. c <= 'Z') .or. (c >= '0' .and. c <= '9') &
+            .or. c == '_'
+    end function is_ident_char
+
+    pure function lower(s) result(t)
+        character(len=*), intent(in) :: s
+        character(len=len(s)) :: t
+        integer :: i
+        t = s
+        do i = 1, len(s)
+            if (s(i:i) >= 'A' .and. s(i:i) <= 'Z') t(i:i) = achar(iachar(s(i:i)) + 32)
+        end do
+    end function lower
+
+    function shorten(s) result(t)
+        character(len=*), intent(in) :: s
+        character(len=:), allocatable :: t
+        if (len_trim(s) > 60) then
+            t = s(1:57)//'...'
+        else
+            t = trim(s)
+        end if
+    end function shorten
+
+end module fc_input

@@ -1,0 +1,307 @@
+!> Output of the batch driver (SPEC §5): per case a JSON summary, a CSV table of the
+!! element values and a readable text report with a character map of the contact area
+!! in the style of Kalker's CONTACT.
+module fc_output
+    use fc_kinds, only: dp, msg_len
+    use fc_geometry, only: fc_grid
+    use fc_influence, only: fc_material
+    use fc_hertz, only: fc_hertz_solution
+    implicit none
+    private
+
+    !> Everything the JSON summary and the report state about one case.
+    type, public :: fc_case_summary
+        character(len=64) :: name = ''               !! case name (file stem)
+        character(len=128) :: title = ''             !! free text
+        character(len=32) :: problem = 'normal'      !! problem type
+        character(len=16) :: geometry = ''           !! geometry kind
+        character(len=16) :: status = 'error'        !! converged, not_converged, diverged, error
+        character(len=16) :: solver = ''             !! normal solver used
+        type(fc_material) :: material                !! combined constants
+        type(fc_grid) :: grid                        !! potential contact area
+        logical :: force_prescribed = .false.        !! fn prescribed (else approach)
+        real(dp) :: fn = 0, fx = 0, fy = 0, mz = 0   !! total forces [N] and moment [N mm]
+        real(dp) :: approach = 0                     !! approach δ used [mm]
+        real(dp) :: pmax = 0                         !! maximum pressure [N/mm²]
+        integer :: ncon = 0, nadh = 0, nslip = 0     !! elements in contact / adhesion / slip
+        integer :: iterations = 0                    !! solver iterations
+        integer :: outer_iterations = 0              !! active-set iterations / free-set changes
+        integer :: matvecs = 0                       !! products with A
+        real(dp) :: residual = 0                     !! final relative residual
+        real(dp) :: tol = 0                          !! requested tolerance
+        real(dp) :: cpu_seconds = 0                  !! whole case
+        real(dp) :: cpu_seconds_normal = 0           !! operator set-up + normal solve
+        real(dp) :: cpu_seconds_tangential = 0       !! tangential stage (none yet)
+        real(dp) :: setup_seconds = 0                !! operator set-up (0 when reused)
+        real(dp) :: xi = 0, eta = 0, phi = 0         !! rigid shift used
+        logical :: has_hertz = .false.               !! quadratic geometry: analytic comparison
+        type(fc_hertz_solution) :: hertz             !! analytic Hertz solution
+        character(len=msg_len) :: message = ''       !! solver message
+        character(len=:), allocatable :: notes       !! remarks (ignored keys)
+    end type fc_case_summary
+
+    integer, parameter, public :: map_max_cols = 100  !! widest contact map
+    integer, parameter, public :: map_max_rows = 50   !! tallest contact map
+
+    public :: write_case_json, write_case_csv, write_case_report, json_string, contact_map
+
+contains
+
+    !> Write the JSON summary of a case to `path`.
+    subroutine write_case_json(path, s, stat, errmsg)
+        character(len=*), intent(in) :: path
+        type(fc_case_summary), intent(in) :: s
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        integer :: u
+        character(len=256) :: iomsg
+        open (newunit=u, file=path, status='replace', action='write', iostat=stat, iomsg=iomsg)
+        if (stat /= 0) then
+            errmsg = "cannot write '"//trim(path)//"': "//trim(iomsg); return
+        end if
+        write (u, '(a)') '{'
+        call kv_str('name', s%name)
+        call kv_str('title', s%title)
+        call kv_str('problem', s%problem)
+        call kv_str('geometry', s%geometry)
+        call kv_str('status', s%status)
+        call kv_str('message', s%message)
+        call kv_str('solver', s%solver)
+        call kv_str('load', merge('fn      ', 'approach', s%force_prescribed))
+        call kv_real('fn', s%fn)
+        call kv_real('fx', s%fx)
+        call kv_real('fy', s%fy)
+        call kv_real('mz', s%mz)
+        call kv_real('approach', s%approach)
+        call kv_real('xi', s%xi)
+        call kv_real('eta', s%eta)
+        call kv_real('phi', s%phi)
+        call kv_real('pmax', s%pmax)
+        call kv_int('ncon', s%ncon)
+        call kv_int('nadh', s%nadh)
+        call kv_int('nslip', s%nslip)
+        call kv_int('iterations', s%iterations)
+        call kv_int('outer_iterations', s%outer_iterations)
+        call kv_int('matvecs', s%matvecs)
+        call kv_real('residual', s%residual)
+        call kv_real('tol', s%tol)
+        call kv_real('cpu_seconds', s%cpu_seconds)
+        call kv_real('cpu_seconds_normal', s%cpu_seconds_normal)
+        call kv_real('cpu_seconds_tangential', s%cpu_seconds_tangential)
+        call kv_real('setup_seconds', s%setup_seconds)
+        call kv_int('nx', s%grid%nx)
+        call kv_int('ny', s%grid%ny)
+        call kv_real('dx', s%grid%dx)
+        call kv_real('dy', s%grid%dy)
+        call kv_real('xmin', s%grid%xmin)
+        call kv_real('xmax', s%grid%xmax)
+        call kv_real('ymin', s%grid%ymin)
+        call kv_real('ymax', s%grid%ymax)
+        call kv_real('g', s%material%g)
+        call kv_real('nu', s%material%nu)
+        call kv_real('k', s%material%k, last=.not. s%has_hertz)
+        if (s%has_hertz) then
+            write (u, '(a)') '  "hertz": {"a": '//json_real(s%hertz%a)//', "b": '//json_real(s%hertz%b)// &
+                ', "p0": '//json_real(s%hertz%p0)//', "fn": '//json_real(s%hertz%fn)// &
+                ', "approach": '//json_real(s%hertz%approach)//'}'
+        end if
+        write (u, '(a)') '}'
+        close (u, iostat=stat, iomsg=iomsg)
+        if (stat /= 0) errmsg = "cannot close '"//trim(path)//"': "//trim(iomsg)
+    contains
+        subroutine kv_str(key, val)
+            character(len=*), intent(in) :: key, val
+            write (u, '(a)') '  "'//key//'": '//json_string(trim(val))//','
+        end subroutine kv_str
+        subroutine kv_real(key, val, last)
+            character(len=*), intent(in) :: key
+            real(dp), intent(in) :: val
+            logical, intent(in), optional :: last
+            character(len=1) :: comma
+            comma = ','
+            if (present(last)) then
+                if (last) comma = ' '
+            end if
+            write (u, '(a)') '  "'//key//'": '//json_real(val)//trim(comma)
+        end subroutine kv_real
+        subroutine kv_int(key, val)
+            character(len=*), intent(in) :: key
+            integer, intent(in) :: val
+            character(len=20) :: buf
+            write (buf, '(i0)') val
+            write (u, '(a)') '  "'//key//'": '//trim(buf)//','
+        end subroutine kv_int
+    end subroutine write_case_json
+
+    !> A real as a JSON number at full precision (null for NaN/Inf).
+    function json_real(x) result(s)
+        real(dp), intent(in) :: x
+        character(len=:), allocatable :: s
+        character(len=32) :: buf
+        if (x /= x .or. abs(x) > huge(x)) then
+            s = 'null'; return
+        end if
+        write (buf, '(es23.15e3)') x
+        s = trim(adjustl(buf))
+    end function json_real
+
+    !> A JSON string literal with escapes.
+    function json_string(text) result(s)
+        character(len=*), intent(in) :: text
+        character(len=:), allocatable :: s
+        integer :: i, c
+        character(len=6) :: esc
+        s = '"'
+        do i = 1, len(text)
+            c = iachar(text(i:i))
+            select case (c)
+            case (34); s = s//'\"'
+            case (92); s = s//'\\'
+            case (0:31)
+                write (esc, '(a,z4.4)') '\u', c
+                s = s//esc
+            case default; s = s//text(i:i)
+            end select
+        end do
+        s = s//'"'
+    end function json_string
+
+    !> Write the element table `ix,iy,x,y,status,pn,px,py,sx,sy,gap` (normal problem:
+    !! status A in contact, E exterior; px..sy = 0).
+    subroutine write_case_csv(path, grid, pn, gap, stat, errmsg)
+        character(len=*), intent(in) :: path
+        type(fc_grid), intent(in) :: grid
+        real(dp), intent(in) :: pn(:, :), gap(:, :)
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        integer :: u, i, j
+        character(len=256) :: iomsg
+        character(len=1) :: st
+        character(len=*), parameter :: zero4 = ',0,0,0,0,'
+        open (newunit=u, file=path, status='replace', action='write', iostat=stat, iomsg=iomsg)
+        if (stat /= 0) then
+            errmsg = "cannot write '"//trim(path)//"': "//trim(iomsg); return
+        end if
+        write (u, '(a)') 'ix,iy,x,y,status,pn,px,py,sx,sy,gap'
+        do j = 1, grid%ny
+            do i = 1, grid%nx
+                st = 'E'
+                if (pn(i, j) > 0) st = 'A'
+                write (u, '(i0,a,i0,a)', advance='no') i, ',', j, ','
+                write (u, '(a)') json_real(grid%x(i))//','//json_real(grid%y(j))//','//st//','// &
+                    json_real(pn(i, j))//zero4//json_real(gap(i, j))
+            end do
+        end do
+        close (u, iostat=stat, iomsg=iomsg)
+        if (stat /= 0) errmsg = "cannot close '"//trim(path)//"': "//trim(iomsg)
+    end subroutine write_case_csv
+
+    !> Character map of the contact area: one character per element ('.' exterior, '*'
+    !! contact), rows with y decreasing from the top.  Grids wider than `map_max_cols` or
+    !! taller than `map_max_rows` are subsampled in blocks of sx×sy elements: '*' when at
+    !! least half of the block is in contact, '+' when some, '.' when none.
+    subroutine contact_map(pn, lines, sx, sy)
+        real(dp), intent(in) :: pn(:, :)
+        character(len=:), allocatable, intent(out) :: lines(:)
+        integer, intent(out) :: sx, sy   !! block size (1, 1 when not subsampled)
+        integer :: nx, ny, mx, my, i, j, ncon, ntot
+        nx = size(pn, 1); ny = size(pn, 2)
+        sx = (nx + map_max_cols - 1)/map_max_cols
+        sy = (ny + map_max_rows - 1)/map_max_rows
+        mx = (nx + sx - 1)/sx
+        my = (ny + sy - 1)/sy
+        allocate (character(len=mx) :: lines(my))
+        do j = 1, my
+            do i = 1, mx
+                associate (blk => pn((i - 1)*sx + 1:min(nx, i*sx), (my - j)*sy + 1:min(ny, (my - j + 1)*sy)))
+                    ncon = count(blk > 0); ntot = size(blk)
+                end associate
+                if (ncon == 0) then
+                    lines(j)(i:i) = '.'
+                else if (2*ncon >= ntot) then
+                    lines(j)(i:i) = '*'
+                else
+                    lines(j)(i:i) = '+'
+                end if
+            end do
+        end do
+    end subroutine contact_map
+
+    !> Readable report of one case on `unit`.  `pn` may be empty (no solution).
+    subroutine write_case_report(unit, s, pn)
+        integer, intent(in) :: unit
+        type(fc_case_summary), intent(in) :: s
+        real(dp), intent(in) :: pn(:, :)
+        character(len=:), allocatable :: lines(:)
+        integer :: sx, sy, j
+        real(dp) :: pct
+        character(len=*), parameter :: rule = &
+            '------------------------------------------------------------------------------------------'
+        write (unit, '(a)') rule
+        write (unit, '(a)') ' case '//trim(s%name)//'   '//trim(s%title)
+        write (unit, '(a)') rule
+        write (unit, '(a,a)') ' problem      ', trim(s%problem)//', geometry '//trim(s%geometry)
+        write (unit, '(a,4(1x,es12.5))') ' material     G1, G2, nu1, nu2 =', s%material%g1, s%material%g2, &
+            s%material%nu1, s%material%nu2
+        write (unit, '(a,es12.5,a,f8.5,a,es12.5)') ' combined     G = ', s%material%g, '   nu = ', s%material%nu, &
+            '   K = ', s%material%k
+        write (unit, '(a,i0,a,i0,a,4(1x,g0.6),a)') ' grid         ', s%grid%nx, ' x ', s%grid%ny, &
+            ' elements on [xmin,xmax]x[ymin,ymax] =', s%grid%xmin, s%grid%xmax, s%grid%ymin, s%grid%ymax, ''
+        write (unit, '(a,es12.5,a,es12.5)') '              dx = ', s%grid%dx, '   dy = ', s%grid%dy
+        if (s%force_prescribed) then
+            write (unit, '(a)') ' load         prescribed total normal force fn'
+        else
+            write (unit, '(a)') ' load         prescribed approach'
+        end if
+        write (unit, '(a,es16.8,a,es12.5,a,es12.5,a,es12.5)') ' forces       Fn = ', s%fn, '   Fx = ', s%fx, &
+            '   Fy = ', s%fy, '   Mz = ', s%mz
+        write (unit, '(a,es16.8,a,es16.8)') ' approach     ', s%approach, '      pmax = ', s%pmax
+        pct = 0
+        if (s%grid%nx*s%grid%ny > 0) pct = 100.0_dp*s%ncon/(real(s%grid%nx, dp)*s%grid%ny)
+        write (unit, '(a,i0,a,f6.2,a,i0,a,i0)') ' contact      ncon = ', s%ncon, ' (', pct, ' % of the grid)   nadh = ', &
+            s%nadh, '   nslip = ', s%nslip
+        if (s%has_hertz) then
+            write (unit, '(a,4(a,es12.5))') ' Hertz        ', 'a = ', s%hertz%a, '   b = ', s%hertz%b, '   p0 = ', &
+                s%hertz%p0, '   Fn = ', s%hertz%fn
+        end if
+        write (unit, '(a,a,a,i0,a,i0,a,i0,a,es10.3,a,es10.3)') ' solver       ', trim(s%solver), ':  iterations ', &
+            s%iterations, ' (outer ', s%outer_iterations, ')   matvecs ', s%matvecs, '   residual ', s%residual, &
+            '   tol ', s%tol
+        if (s%status == 'converged') then
+            write (unit, '(a)') ' status       converged'
+        else
+            write (unit, '(a)') ' status       *** '//trim(upper(s%status))//' ***  '//trim(s%message)
+            if (s%status /= 'error') write (unit, '(a)') '              *** NOT CONVERGED: the results below are '// &
+                'not a solution to the requested tolerance ***'
+        end if
+        write (unit, '(a,f10.4,a,f10.4,a,f10.4,a)') ' cpu time     ', s%cpu_seconds, ' s  (normal ', s%cpu_seconds_normal, &
+            ' s, of which operator set-up ', s%setup_seconds, ' s)'
+        if (allocated(s%notes)) then
+            if (len_trim(s%notes) > 0) write (unit, '(a)') ' note         '//trim(s%notes)
+        end if
+        if (size(pn) > 0) then
+            call contact_map(pn, lines, sx, sy)
+            if (sx > 1 .or. sy > 1) then
+                write (unit, '(a,i0,a,i0,a)') ' contact area (y up, x right; subsampled: one character per ', sx, &
+                    ' x ', sy, " elements, '*' >= half in contact, '+' partly, '.' none)"
+            else
+                write (unit, '(a)') " contact area (y up, x right; one character per element, '*' contact, '.' exterior)"
+            end if
+            do j = 1, size(lines)
+                write (unit, '(3x,a)') lines(j)
+            end do
+        end if
+        write (unit, '(a)') ''
+    end subroutine write_case_report
+
+    pure function upper(s) result(t)
+        character(len=*), intent(in) :: s
+        character(len=len(s)) :: t
+        integer :: i
+        t = s
+        do i = 1, len(s)
+            if (s(i:i) >= 'a' .and. s(i:i) <= 'z') t(i:i) = achar(iachar(s(i:i)) - 32)
+        end do
+    end function upper
+
+end module fc_output
