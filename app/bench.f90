@@ -14,10 +14,12 @@
 !! total_seconds wall clock from grid creation to the end of the solve (the whole job of a
 !!               one-shot run, operator set-up included)
 !!
-!! Usage: fastcontact-bench [--quick] [--all] [--max N] [--out FILE]
+!! Usage: fastcontact-bench [--quick] [--all] [--min N] [--max N] [--solver S] [--out FILE]
 !!   --quick   64² and 128² only (CI sanity check)
 !!   --all     also run NORM above 512²
+!!   --min N   smallest grid size n (default 64)
 !!   --max N   largest grid size n (default 1024)
+!!   --solver S  only solver S ('bccg' or 'norm'; default both)
 !!   --out F   CSV file (default doc/bench_normal.csv)
 program fastcontact_bench
     use, intrinsic :: iso_fortran_env, only: int64
@@ -39,14 +41,16 @@ program fastcontact_bench
 
     character(len=512) :: out_file, arg
     logical :: quick, run_all
-    integer :: nmax, iarg, nargs, ios, unit, k, isol, nfail
+    character(len=8) :: only_solver
+    character(len=4) :: solver
+    integer :: nmin, nmax, iarg, nargs, ios, unit, k, isol, nfail
     type(fc_material) :: mat
     type(fc_hertz_solution) :: hz
     character(len=256) :: msg
     integer :: stat
 
     out_file = 'doc/bench_normal.csv'
-    quick = .false.; run_all = .false.; nmax = 1024
+    quick = .false.; run_all = .false.; nmin = 1; nmax = 1024; only_solver = ''
     nargs = command_argument_count()
     iarg = 1
     do while (iarg <= nargs)
@@ -56,11 +60,21 @@ program fastcontact_bench
             quick = .true.
         case ('--all')
             run_all = .true.
-        case ('--max')
+        case ('--max', '--min')
             iarg = iarg + 1
-            call get_command_argument(iarg, arg)
-            read (arg, *, iostat=ios) nmax
-            if (ios /= 0 .or. nmax < 1) call usage('--max needs a positive integer, got "'//trim(arg)//'"')
+            call get_command_argument(iarg, msg)
+            read (msg, *, iostat=ios) k
+            if (ios /= 0 .or. k < 1) call usage(trim(arg)//' needs a positive integer, got "'//trim(msg)//'"')
+            if (arg == '--max') then
+                nmax = k
+            else
+                nmin = k
+            end if
+        case ('--solver')
+            iarg = iarg + 1
+            call get_command_argument(iarg, only_solver)
+            if (only_solver /= 'bccg' .and. only_solver /= 'norm') &
+                call usage('--solver must be bccg or norm, got "'//trim(only_solver)//'"')
         case ('--out')
             iarg = iarg + 1
             if (iarg > nargs) call usage('--out needs a file name')
@@ -98,9 +112,12 @@ program fastcontact_bench
     nfail = 0
     do k = 1, size(sizes)
         if (sizes(k) > nmax) exit
+        if (sizes(k) < nmin) cycle
         do isol = 1, 2
-            if (isol == 2 .and. sizes(k) > norm_limit .and. .not. run_all) cycle
-            call run_case(sizes(k), merge('bccg', 'norm', isol == 1))
+            solver = merge('bccg', 'norm', isol == 1)
+            if (len_trim(only_solver) > 0 .and. solver /= only_solver) cycle
+            if (solver == 'norm' .and. sizes(k) > norm_limit .and. .not. run_all) cycle
+            call run_case(sizes(k), solver)
         end do
     end do
     close (unit)
@@ -183,7 +200,7 @@ contains
     subroutine usage(problem)
         character(len=*), intent(in) :: problem
         if (len(problem) > 0) write (*, '(a)') 'fastcontact-bench: '//problem
-        write (*, '(a)') 'usage: fastcontact-bench [--quick] [--all] [--max N] [--out FILE]'
+        write (*, '(a)') 'usage: fastcontact-bench [--quick] [--all] [--min N] [--max N] [--solver bccg|norm] [--out FILE]'
         if (len(problem) > 0) error stop 2
         stop
     end subroutine usage
