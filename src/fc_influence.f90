@@ -52,7 +52,8 @@ module fc_influence
     real(dp), parameter :: rigid_modulus = 1.0e29_dp  !! moduli at or above this are rigid (1/G = 0)
 
     public :: combine_material, element_coefficient, ic_kernel, build_bttb, build_bttb_from_kernel
-    public :: fft_symbol_of_kernel, rigid_modulus, build_inverse_toeplitz
+    public :: fft_symbol_of_kernel, rigid_modulus, build_inverse_toeplitz, ic_kernel_extended
+    public :: inverse_toeplitz_from_kernel
 
 contains
 
@@ -180,14 +181,66 @@ contains
         type(fc_material), intent(in) :: mat
         type(fc_grid), intent(in) :: grid
         real(dp), allocatable, intent(out) :: kernel(:, :)
-        integer :: i, j
-        allocate (kernel(-(grid%nx - 1):grid%nx - 1, -(grid%ny - 1):grid%ny - 1))
-        do j = -(grid%ny - 1), grid%ny - 1
-            do i = -(grid%nx - 1), grid%nx - 1
-                kernel(i, j) = element_coefficient(block, mat, i*grid%dx, j*grid%dy, grid%dx, grid%dy)
-            end do
-        end do
+        call ic_kernel_extended(block, mat, grid, grid%nx - 1, grid%ny - 1, kernel)
     end subroutine ic_kernel
+
+    !> Coefficients for offsets dix ∈ [−mx, mx], diy ∈ [−my, my].  The antiderivatives are
+    !! evaluated once per element corner and double-differenced (four times fewer special
+    !! function calls than element by element).
+    subroutine ic_kernel_extended(block, mat, grid, mx, my, kernel)
+        integer, intent(in) :: block
+        type(fc_material), intent(in) :: mat
+        type(fc_grid), intent(in) :: grid
+        integer, intent(in) :: mx, my
+        real(dp), allocatable, intent(out) :: kernel(:, :)
+        real(dp), allocatable :: fc(:, :), cx(:), cy(:)
+        real(dp) :: c
+        integer :: i, j
+        allocate (kernel(-mx:mx, -my:my), cx(-mx:mx + 1), cy(-my:my + 1), fc(-mx:mx + 1, -my:my + 1))
+        do i = -mx, mx + 1
+            cx(i) = (i - 0.5_dp)*grid%dx
+        end do
+        do j = -my, my + 1
+            cy(j) = (j - 0.5_dp)*grid%dy
+        end do
+        c = 1/(pi*mat%g)
+        kernel = 0
+        select case (block)
+        case (IC_ZZ)
+            call add_primitive(1, c*(1 - mat%nu))
+        case (IC_XX)
+            call add_primitive(1, c*(1 - mat%nu)); call add_primitive(2, c*mat%nu)
+        case (IC_YY)
+            call add_primitive(1, c*(1 - mat%nu)); call add_primitive(3, c*mat%nu)
+        case (IC_XY)
+            call add_primitive(4, c*mat%nu)
+        case (IC_XZ)
+            call add_primitive(5, -c*mat%k)
+        case (IC_ZX)
+            call add_primitive(5, c*mat%k)
+        end select
+    contains
+        subroutine add_primitive(which, factor)
+            integer, intent(in) :: which
+            real(dp), intent(in) :: factor
+            integer :: ii, jj
+            if (factor == 0) return
+            do jj = -my, my + 1
+                select case (which)
+                case (1); fc(:, jj) = f_inv_rho(cx, cy(jj))
+                case (2); fc(:, jj) = f_uu_rho3(cx, cy(jj))
+                case (3); fc(:, jj) = f_vv_rho3(cx, cy(jj))
+                case (4); fc(:, jj) = f_uv_rho3(cx, cy(jj))
+                case default; fc(:, jj) = f_u_rho2(cx, cy(jj))
+                end select
+            end do
+            do jj = -my, my
+                do ii = -mx, mx
+                    kernel(ii, jj) = kernel(ii, jj) + factor*(fc(ii + 1, jj + 1) - fc(ii + 1, jj) - fc(ii, jj + 1) + fc(ii, jj))
+                end do
+            end do
+        end subroutine add_primitive
+    end subroutine ic_kernel_extended
 
     !> Build the BTTB operator of one influence block on `grid`.
     !! With `periodic`, the kernel is summed over (2·images+1)² periods and its mean removed:
@@ -294,11 +347,21 @@ contains
         type(fc_grid), intent(in) :: grid
         type(fc_bttb), intent(inout) :: prec
         real(dp), intent(out), optional :: min_symbol  !! smallest symbol value / largest (diagnostic)
+        real(dp), allocatable :: kext(:, :)
+        call ic_kernel_extended(block, mat, grid, grid%nx, grid%ny, kext)
+        call inverse_toeplitz_from_kernel(kext, grid%nx, grid%ny, prec, min_symbol)
+    end subroutine build_inverse_toeplitz
+
+    !> As [[build_inverse_toeplitz]], from coefficients kext(−nx:nx, −ny:ny) already computed.
+    subroutine inverse_toeplitz_from_kernel(kext, nx, ny, prec, min_symbol)
+        integer, intent(in) :: nx, ny
+        real(dp), intent(in) :: kext(-nx:, -ny:)
+        type(fc_bttb), intent(inout) :: prec
+        real(dp), intent(out), optional :: min_symbol
         type(fc_bttb) :: work
         real(dp), allocatable :: mker(:, :)
         real(dp) :: smax
-        integer :: nx, ny, mx, my, i, j, di, dj
-        nx = grid%nx; ny = grid%ny
+        integer :: mx, my, i, j, di, dj
         mx = 2*nx; if (nx == 1) mx = 1
         my = 2*ny; if (ny == 1) my = 1
         call setup_buffers(work, nx, ny, mx, my)
@@ -306,7 +369,7 @@ contains
             dj = j; if (j > my/2) dj = j - my
             do i = 0, mx - 1
                 di = i; if (i > mx/2) di = i - mx
-                work%rbuf(i + 1, j + 1) = element_coefficient(block, mat, di*grid%dx, dj*grid%dy, grid%dx, grid%dy)
+                work%rbuf(i + 1, j + 1) = kext(di, dj)
             end do
         end do
         call fftw_execute_dft_r2c(work%plan_fwd, work%rbuf, work%cbuf)
@@ -322,7 +385,7 @@ contains
         end do
         call work%destroy()
         call build_bttb_from_kernel(prec, mker, nx, ny)
-    end subroutine build_inverse_toeplitz
+    end subroutine inverse_toeplitz_from_kernel
 
     !> y = A x by FFT (O(n log n)).  x, y are nx×ny arrays.
     subroutine bttb_apply(self, x, y)
