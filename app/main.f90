@@ -11,5 +11,5 @@ program fastcontact_main
         call get_command_argument(i, args(i))
     end do
     call run_driver(args, exit_code)
-    if (exit_code /= 0) error stop exit_code, quiet=.true.
+    if (exit_code /= 0) stop exit_code, quiet=.true.
 end program fastcontact_main

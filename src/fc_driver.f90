@@ -10,7 +10,7 @@
 !! Exit code: 0 all cases converged; 1 a case had an input error (or the command line /
 !! case file was bad); 2 no input error but a solver did not converge or diverged.
 module fc_driver
-    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit_default => error_unit
+    use, intrinsic :: iso_fortran_env, only: output_unit, int64, error_unit_default => error_unit
     use fc_kinds, only: dp, msg_len, FC_CONVERGED, status_name
     use fc_geometry, only: fc_grid
     use fc_influence, only: fc_material
@@ -51,7 +51,8 @@ contains
         integer :: rep, err, i, k, stat, ncase_err, ncase_fail
         character(len=:), allocatable :: case_file, out_dir
         type(fc_case_chunk), allocatable :: cases(:)
-        type(fc_case_input) :: state
+        type(fc_case_input) :: state, saved_state
+        integer, allocatable :: used_case(:)
         character(len=64), allocatable :: used(:)
         character(len=64) :: name
         character(len=msg_len) :: errmsg
@@ -107,7 +108,7 @@ contains
             write (err, '(a)') 'fastcontact: '//trim(case_file)//': '//trim(errmsg)
             exit_code = EXIT_INPUT_ERROR; return
         end if
-        allocate (used(0))
+        allocate (used(0), used_case(0))
         ncase_err = 0; ncase_fail = 0
         do k = 1, size(cases)
             call run_one_case(k, case_status)
@@ -138,11 +139,13 @@ contains
             real(dp), allocatable :: h0(:, :)
             type(fc_normal_result) :: res
             type(fc_case_summary) :: s
-            integer :: t0, t1, t2, rate, j
+            integer(int64) :: t0, t1, t2, rate
+            integer :: j
             real(dp) :: ca, cb
             call system_clock(t0, rate)
             case_status = 1
             nused_before = size(used)
+            saved_state = state
             call apply_case(cases(k), k, state, name, stat, errmsg)
             dir = output_dir()
             if (stat /= 0) then
@@ -150,12 +153,13 @@ contains
             end if
             do j = 1, size(used)
                 if (used(j) == state%name) then
-                    write (errmsg, '(a,i0,a)') "&case name = '"//trim(state%name)//"': already used by case ", j, &
-                        ' in this file (outputs would be overwritten)'
+                    write (errmsg, '(a,i0,a)') "&case name = '"//trim(state%name)//"': already used by case ", &
+                        used_case(j), ' in this file (outputs would be overwritten)'
                     call case_error(clean=.false.); return
                 end if
             end do
             used = [character(len=64) :: used, name]
+            used_case = [used_case, k]
             call validate_case(state, stat, errmsg)
             if (stat /= 0) then
                 call case_error(); return
@@ -253,6 +257,8 @@ contains
                 call remove_file(output_dir()//'/'//trim(name)//'.json')
                 call remove_file(output_dir()//'/'//trim(name)//'.csv')
             end if
+            ! the next case inherits from the last case without input errors
+            state = saved_state
         end subroutine case_error
 
         function output_dir() result(d)

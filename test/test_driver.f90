@@ -1,0 +1,362 @@
+!> Tests of the batch driver (SPEC §5): good files with inheritance, and every kind of bad
+!! input giving a non-zero exit code, a message naming group and key, and no outputs.
+!! The driver runs in-process on small grids; files go to a unique directory under /tmp.
+module test_driver
+    use fc_kinds, only: dp
+    use fc_testing, only: error_type, unittest_type, new_unittest, check
+    use fc_driver, only: run_driver
+    implicit none
+    private
+
+    public :: collect_driver
+
+    integer, save :: run_counter = 0
+    character(len=*), parameter :: nl = new_line('a')
+
+contains
+
+    !> The driver suite.
+    subroutine collect_driver(tests)
+        type(unittest_type), allocatable, intent(out) :: tests(:)
+        tests = [ &
+            new_unittest('two_cases_inheritance', test_two_cases), &
+            new_unittest('fn_clears_approach', test_fn_clears_approach), &
+            new_unittest('error_then_good_case', test_error_then_good), &
+            new_unittest('not_converged_status', test_not_converged), &
+            new_unittest('unknown_key', test_unknown_key), &
+            new_unittest('unknown_group', test_unknown_group), &
+            new_unittest('wrong_type', test_wrong_type), &
+            new_unittest('missing_geometry_kind', test_missing_kind), &
+            new_unittest('missing_load', test_missing_load), &
+            new_unittest('g_not_positive', test_g_not_positive), &
+            new_unittest('nu_out_of_range', test_nu_range), &
+            new_unittest('nx_zero', test_nx_zero), &
+            new_unittest('empty_grid', test_empty_grid), &
+            new_unittest('oversized_grid', test_oversized), &
+            new_unittest('no_contact_possible', test_no_contact), &
+            new_unittest('fn_not_positive', test_fn_not_positive), &
+            new_unittest('approach_and_fn', test_approach_and_fn), &
+            new_unittest('unknown_solver', test_unknown_solver), &
+            new_unittest('problem_not_supported', test_problem_not_supported), &
+            new_unittest('strip2d_needs_ny_1', test_strip2d_ny), &
+            new_unittest('missing_table_file', test_missing_table), &
+            new_unittest('bad_command_line', test_bad_command_line) &
+            ]
+    end subroutine collect_driver
+
+    ! ---------------------------------------------------------------- helpers ----
+
+    !> A valid Hertz case on a 16×16 grid, named `name`.
+    function base_case(name) result(text)
+        character(len=*), intent(in) :: name
+        character(len=:), allocatable :: text
+        text = "&case name = '"//name//"' /"//nl// &
+            '&material g1 = 82000.0, g2 = 82000.0, nu1 = 0.28, nu2 = 0.28 /'//nl// &
+            '&grid nx = 16, ny = 16, xmin = -10.0, xmax = 10.0, ymin = -6.0, ymax = 6.0 /'//nl// &
+            "&geometry kind = 'quadratic', rx = 300.0, ry = 163.0 /"//nl// &
+            '&normal approach = 0.1091 /'//nl
+    end function base_case
+
+    !> `text` with the first occurrence of `old` replaced by `new`.
+    function replace(text, old, new) result(out)
+        character(len=*), intent(in) :: text, old, new
+        character(len=:), allocatable :: out
+        integer :: p
+        p = index(text, old)
+        if (p == 0) then
+            out = text//'!! replace failed: '//old
+        else
+            out = text(1:p - 1)//new//text(p + len(old):)
+        end if
+    end function replace
+
+    !> Write `text` to a fresh directory, run the driver with `--out` that directory and
+    !! return the exit code, the error output and the directory.
+    subroutine run_text(text, code, errors, dir)
+        character(len=*), intent(in) :: text
+        integer, intent(out) :: code
+        character(len=:), allocatable, intent(out) :: errors
+        character(len=:), allocatable, intent(out) :: dir
+        dir = new_dir()
+        call run_again(dir, text, code, errors)
+    end subroutine run_text
+
+    !> A fresh, unique scratch directory under /tmp.
+    function new_dir() result(dir)
+        character(len=:), allocatable :: dir
+        character(len=32) :: tag
+        integer :: count
+        run_counter = run_counter + 1
+        call system_clock(count)
+        write (tag, '(i0,a,i0)') count, '_', run_counter
+        dir = '/tmp/fc_test_driver_'//trim(tag)
+        call execute_command_line("mkdir -p '"//dir//"'")
+    end function new_dir
+
+    function read_all(path) result(text)
+        character(len=*), intent(in) :: path
+        character(len=:), allocatable :: text
+        character(len=2048) :: line
+        integer :: u, ios
+        text = ''
+        open (newunit=u, file=path, status='old', action='read', iostat=ios)
+        if (ios /= 0) return
+        do
+            read (u, '(a)', iostat=ios) line
+            if (ios /= 0) exit
+            text = text//trim(line)//nl
+        end do
+        close (u)
+    end function read_all
+
+    logical function exists(path)
+        character(len=*), intent(in) :: path
+        inquire (file=path, exist=exists)
+    end function exists
+
+    subroutine cleanup(dir)
+        character(len=*), intent(in) :: dir
+        if (index(dir, '/tmp/fc_test_driver_') == 1) call execute_command_line("rm -rf '"//dir//"'")
+    end subroutine cleanup
+
+    !> Run `text` (one bad case named 'bad') and check: non-zero exit, message with every
+    !! word of `words`, no bad.json / bad.csv (a stale bad.json is removed).
+    subroutine expect_bad(error, text, words)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), intent(in) :: text
+        character(len=*), intent(in) :: words(:)
+        integer :: code, i, u
+        character(len=:), allocatable :: errors, dir
+        ! plant a stale output from an "earlier run" in the directory the driver will use
+        dir = new_dir()
+        open (newunit=u, file=dir//'/bad.json', status='replace', action='write')
+        write (u, '(a)') '{"status": "converged"}'
+        close (u)
+        call run_again(dir, text, code, errors)
+        call check(error, code /= 0, 'exit code must be non-zero for bad input')
+        do i = 1, size(words)
+            call check(error, index(errors, trim(words(i))) > 0, "message must contain '"//trim(words(i))// &
+                "', got: "//errors)
+        end do
+        call check(error, .not. exists(dir//'/bad.json'), 'bad.json must not exist (stale file removed)')
+        call check(error, .not. exists(dir//'/bad.csv'), 'bad.csv must not exist')
+        call cleanup(dir)
+    end subroutine expect_bad
+
+    !> Run `text` in an existing directory.
+    subroutine run_again(dir, text, code, errors)
+        character(len=*), intent(in) :: dir, text
+        integer, intent(out) :: code
+        character(len=:), allocatable, intent(out) :: errors
+        integer :: u, urep, uerr
+        character(len=256) :: args(3)
+        open (newunit=u, file=dir//'/cases.nml', status='replace', action='write')
+        write (u, '(a)') text
+        close (u)
+        open (newunit=urep, file=dir//'/report.txt', status='replace', action='write')
+        open (newunit=uerr, file=dir//'/errors.txt', status='replace', action='write')
+        args(1) = dir//'/cases.nml'
+        args(2) = '--out'
+        args(3) = dir
+        call run_driver(args, code, report_unit=urep, error_unit=uerr)
+        close (urep)
+        close (uerr)
+        errors = read_all(dir//'/errors.txt')
+    end subroutine run_again
+
+    ! ---------------------------------------------------------------- good input ----
+
+    subroutine test_two_cases(error)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: code
+        character(len=:), allocatable :: errors, dir, j1, j2, csv
+        call run_text(base_case('good1')//"&case name = 'good2' /"//nl//'&grid nx = 20, ny = 12 /'//nl, &
+            code, errors, dir)
+        call check(error, code == 0, 'exit code 0 expected, errors: '//errors)
+        call check(error, exists(dir//'/good1.json') .and. exists(dir//'/good1.csv'), 'good1.json/csv missing')
+        call check(error, exists(dir//'/good2.json') .and. exists(dir//'/good2.csv'), 'good2.json/csv missing')
+        if (allocated(error)) return
+        j1 = read_all(dir//'/good1.json')
+        j2 = read_all(dir//'/good2.json')
+        call check(error, index(j1, '"status": "converged"') > 0, 'good1 not converged: '//j1)
+        call check(error, index(j2, '"status": "converged"') > 0, 'good2 not converged: '//j2)
+        call check(error, index(j2, '"nx": 20,') > 0 .and. index(j2, '"ny": 12,') > 0, 'good2 grid not 20x12: '//j2)
+        call check(error, index(j1, '"nx": 16,') > 0, 'good1 grid not 16x16')
+        call check(error, index(j2, '"approach": 1.091000000000000E-001') > 0, 'good2 did not inherit the approach')
+        call check(error, index(j2, '"hertz": {') > 0, 'hertz block missing for quadratic geometry')
+        csv = read_all(dir//'/good2.csv')
+        call check(error, index(csv, 'ix,iy,x,y,status,pn,px,py,sx,sy,gap') == 1, 'CSV header')
+        call check(error, count_lines(csv) == 1 + 20*12, 'CSV must have 1 + nx*ny lines')
+        call cleanup(dir)
+    end subroutine test_two_cases
+
+    integer function count_lines(text)
+        character(len=*), intent(in) :: text
+        integer :: i
+        count_lines = 0
+        do i = 1, len(text)
+            if (text(i:i) == nl) count_lines = count_lines + 1
+        end do
+    end function count_lines
+
+    subroutine test_fn_clears_approach(error)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: code
+        character(len=:), allocatable :: errors, dir, j2, j3
+        call run_text(base_case('a1')//"&case name = 'f2' /"//nl//'&normal fn = 82004.0 /'//nl// &
+            "&case name = 'a3' /"//nl//'&normal approach = 0.05 /'//nl, code, errors, dir)
+        call check(error, code == 0, 'exit code 0 expected, errors: '//errors)
+        if (allocated(error)) return
+        j2 = read_all(dir//'/f2.json')
+        j3 = read_all(dir//'/a3.json')
+        call check(error, index(j2, '"load": "fn"') > 0, 'f2 must prescribe the force')
+        call check(error, index(j2, '"fn": 8.200400000000') > 0, 'f2 force must be 82004: '//j2)
+        call check(error, index(j3, '"load": "approach"') > 0 .and. index(j3, '"approach": 5.0000000000') > 0, &
+            'a3 must prescribe approach 0.05: '//j3)
+        call cleanup(dir)
+    end subroutine test_fn_clears_approach
+
+    subroutine test_error_then_good(error)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: code
+        character(len=:), allocatable :: errors, dir
+        call run_text(replace(base_case('bad'), 'nx = 16', 'nx = 16, nz = 4')//base_case('good'), code, errors, dir)
+        call check(error, code /= 0, 'exit code must be non-zero when a case has an error')
+        call check(error, index(errors, 'nz') > 0, 'message must name nz: '//errors)
+        call check(error, .not. exists(dir//'/bad.json'), 'no bad.json')
+        call check(error, exists(dir//'/good.json') .and. exists(dir//'/good.csv'), 'the next case must still run')
+        call cleanup(dir)
+    end subroutine test_error_then_good
+
+    subroutine test_not_converged(error)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: code
+        character(len=:), allocatable :: errors, dir, j
+        call run_text(base_case('slow')//"&solver normal = 'norm', maxit = 1, inner_maxit = 1 /"//nl, code, errors, dir)
+        call check(error, code /= 0, 'exit code must be non-zero when the solver does not converge')
+        call check(error, exists(dir//'/slow.json'), 'JSON must be written with the solver status')
+        if (allocated(error)) return
+        j = read_all(dir//'/slow.json')
+        call check(error, index(j, '"status": "not_converged"') > 0 .or. index(j, '"status": "diverged"') > 0, &
+            'status must be not_converged: '//j)
+        call check(error, index(read_all(dir//'/report.txt'), 'NOT CONVERGED') > 0, 'report must say NOT CONVERGED')
+        call cleanup(dir)
+    end subroutine test_not_converged
+
+    ! ---------------------------------------------------------------- bad input ----
+
+    subroutine test_unknown_key(error)
+        type(error_type), allocatable, intent(out) :: error
+        call expect_bad(error, replace(base_case('bad'), 'nx = 16', 'nx = 16, nz = 4'), &
+            [character(len=16) :: '&grid', 'nz', '4'])
+    end subroutine test_unknown_key
+
+    subroutine test_unknown_group(error)
+        type(error_type), allocatable, intent(out) :: error
+        call expect_bad(error, base_case('bad')//'&grdi nx = 32 /'//nl, [character(len=16) :: 'grdi', 'nx', '32'])
+    end subroutine test_unknown_group
+
+    subroutine test_wrong_type(error)
+        type(error_type), allocatable, intent(out) :: error
+        call expect_bad(error, replace(base_case('bad'), 'nx = 16', "nx = 'sixteen'"), &
+            [character(len=16) :: '&grid', 'nx', 'sixteen'])
+    end subroutine test_wrong_type
+
+    subroutine test_missing_kind(error)
+        type(error_type), allocatable, intent(out) :: error
+        call expect_bad(error, replace(base_case('bad'), "kind = 'quadratic', ", ''), &
+            [character(len=16) :: '&geometry', 'kind', 'missing'])
+    end subroutine test_missing_kind
+
+    subroutine test_missing_load(error)
+        type(error_type), allocatable, intent(out) :: error
+        call expect_bad(error, replace(base_case('bad'), '&normal approach = 0.1091 /', ''), &
+            [character(len=16) :: '&normal', 'approach', 'fn', 'missing'])
+    end subroutine test_missing_load
+
+    subroutine test_g_not_positive(error)
+        type(error_type), allocatable, intent(out) :: error
+        call expect_bad(error, replace(base_case('bad'), 'g1 = 82000.0', 'g1 = -82000.0'), &
+            [character(len=16) :: '&material', 'g1', '-82000'])
+    end subroutine test_g_not_positive
+
+    subroutine test_nu_range(error)
+        type(error_type), allocatable, intent(out) :: error
+        call expect_bad(error, replace(base_case('bad'), 'nu2 = 0.28', 'nu2 = 0.5'), &
+            [character(len=16) :: '&material', 'nu2', '0.5'])
+    end subroutine test_nu_range
+
+    subroutine test_nx_zero(error)
+        type(error_type), allocatable, intent(out) :: error
+        call expect_bad(error, replace(base_case('bad'), 'nx = 16', 'nx = 0'), [character(len=16) :: '&grid', 'nx', '0'])
+    end subroutine test_nx_zero
+
+    subroutine test_empty_grid(error)
+        type(error_type), allocatable, intent(out) :: error
+        call expect_bad(error, replace(base_case('bad'), 'xmax = 10.0', 'xmax = -10.0'), &
+            [character(len=16) :: '&grid', 'xmax', '-10.0'])
+    end subroutine test_empty_grid
+
+    subroutine test_oversized(error)
+        type(error_type), allocatable, intent(out) :: error
+        call expect_bad(error, replace(base_case('bad'), 'nx = 16, ny = 16', 'nx = 5000, ny = 5000'), &
+            [character(len=16) :: '&grid', 'nx', '5000', 'oversized'])
+    end subroutine test_oversized
+
+    subroutine test_no_contact(error)
+        type(error_type), allocatable, intent(out) :: error
+        call expect_bad(error, replace(base_case('bad'), 'approach = 0.1091', 'approach = -0.01'), &
+            [character(len=16) :: '&normal', 'approach', '-0.01', 'no contact'])
+    end subroutine test_no_contact
+
+    subroutine test_fn_not_positive(error)
+        type(error_type), allocatable, intent(out) :: error
+        call expect_bad(error, replace(base_case('bad'), 'approach = 0.1091', 'fn = 0.0'), &
+            [character(len=16) :: '&normal', 'fn', '0.0'])
+    end subroutine test_fn_not_positive
+
+    subroutine test_approach_and_fn(error)
+        type(error_type), allocatable, intent(out) :: error
+        call expect_bad(error, replace(base_case('bad'), 'approach = 0.1091', 'approach = 0.1091, fn = 1000.0'), &
+            [character(len=16) :: '&normal', 'approach', 'fn', '1000.0'])
+    end subroutine test_approach_and_fn
+
+    subroutine test_unknown_solver(error)
+        type(error_type), allocatable, intent(out) :: error
+        call expect_bad(error, base_case('bad')//"&solver normal = 'magic', tol = 1e-6 /"//nl, &
+            [character(len=16) :: '&solver', 'normal', 'magic'])
+    end subroutine test_unknown_solver
+
+    subroutine test_problem_not_supported(error)
+        type(error_type), allocatable, intent(out) :: error
+        call expect_bad(error, replace(base_case('bad'), "name = 'bad'", "name = 'bad', problem = 'tangential'"), &
+            [character(len=20) :: '&case', 'problem', 'tangential', 'not yet supported'])
+    end subroutine test_problem_not_supported
+
+    subroutine test_strip2d_ny(error)
+        type(error_type), allocatable, intent(out) :: error
+        call expect_bad(error, replace(base_case('bad'), "kind = 'quadratic'", "kind = 'strip2d'"), &
+            [character(len=16) :: '&grid', 'ny', '16', 'strip2d'])
+    end subroutine test_strip2d_ny
+
+    subroutine test_missing_table(error)
+        type(error_type), allocatable, intent(out) :: error
+        call expect_bad(error, replace(base_case('bad'), "kind = 'quadratic', rx = 300.0, ry = 163.0", &
+            "kind = 'table', file = '/nonexistent/h0.txt'"), [character(len=20) :: '&geometry', 'file', &
+            '/nonexistent/h0.txt'])
+    end subroutine test_missing_table
+
+    subroutine test_bad_command_line(error)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: code, u
+        open (newunit=u, status='scratch')
+        call run_driver([character(len=64) :: '/nonexistent/cases.nml'], code, report_unit=u, error_unit=u)
+        call check(error, code /= 0, 'missing case file must give a non-zero exit code')
+        call run_driver([character(len=64) :: 'a.nml', '--bogus'], code, report_unit=u, error_unit=u)
+        call check(error, code /= 0, 'unknown option must give a non-zero exit code')
+        call run_driver([character(len=64) :: '--help'], code, report_unit=u, error_unit=u)
+        call check(error, code == 0, '--help must exit 0')
+        close (u)
+    end subroutine test_bad_command_line
+
+end module test_driver
