@@ -18,7 +18,8 @@ contains
             new_unittest('cattaneo_sphere_numbers', test_sphere), &
             new_unittest('force_approach_roundtrip', test_roundtrip), &
             new_unittest('rough_surface_sigma_and_seed', test_rough), &
-            new_unittest('grid_centres_and_profiles', test_grid) ]
+            new_unittest('grid_centres_and_profiles', test_grid), &
+            new_unittest('table_and_wavy_geometry', test_table) ]
     end subroutine collect_hertz
 
     !> K(m), E(m) against tabulated values (Abramowitz & Stegun 17.3, 15 digits).
@@ -112,5 +113,41 @@ contains
         call make_grid(grid, 2, 2, 2.0_dp, 2.0_dp, 0.0_dp, 1.0_dp, stat, msg)
         call check(error, stat /= 0, 'empty extent rejected')
     end subroutine test_grid
+
+    !> Table geometry: nx·ny values, x fastest, comments skipped; a short or malformed
+    !! file is an error naming the file.  Wavy profile: h = A(1 − cos cos).
+    subroutine test_table(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_grid) :: grid
+        real(dp) :: h(3, 2)
+        real(dp), allocatable :: w(:, :)
+        integer :: stat, unit
+        character(len=200) :: msg
+        character(len=*), parameter :: fname = 'build/test_table_geometry.txt'
+        call make_grid(grid, 3, 2, 0.0_dp, 3.0_dp, 0.0_dp, 2.0_dp, stat, msg)
+        open (newunit=unit, file=fname, status='replace', action='write')
+        write (unit, '(a)') '# undeformed distance, x fastest', '0.1 0.2 0.3', '', '0.4, 0.5', '0.6'
+        close (unit)
+        call read_gap_table(fname, grid, h, stat, msg)
+        call check(error, stat == 0, 'table read: '//trim(msg))
+        call check(error, h(3, 1), 0.3_dp, 'h(3,1)', abs=1e-15_dp)
+        call check(error, h(1, 2), 0.4_dp, 'h(1,2)', abs=1e-15_dp)
+        open (newunit=unit, file=fname, status='replace', action='write')
+        write (unit, '(a)') '0.1 0.2 0.3 0.4 0.5'
+        close (unit)
+        call read_gap_table(fname, grid, h, stat, msg)
+        call check(error, stat /= 0 .and. index(msg, 'expected nx*ny = 6') > 0, 'short table rejected: '//trim(msg))
+        open (newunit=unit, file=fname, status='replace', action='write')
+        write (unit, '(a)') '0.1 0.2 abc 0.4 0.5 0.6'
+        close (unit)
+        call read_gap_table(fname, grid, h, stat, msg)
+        call check(error, stat /= 0 .and. index(msg, 'line 1') > 0, 'malformed table rejected: '//trim(msg))
+        open (newunit=unit, file=fname, status='old')
+        close (unit, status='delete')
+        call read_gap_table('build/no_such_file.txt', grid, h, stat, msg)
+        call check(error, stat /= 0 .and. index(msg, 'no_such_file') > 0, 'missing file rejected')
+        w = wavy_gap(grid, 0.01_dp, 2.0_dp, 0.0_dp)
+        call check(error, w(1, 1), 0.01_dp*(1 - cos(pi*0.5_dp)), 'wavy h(1,1)', abs=1e-15_dp)
+    end subroutine test_table
 
 end module test_hertz

@@ -24,6 +24,7 @@ contains
             new_unittest('prescribed_force', test_force), &
             new_unittest('rough_punch_three_cases', test_rough_punch), &
             new_unittest('direct_oracle_complementarity', test_oracle), &
+            new_unittest('strip2d_line_contact', test_strip), &
             new_unittest('errors_reported', test_errors), &
             new_unittest('not_converged_reported', test_not_converged) ]
     end subroutine collect_normal
@@ -273,6 +274,42 @@ contains
         call check(error, minval(h0 - test1_approach + u) >= -1e-7_dp*test1_approach, 'no penetration (direct product)')
         call nop%destroy()
     end subroutine test_oracle
+
+    !> 2D strip (n×1 grid, SPEC §4): a cylinder R = 100 on a strip 100 mm long under
+    !! P' = 1000 N/mm approximates plane-strain Hertz line contact, b² = 4RP'/(πE*),
+    !! p0 = 2P'/(πb).  At 128×1: pmax within 1 %, RMS pressure error ≤ 1 % of p0 (the strip
+    !! ends are 50 b away); NORM and BCCG agree to 1e−5.
+    subroutine test_strip(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_normal_operator) :: nop
+        type(fc_normal_settings) :: set
+        type(fc_normal_result) :: r1, r2
+        type(fc_grid) :: grid
+        type(fc_material) :: mat
+        real(dp), allocatable :: h0(:, :)
+        real(dp) :: b, p0, err
+        integer :: stat, i
+        character(len=200) :: msg
+        mat%g1 = 82000; mat%g2 = 82000; mat%nu1 = 0.28_dp; mat%nu2 = 0.28_dp
+        call combine_material(mat, stat, msg)
+        b = sqrt(4*100*1000*(1 - mat%nu)/(pi*mat%g)); p0 = 2*1000/(pi*b)
+        call make_grid(grid, 128, 1, -2.0_dp, 2.0_dp, -50.0_dp, 50.0_dp, stat, msg)
+        h0 = quadratic_gap(grid, 100.0_dp, 0.0_dp)
+        call build_normal_operator(nop, mat, grid)
+        set%tol = 1e-8_dp
+        call solve_normal(nop, h0, set, r1, stat, msg, fn=1000*100.0_dp)
+        call check(error, r1%status == FC_CONVERGED, 'bccg converged')
+        call check(error, r1%pmax, p0, 'pmax vs plane-strain Hertz', rel=0.01_dp)
+        err = 0
+        do i = 1, grid%nx
+            err = err + (r1%pn(i, 1) - p0*sqrt(max(0.0_dp, 1 - (grid%x(i)/b)**2)))**2
+        end do
+        call check(error, sqrt(err/grid%nx), 0.0_dp, 'RMS pressure error', abs=0.01_dp*p0)
+        set%solver = 'norm'
+        call solve_normal(nop, h0, set, r2, stat, msg, fn=1000*100.0_dp)
+        call check(error, rel_diff(r2%pn(:, 1), r1%pn(:, 1)), 0.0_dp, 'NORM = BCCG', abs=1e-5_dp)
+        call nop%destroy()
+    end subroutine test_strip
 
     !> Invalid input returns stat ≠ 0 with a message naming the offending value.
     subroutine test_errors(error)
