@@ -31,6 +31,7 @@
 !! Every value persists from case to case except `name`.  A case with an input error does
 !! not change the inherited state: the next case inherits from the last good case.
 module fc_input
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
     use fc_kinds, only: dp, i8, msg_len
     use fc_geometry, only: fc_grid, fc_rough_params, make_grid, quadratic_gap, punch_rough_gap, wavy_gap, &
         read_gap_table, h_no_contact
@@ -97,6 +98,7 @@ module fc_input
         real(dp) :: mu = 0, xi = 0, eta = 0, phi = 0, fx = 0, fy = 0
         ! &solver
         type(fc_normal_settings) :: settings       !! normal solver settings
+        character(len=32) :: normal_solver = 'bccg'  !! &solver normal as given (checked, then copied)
         character(len=16) :: tangential = 'tangcg' !! not used yet
         integer :: inner_k = 3                     !! not used yet
         character(len=16) :: cycle = 'V(1,1)'      !! not used yet
@@ -622,20 +624,19 @@ contains
         type(fc_case_input), intent(inout) :: s
         integer, intent(out) :: ios
         character(len=*), intent(out) :: iomsg
-        character(len=16) :: normal, tangential, cycle
+        character(len=32) :: normal
+        character(len=16) :: tangential, cycle
         real(dp) :: tol, omega, beta
         integer :: maxit, inner_maxit, inner_k
         logical :: precondition, deflation
         namelist /solver/ normal, tangential, tol, maxit, inner_maxit, precondition, deflation, inner_k, &
             cycle, omega, beta
-        normal = s%settings%solver; tangential = s%tangential; tol = s%settings%tol; maxit = s%settings%maxit
+        normal = s%normal_solver; tangential = s%tangential; tol = s%settings%tol; maxit = s%settings%maxit
         inner_maxit = s%settings%inner_maxit; precondition = s%settings%precondition
         deflation = s%settings%deflation; inner_k = s%inner_k; cycle = s%cycle; omega = s%omega; beta = s%beta
         read (text, nml=solver, iostat=ios, iomsg=iomsg)
         if (ios /= 0) return
-        normal = lower(normal)
-        if (len_trim(normal) > len(s%settings%solver)) normal = 'unknown:'//normal
-        s%settings%solver = normal; s%tangential = lower(tangential); s%settings%tol = tol
+        s%normal_solver = lower(normal); s%tangential = lower(tangential); s%settings%tol = tol
         s%settings%maxit = maxit; s%settings%inner_maxit = inner_maxit; s%settings%precondition = precondition
         s%settings%deflation = deflation; s%inner_k = inner_k; s%cycle = cycle; s%omega = omega; s%beta = beta
     end subroutine read_solver_group
@@ -864,17 +865,18 @@ contains
                 errmsg = '&normal fn = '//fmt_real(s%fn)//': must be > 0'; return
             end if
         else
-            if (s%approach /= s%approach .or. abs(s%approach) > huge(1.0_dp)) then
+            if (.not. ieee_is_finite(s%approach)) then
                 errmsg = '&normal approach = '//fmt_real(s%approach)//': not a finite number'; return
             end if
         end if
         ! &solver
-        select case (s%settings%solver)
+        select case (s%normal_solver)
         case ('bccg', 'norm')
+            s%settings%solver = trim(s%normal_solver)
         case ('fmg')
             errmsg = "&solver normal = 'fmg': not yet supported (use 'bccg' or 'norm')"; return
         case default
-            errmsg = "&solver normal = '"//trim(s%settings%solver)//"': unknown solver; use 'bccg' or 'norm'"; return
+            errmsg = "&solver normal = '"//trim(s%normal_solver)//"': unknown solver; use 'bccg' or 'norm'"; return
         end select
         if (.not. (s%settings%tol > 0)) then
             errmsg = '&solver tol = '//fmt_real(s%settings%tol)//': must be > 0'; return
@@ -968,10 +970,10 @@ contains
         real(dp), intent(in) :: x
         character(len=:), allocatable :: s
         character(len=40) :: buf
-        if (x /= x) then
+        if (ieee_is_nan(x)) then
             s = 'NaN'; return
         end if
-        if (abs(x) > huge(x)) then
+        if (.not. ieee_is_finite(x)) then
             s = merge('+Inf', '-Inf', x > 0); return
         end if
         if (x == 0 .or. (abs(x) >= 1.0e-3_dp .and. abs(x) < 1.0e7_dp)) then

@@ -2,6 +2,7 @@
 !! element values and a readable text report with a character map of the contact area
 !! in the style of Kalker's CONTACT.
 module fc_output
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use fc_kinds, only: dp, msg_len
     use fc_geometry, only: fc_grid
     use fc_influence, only: fc_material
@@ -138,7 +139,7 @@ contains
         real(dp), intent(in) :: x
         character(len=:), allocatable :: s
         character(len=32) :: buf
-        if (x /= x .or. abs(x) > huge(x)) then
+        if (.not. ieee_is_finite(x)) then
             s = 'null'; return
         end if
         write (buf, '(es23.15e3)') x
@@ -271,7 +272,7 @@ contains
             write (unit, '(a)') ' status       converged'
         else
             write (unit, '(a)') ' status       *** '//trim(upper(s%status))//' ***  '//trim(s%message)
-            if (s%status /= 'error') write (unit, '(a)') '              *** NOT CONVERGED: the results below are '// &
+            if (s%status /= 'error') write (unit, '(a)') '              *** NOT CONVERGED: the results of this case are '// &
                 'not a solution to the requested tolerance ***'
         end if
         write (unit, '(a,f10.4,a,f10.4,a,f10.4,a)') ' cpu time     ', s%cpu_seconds, ' s  (normal ', s%cpu_seconds_normal, &

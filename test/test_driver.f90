@@ -22,6 +22,7 @@ contains
             new_unittest('two_cases_inheritance', test_two_cases), &
             new_unittest('fn_clears_approach', test_fn_clears_approach), &
             new_unittest('error_then_good_case', test_error_then_good), &
+            new_unittest('failed_case_not_inherited', test_failed_not_inherited), &
             new_unittest('not_converged_status', test_not_converged), &
             new_unittest('unknown_key', test_unknown_key), &
             new_unittest('unknown_group', test_unknown_group), &
@@ -228,6 +229,20 @@ contains
         call cleanup(dir)
     end subroutine test_error_then_good
 
+    !> A case with an input error does not change the inherited state.
+    subroutine test_failed_not_inherited(error)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: code
+        character(len=:), allocatable :: errors, dir
+        call run_text(base_case('first')//"&case name = 'broken' /"//nl//'&material g2 = 0.0 /'//nl// &
+            "&case name = 'third' /"//nl, code, errors, dir)
+        call check(error, code /= 0, 'exit code must be non-zero')
+        call check(error, index(errors, '&material g2') > 0, 'message must name &material g2: '//errors)
+        call check(error, .not. exists(dir//'/broken.json'), 'no broken.json')
+        call check(error, exists(dir//'/third.json'), 'third case must inherit from the first (good) case')
+        call cleanup(dir)
+    end subroutine test_failed_not_inherited
+
     subroutine test_not_converged(error)
         type(error_type), allocatable, intent(out) :: error
         integer :: code
@@ -323,8 +338,8 @@ contains
 
     subroutine test_unknown_solver(error)
         type(error_type), allocatable, intent(out) :: error
-        call expect_bad(error, base_case('bad')//"&solver normal = 'magic', tol = 1e-6 /"//nl, &
-            [character(len=16) :: '&solver', 'normal', 'magic'])
+        call expect_bad(error, base_case('bad')//"&solver normal = 'magic_solver_x', tol = 1e-6 /"//nl, &
+            [character(len=16) :: '&solver', 'normal', 'magic_solver_x'])
     end subroutine test_unknown_solver
 
     subroutine test_problem_not_supported(error)
