@@ -24,7 +24,7 @@
 !! * `&normal approach | fn` — exactly one required; giving one clears the inherited other.
 !! * `&tangential mu, xi, eta, phi, fx, fy` — accepted, ignored for problem = 'normal'.
 !! * `&solver normal, tol, maxit, inner_maxit, precondition, deflation` (normal = 'bccg',
-!!   tol = 1e-5, maxit = 1000, inner_maxit = 0, precondition = deflation = .true.);
+!!   tol = 1e-5, maxit = 1000, inner_maxit = 0, precondition = .true., deflation: library default);
 !!   tangential, inner_k, cycle, omega, beta accepted and noted as ignored.
 !! * `&output dir, table` — dir = 'out' (the command line `--out` wins), table = .true.
 !!
