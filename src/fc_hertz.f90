@@ -19,7 +19,19 @@ module fc_hertz
         procedure :: pressure => hertz_pressure
     end type fc_hertz_solution
 
-    public :: elliptic_ke, hertz_from_approach, hertz_from_force
+    !> Cattaneo–Mindlin solution of a circular Hertz contact under a tangential force
+    !! Q < μP applied monotonically from zero (Johnson 1985 §7.1).
+    type, public :: fc_cattaneo_solution
+        real(dp) :: a = 0        !! contact radius [mm]
+        real(dp) :: c = 0        !! stick radius c = a(1 − Q/μP)^{1/3} [mm]
+        real(dp) :: p0 = 0       !! maximum pressure [N/mm²]
+        real(dp) :: mu = 0       !! coefficient of friction
+        real(dp) :: shift = 0    !! rigid tangential shift of body 1 relative to body 2 [mm] (magnitude)
+    contains
+        procedure :: traction => cattaneo_traction
+    end type fc_cattaneo_solution
+
+    public :: elliptic_ke, hertz_from_approach, hertz_from_force, cattaneo_mindlin
 
 contains
 
@@ -116,5 +128,29 @@ contains
         s = 1 - (x/self%a)**2 - (y/self%b)**2
         if (s > 0) p = self%p0*sqrt(s)
     end function hertz_pressure
+
+    !> Cattaneo–Mindlin for a circular contact of radius a with maximum pressure p0, total
+    !! force P, friction μ and tangential force Q (0 ≤ Q < μP); combined G, ν (SPEC §2).
+    !! Shift δ = 3μP(2−ν)/(8Ga)·[1 − (1 − Q/μP)^{2/3}] (two bodies, Johnson eq. 7.40).
+    pure function cattaneo_mindlin(a, p0, fn, mu, q, g, nu) result(sol)
+        real(dp), intent(in) :: a, p0, fn, mu, q, g, nu
+        type(fc_cattaneo_solution) :: sol
+        real(dp) :: ratio
+        sol%a = a; sol%p0 = p0; sol%mu = mu
+        ratio = min(max(q/(mu*fn), 0.0_dp), 1.0_dp)
+        sol%c = a*(1 - ratio)**(1.0_dp/3.0_dp)
+        sol%shift = 3*mu*fn*(2 - nu)/(8*g*a)*(1 - (1 - ratio)**(2.0_dp/3.0_dp))
+    end function cattaneo_mindlin
+
+    !> Magnitude of the tangential traction at radius r [N/mm²]:
+    !! μp0/a·[√(a²−r²) − √(c²−r²)] (second term only inside the stick circle).
+    elemental real(dp) function cattaneo_traction(self, r) result(t)
+        class(fc_cattaneo_solution), intent(in) :: self
+        real(dp), intent(in) :: r
+        t = 0
+        if (r < self%a) t = sqrt(self%a**2 - r**2)
+        if (r < self%c) t = t - sqrt(self%c**2 - r**2)
+        t = self%mu*self%p0/self%a*t
+    end function cattaneo_traction
 
 end module fc_hertz

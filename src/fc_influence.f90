@@ -10,7 +10,9 @@
 !! Sign convention (fixed here, used by every module): u = u(body 1) − u(body 2) at the
 !! field element I due to tractions p on body 1 at source element J, with
 !! (u,v) = (x_I − x_J, y_I − y_J), and
-!!   A^xz(u,v) = −K/(πG)·u/ρ²,  A^zx = −A^xz.
+!!   A^xz(u,v) = −K/(πG)·u/ρ²,  A^zx = −A^xz,  A^yz(u,v) = −K/(πG)·v/ρ²,  A^zy = −A^yz.
+!! A^xy = A^yx is even in (u,v), so the tangential block matrix [A^xx A^xy; A^xy A^yy]
+!! is symmetric.
 module fc_influence
     use fc_kinds, only: dp, pi, msg_len
     use fc_geometry, only: fc_grid
@@ -28,7 +30,8 @@ module fc_influence
     end type fc_material
 
     !> Influence blocks available in [[fc_bttb]] constructors.
-    integer, parameter, public :: IC_ZZ = 1, IC_XX = 2, IC_YY = 3, IC_XY = 4, IC_XZ = 5, IC_ZX = 6
+    integer, parameter, public :: IC_ZZ = 1, IC_XX = 2, IC_YY = 3, IC_XY = 4, IC_XZ = 5, IC_ZX = 6, &
+        IC_YZ = 7, IC_ZY = 8
 
     !> BTTB operator: y = A x for one influence block on one grid.
     !! Holds FFTW plans on its own buffers; do not copy a built operator (use it in place).
@@ -45,6 +48,8 @@ module fc_influence
     contains
         procedure :: apply => bttb_apply
         procedure :: apply_direct => bttb_apply_direct
+        procedure :: forward => bttb_forward
+        procedure :: backward => bttb_backward
         procedure :: destroy => bttb_destroy
         procedure :: built => bttb_built
     end type fc_bttb
@@ -153,6 +158,10 @@ contains
             a = -c*mat%k*dd(5)
         case (IC_ZX)
             a = c*mat%k*dd(5)
+        case (IC_YZ)
+            a = -c*mat%k*dd(6)
+        case (IC_ZY)
+            a = c*mat%k*dd(6)
         case default
             a = 0
         end select
@@ -168,8 +177,10 @@ contains
                 dd = f_vv_rho3(x + hx, y + hy) - f_vv_rho3(x + hx, y - hy) - f_vv_rho3(x - hx, y + hy) + f_vv_rho3(x - hx, y - hy)
             case (4)
                 dd = f_uv_rho3(x + hx, y + hy) - f_uv_rho3(x + hx, y - hy) - f_uv_rho3(x - hx, y + hy) + f_uv_rho3(x - hx, y - hy)
-            case default
+            case (5)
                 dd = f_u_rho2(x + hx, y + hy) - f_u_rho2(x + hx, y - hy) - f_u_rho2(x - hx, y + hy) + f_u_rho2(x - hx, y - hy)
+            case default   ! v/ρ²: the u/ρ² antiderivative with the roles of u and v swapped
+                dd = f_u_rho2(y + hy, x + hx) - f_u_rho2(y - hy, x + hx) - f_u_rho2(y + hy, x - hx) + f_u_rho2(y - hy, x - hx)
             end select
         end function dd
     end function element_coefficient
@@ -218,6 +229,10 @@ contains
             call add_primitive(5, -c*mat%k)
         case (IC_ZX)
             call add_primitive(5, c*mat%k)
+        case (IC_YZ)
+            call add_primitive(6, -c*mat%k)
+        case (IC_ZY)
+            call add_primitive(6, c*mat%k)
         end select
     contains
         subroutine add_primitive(which, factor)
@@ -231,7 +246,8 @@ contains
                 case (2); fc(:, jj) = f_uu_rho3(cx, cy(jj))
                 case (3); fc(:, jj) = f_vv_rho3(cx, cy(jj))
                 case (4); fc(:, jj) = f_uv_rho3(cx, cy(jj))
-                case default; fc(:, jj) = f_u_rho2(cx, cy(jj))
+                case (5); fc(:, jj) = f_u_rho2(cx, cy(jj))
+                case default; fc(:, jj) = f_u_rho2(cy(jj), cx)
                 end select
             end do
             do jj = -my, my
@@ -407,6 +423,29 @@ contains
         y = self%rbuf(1:nx, 1:ny)
         self%nproducts = self%nproducts + 1
     end subroutine bttb_apply
+
+    !> Spectrum of x (zero-padded to the circulant size): the first half of a product,
+    !! so that several blocks can share one forward transform.
+    subroutine bttb_forward(self, x, spectrum)
+        class(fc_bttb), intent(inout) :: self
+        real(dp), intent(in) :: x(:, :)
+        complex(dp), intent(out) :: spectrum(:, :)
+        self%rbuf = 0
+        self%rbuf(1:self%nx, 1:self%ny) = x
+        call fftw_execute_dft_r2c(self%plan_fwd, self%rbuf, self%cbuf)
+        spectrum = self%cbuf
+    end subroutine bttb_forward
+
+    !> y = IFFT(spectrum) restricted to the grid (spectrum already multiplied by symbols).
+    subroutine bttb_backward(self, spectrum, y)
+        class(fc_bttb), intent(inout) :: self
+        complex(dp), intent(in) :: spectrum(:, :)
+        real(dp), intent(out) :: y(:, :)
+        self%cbuf = spectrum
+        call fftw_execute_dft_c2r(self%plan_bwd, self%cbuf, self%rbuf)
+        y = self%rbuf(1:self%nx, 1:self%ny)
+        self%nproducts = self%nproducts + 1
+    end subroutine bttb_backward
 
     !> y = A x by the direct O(n²) sum over the stored coefficients: the test oracle.
     subroutine bttb_apply_direct(self, x, y)

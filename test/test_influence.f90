@@ -71,7 +71,7 @@ contains
             allocate (x(grid%nx, grid%ny), yf(grid%nx, grid%ny), yd(grid%nx, grid%ny))
             call random_number(x)
             x = x - 0.3_dp
-            do b = IC_ZZ, IC_ZX
+            do b = IC_ZZ, IC_ZY
                 call build_bttb(op, b, mat, grid)
                 call op%apply(x, yf)
                 call op%apply_direct(x, yd)
@@ -173,7 +173,7 @@ contains
         call steel(mat, 300.0_dp, 100.0_dp, 0.25_dp, 0.4_dp)
         c = 1/(pi*mat%g)
         do k = 1, size(offsets, 2)
-            do b = IC_ZZ, IC_ZX
+            do b = IC_ZZ, IC_ZY
                 closed = element_coefficient(b, mat, offsets(1, k), offsets(2, k), dx, dy)
                 select case (b)
                 case (IC_ZZ); quad = c*(1 - mat%nu)*rect(1)
@@ -181,7 +181,9 @@ contains
                 case (IC_YY); quad = c*((1 - mat%nu)*rect(1) + mat%nu*rect(3))
                 case (IC_XY); quad = c*mat%nu*rect(4)
                 case (IC_XZ); quad = -c*mat%k*rect(5)
-                case default; quad = c*mat%k*rect(5)
+                case (IC_ZX); quad = c*mat%k*rect(5)
+                case (IC_YZ); quad = -c*mat%k*rect(6)
+                case default; quad = c*mat%k*rect(6)
                 end select
                 write (label, '(a,i0,a,2f7.3)') 'block ', b, ' offset ', offsets(:, k)
                 call check(error, closed, quad, trim(label), rel=1e-9_dp, abs=1e-14_dp)
@@ -227,7 +229,8 @@ contains
                     case (2); s = s + gw(ig)*u**2/r**3
                     case (3); s = s + gw(ig)*v**2/r**3
                     case (4); s = s + gw(ig)*u*v/r**3
-                    case default; s = s + gw(ig)*u/r**2
+                    case (5); s = s + gw(ig)*u/r**2
+                    case default; s = s + gw(ig)*v/r**2
                     end select
                 end do
             end do

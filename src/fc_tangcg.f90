@@ -1,0 +1,752 @@
+!> Tangential (frictional) contact problem: TangCG(K) and ConvexGS (thesis ch. 4, SPEC §2–§3).
+!!
+!! Given the pressure pn on the contact area C and the Coulomb bound g = μ·pn, find the
+!! tangential tractions p = (px, py) on C with slip s = w + (u − u') + offset,
+!! u = A p (blocks A^xx, A^xy = A^yx, A^yy), rigid shift w_I = [ξ − φ·y_I, η + φ·x_I], and
+!!   adhesion:  s_I = 0,   |p_I| ≤ g_I,
+!!   slip:      |p_I| = g_I,  p_I = −g_I s_I/|s_I|            (thesis eqs. 4.10–4.13).
+!! `offset` carries known displacement differences (the normal–tangential coupling A^xz·pn
+!! for dissimilar materials, or anything else a caller adds).
+!!
+!! * TangCG(K) (thesis §4.3.3): active set with angle variables on slip elements,
+!!   nonlinear CG with Polak–Ribière (β ≥ 0), restart on a change of subdivision, diagonal
+!!   preconditioner scaling the reduced Jacobian's diagonal to A^xx_II (eq. 4.43), K inner
+!!   iterations between subdivision checks with early exit when the tolerance is met
+!!   (Remark 4.2).  All products with A by FFT (one forward transform per component
+!!   shared by the three blocks).
+!! * ConvexGS (thesis §4.2.4, ref. [95]): block Gauss–Seidel over the contact elements;
+!!   per element the 2×2 adhesion solve, or a Newton solve for the angle on the traction
+!!   circle.  Maintains the slip with O(n) column updates, so a sweep costs O(n_c·n): the
+!!   reference solver, not a fast one.
+!!
+!! Stopping criterion (thesis eq. 4.49): ‖p^k − p^{k−1}‖_rms/‖p^k‖_rms < tol, with an
+!! unchanged subdivision.
+module fc_tangcg
+    use fc_kinds
+    use fc_geometry, only: fc_grid
+    use fc_influence
+    use fc_norm
+    implicit none
+    private
+
+    integer, parameter, public :: EL_EXTERIOR = 0, EL_ADHESION = 1, EL_SLIP = 2  !! element status
+
+    !> Settings of the tangential solvers.
+    type, public :: fc_tangential_settings
+        character(len=8) :: solver = 'tangcg'   !! 'tangcg' or 'convexgs'
+        real(dp) :: tol = 1.0e-5_dp              !! relative traction change, eq. (4.49)
+        integer :: maxit = 2000                  !! TangCG inner iterations / ConvexGS sweeps
+        integer :: inner_k = 3                   !! TangCG: NLCG iterations between subdivision checks
+        logical :: precondition = .true.         !! TangCG: diagonal preconditioner (eq. 4.43)
+    end type fc_tangential_settings
+
+    !> Tangential influence blocks on one grid (and the coupling blocks when K ≠ 0).
+    type, public :: fc_tangential_operator
+        type(fc_grid) :: grid
+        type(fc_material) :: material
+        type(fc_bttb) :: a_xx, a_xy, a_yy   !! tangential blocks (A^yx = A^xy)
+        type(fc_bttb) :: a_xz, a_yz         !! u_t from pn (built only when K ≠ 0)
+        type(fc_bttb) :: a_zx, a_zy         !! u_z from p_t (built only when K ≠ 0)
+        complex(dp), allocatable :: spec_x(:, :), spec_y(:, :), work(:, :)
+        integer :: nproducts = 0            !! combined 2×2 block products
+        real(dp) :: setup_seconds = 0
+    contains
+        procedure :: apply => tangential_apply
+        procedure :: destroy => tangential_destroy
+        procedure :: coupled => tangential_coupled
+    end type fc_tangential_operator
+
+    !> Result of a tangential solve.
+    type, public :: fc_tangential_result
+        real(dp), allocatable :: px(:, :), py(:, :)  !! tangential tractions on body 1 [N/mm²]
+        real(dp), allocatable :: sx(:, :), sy(:, :)  !! slip s = w + u − u' + offset [mm]
+        real(dp), allocatable :: ux(:, :), uy(:, :)  !! tangential displacement differences A·p [mm]
+        integer, allocatable :: state(:, :)          !! EL_EXTERIOR, EL_ADHESION, EL_SLIP
+        real(dp) :: xi = 0, eta = 0, phi = 0         !! rigid shift used [mm, mm, rad]
+        real(dp) :: fx = 0, fy = 0                   !! tangential forces [N]
+        real(dp) :: mz = 0                           !! moment Σ (x·py − y·px)·dx·dy [N·mm]
+        integer :: ncon = 0, nadh = 0, nslip = 0
+        integer :: status = FC_ERROR
+        integer :: iterations = 0        !! TangCG inner iterations / ConvexGS sweeps (all force steps)
+        integer :: outer_iterations = 0  !! subdivision checks (TangCG) / force-loop steps
+        integer :: matvecs = 0           !! combined 2×2 block products by FFT
+        real(dp) :: residual = huge(1.0_dp)  !! final relative traction change (4.49)
+        real(dp) :: cpu_seconds = 0
+        character(len=msg_len) :: message = ''
+        real(dp), allocatable :: history(:)  !! relative traction change per iteration
+    end type fc_tangential_result
+
+    !> Tangential loading: friction and either the rigid shift (ξ, η) or the forces (Fx, Fy);
+    !! the spin φ is always prescribed (SPEC §5 `&tangential`).
+    type, public :: fc_tangential_loading
+        real(dp) :: mu = 0                    !! coefficient of friction
+        real(dp) :: xi = 0, eta = 0           !! prescribed shifts [mm] (force_prescribed = .false.)
+        real(dp) :: phi = 0                   !! spin shift [rad]
+        real(dp) :: fx = 0, fy = 0            !! prescribed tangential forces [N] (force_prescribed)
+        logical :: force_prescribed = .false.
+    end type fc_tangential_loading
+
+    public :: build_tangential_operator, solve_tangential, coupling_displacements
+    public :: solve_tangential_loading, solve_normal_tangential
+
+contains
+
+    !> Build the tangential blocks (and coupling blocks if K ≠ 0) for `grid`.
+    subroutine build_tangential_operator(top, material, grid)
+        type(fc_tangential_operator), intent(inout) :: top
+        type(fc_material), intent(in) :: material
+        type(fc_grid), intent(in) :: grid
+        integer :: t0, t1, rate
+        call system_clock(t0, rate)
+        call top%destroy()
+        top%grid = grid
+        top%material = material
+        call build_bttb(top%a_xx, IC_XX, material, grid)
+        call build_bttb(top%a_xy, IC_XY, material, grid)
+        call build_bttb(top%a_yy, IC_YY, material, grid)
+        if (material%k /= 0) then
+            call build_bttb(top%a_xz, IC_XZ, material, grid)
+            call build_bttb(top%a_yz, IC_YZ, material, grid)
+            call build_bttb(top%a_zx, IC_ZX, material, grid)
+            call build_bttb(top%a_zy, IC_ZY, material, grid)
+        end if
+        allocate (top%spec_x, top%spec_y, top%work, mold=top%a_xx%symbol)
+        top%nproducts = 0
+        call system_clock(t1)
+        top%setup_seconds = real(t1 - t0, dp)/rate
+    end subroutine build_tangential_operator
+
+    subroutine tangential_destroy(self)
+        class(fc_tangential_operator), intent(inout) :: self
+        call self%a_xx%destroy(); call self%a_xy%destroy(); call self%a_yy%destroy()
+        call self%a_xz%destroy(); call self%a_yz%destroy()
+        call self%a_zx%destroy(); call self%a_zy%destroy()
+        if (allocated(self%spec_x)) deallocate (self%spec_x, self%spec_y, self%work)
+    end subroutine tangential_destroy
+
+    !> True when the normal and tangential problems are coupled (K ≠ 0).
+    pure logical function tangential_coupled(self)
+        class(fc_tangential_operator), intent(in) :: self
+        tangential_coupled = self%a_xz%built()
+    end function tangential_coupled
+
+    !> (ux, uy) = [A^xx A^xy; A^xy A^yy]·(px, py): two forward and two inverse FFTs.
+    subroutine tangential_apply(self, px, py, ux, uy)
+        class(fc_tangential_operator), intent(inout) :: self
+        real(dp), intent(in) :: px(:, :), py(:, :)
+        real(dp), intent(out) :: ux(:, :), uy(:, :)
+        call self%a_xx%forward(px, self%spec_x)
+        call self%a_xx%forward(py, self%spec_y)
+        self%work = self%spec_x*self%a_xx%symbol + self%spec_y*self%a_xy%symbol
+        call self%a_xx%backward(self%work, ux)
+        self%work = self%spec_x*self%a_xy%symbol + self%spec_y*self%a_yy%symbol
+        call self%a_xx%backward(self%work, uy)
+        self%nproducts = self%nproducts + 1
+    end subroutine tangential_apply
+
+    !> Coupling displacements for K ≠ 0: tangential (A^xz pn, A^yz pn) and normal
+    !! A^zx px + A^zy py.  Zero when the bodies are quasi-identical.
+    subroutine coupling_displacements(top, pn, px, py, ux_from_pn, uy_from_pn, uz_from_pt)
+        type(fc_tangential_operator), intent(inout) :: top
+        real(dp), intent(in) :: pn(:, :), px(:, :), py(:, :)
+        real(dp), intent(out) :: ux_from_pn(:, :), uy_from_pn(:, :), uz_from_pt(:, :)
+        real(dp), allocatable :: tmp(:, :)
+        if (.not. top%coupled()) then
+            ux_from_pn = 0; uy_from_pn = 0; uz_from_pt = 0
+            return
+        end if
+        allocate (tmp, mold=pn)
+        call top%a_xz%apply(pn, ux_from_pn)
+        call top%a_yz%apply(pn, uy_from_pn)
+        call top%a_zx%apply(px, uz_from_pt)
+        call top%a_zy%apply(py, tmp)
+        uz_from_pt = uz_from_pt + tmp
+    end subroutine coupling_displacements
+
+    !> Solve the tangential problem for pressure `pn` [N/mm²] and friction `mu`, with the
+    !! rigid shift (ξ, η, φ) prescribed.  Optional: previous displacements (ux_prev, uy_prev)
+    !! for a transient step (u'), starting tractions (px_start, py_start), and a known
+    !! displacement offset (offset_x, offset_y) added to the slip.
+    subroutine solve_tangential(top, pn, mu, settings, res, stat, errmsg, xi, eta, phi, &
+                                ux_prev, uy_prev, px_start, py_start, offset_x, offset_y)
+        type(fc_tangential_operator), intent(inout) :: top
+        real(dp), intent(in) :: pn(:, :)
+        real(dp), intent(in) :: mu
+        type(fc_tangential_settings), intent(in) :: settings
+        type(fc_tangential_result), intent(out) :: res
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        real(dp), intent(in) :: xi, eta, phi
+        real(dp), intent(in), optional :: ux_prev(:, :), uy_prev(:, :), px_start(:, :), py_start(:, :)
+        real(dp), intent(in), optional :: offset_x(:, :), offset_y(:, :)
+        real(dp), allocatable :: wx(:, :), wy(:, :), g(:, :)
+        integer :: nx, ny, i, j, t0, t1, rate
+        stat = 0; errmsg = ''
+        nx = top%grid%nx; ny = top%grid%ny
+        if (.not. top%a_xx%built()) then
+            stat = 1; errmsg = 'solve_tangential: operator not built'; return
+        end if
+        if (size(pn, 1) /= nx .or. size(pn, 2) /= ny) then
+            stat = 1; errmsg = 'solve_tangential: pn does not match the grid'; return
+        end if
+        if (.not. (mu >= 0)) then
+            stat = 1; write (errmsg, '(a,g0.6,a)') 'tangential: mu = ', mu, ' must be >= 0'; return
+        end if
+        if (.not. (settings%tol > 0)) then
+            stat = 1; write (errmsg, '(a,es12.4,a)') 'solver: tol = ', settings%tol, ' must be > 0'; return
+        end if
+        if (settings%maxit < 1) then
+            stat = 1; write (errmsg, '(a,i0,a)') 'solver: maxit = ', settings%maxit, ' must be >= 1'; return
+        end if
+        if (settings%inner_k < 1) then
+            stat = 1; write (errmsg, '(a,i0,a)') 'solver: inner_k = ', settings%inner_k, ' must be >= 1'; return
+        end if
+        if (settings%solver /= 'tangcg' .and. settings%solver /= 'convexgs') then
+            stat = 1; errmsg = "solver: tangential = '"//trim(settings%solver)//"' is not one of 'tangcg', 'convexgs'"
+            return
+        end if
+        allocate (wx(nx, ny), wy(nx, ny), g(nx, ny))
+        do j = 1, ny
+            do i = 1, nx
+                wx(i, j) = xi - phi*top%grid%y(j)
+                wy(i, j) = eta + phi*top%grid%x(i)
+            end do
+        end do
+        if (present(ux_prev)) wx = wx - ux_prev
+        if (present(uy_prev)) wy = wy - uy_prev
+        if (present(offset_x)) wx = wx + offset_x
+        if (present(offset_y)) wy = wy + offset_y
+        g = mu*max(pn, 0.0_dp)
+        allocate (res%px(nx, ny), res%py(nx, ny), res%sx(nx, ny), res%sy(nx, ny), res%ux(nx, ny), res%uy(nx, ny))
+        allocate (res%state(nx, ny))
+        res%px = 0; res%py = 0
+        if (present(px_start)) res%px = px_start
+        if (present(py_start)) res%py = py_start
+        where (.not. pn > 0)
+            res%px = 0; res%py = 0
+        end where
+        res%xi = xi; res%eta = eta; res%phi = phi
+        top%nproducts = 0
+        call system_clock(t0, rate)
+        if (settings%solver == 'tangcg') then
+            call run_tangcg(top, pn > 0, g, wx, wy, settings, res)
+        else
+            call run_convexgs(top, pn > 0, g, wx, wy, settings, res)
+        end if
+        call system_clock(t1)
+        res%cpu_seconds = real(t1 - t0, dp)/rate
+        res%matvecs = top%nproducts
+        call tangential_summary(top%grid, res)
+    end subroutine solve_tangential
+
+    !> Solve the tangential problem for a [[fc_tangential_loading]]: prescribed shifts go
+    !! straight to [[solve_tangential]]; prescribed forces (Fx, Fy) are met by an outer
+    !! Broyden iteration on (ξ, η), started from Mindlin's initial stiffness 8Ga/(2−ν)
+    !! (a from the contact area) and safeguarded by step halving.  Each inner solve starts
+    !! from the previous tractions.  |(Fx, Fy)| must be below μ·Fn (full slip has no unique
+    !! shift).  Force tolerance: tol·μ·Fn.
+    subroutine solve_tangential_loading(top, pn, load, settings, res, stat, errmsg, ux_prev, uy_prev, &
+                                        px_start, py_start, offset_x, offset_y)
+        type(fc_tangential_operator), intent(inout) :: top
+        real(dp), intent(in) :: pn(:, :)
+        type(fc_tangential_loading), intent(in) :: load
+        type(fc_tangential_settings), intent(in) :: settings
+        type(fc_tangential_result), intent(out) :: res
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        real(dp), intent(in), optional :: ux_prev(:, :), uy_prev(:, :), px_start(:, :), py_start(:, :)
+        real(dp), intent(in), optional :: offset_x(:, :), offset_y(:, :)
+        real(dp), allocatable :: zx(:, :), zy(:, :), ox(:, :), oy(:, :), qx(:, :), qy(:, :)
+        type(fc_tangential_result) :: trial
+        real(dp) :: fn, flimit, k0, a, jac(2, 2), x(2), r(2), xn(2), rn(2), dx(2), dr(2), step, ftol, det
+        real(dp) :: total_cpu
+        integer :: outer, total_it, total_mv, nx, ny, halvings
+        logical :: converged
+        nx = size(pn, 1); ny = size(pn, 2)
+        allocate (zx(nx, ny), zy(nx, ny), ox(nx, ny), oy(nx, ny), qx(nx, ny), qy(nx, ny))
+        zx = 0; zy = 0; ox = 0; oy = 0
+        if (present(ux_prev)) zx = ux_prev
+        if (present(uy_prev)) zy = uy_prev
+        if (present(offset_x)) ox = offset_x
+        if (present(offset_y)) oy = offset_y
+        qx = 0; qy = 0
+        if (present(px_start)) qx = px_start
+        if (present(py_start)) qy = py_start
+        if (.not. load%force_prescribed) then
+            call solve_tangential(top, pn, load%mu, settings, res, stat, errmsg, load%xi, load%eta, load%phi, &
+                                  zx, zy, qx, qy, ox, oy)
+            return
+        end if
+        stat = 0; errmsg = ''
+        fn = sum(max(pn, 0.0_dp))*top%grid%area()
+        flimit = load%mu*fn
+        if (.not. (hypot(load%fx, load%fy) < flimit)) then
+            stat = 1
+            write (errmsg, '(a,es12.5,a,es12.5,a)') 'tangential: |(fx, fy)| = ', hypot(load%fx, load%fy), &
+                ' must be < mu*fn = ', flimit, ' (full slip has no unique shift)'
+            return
+        end if
+        a = sqrt(count(pn > 0)*top%grid%area()/pi)
+        k0 = 8*top%material%g*a/(2 - top%material%nu)
+        jac = 0; jac(1, 1) = -k0; jac(2, 2) = -k0       ! dF/d(ξ,η): traction opposes the shift
+        ftol = settings%tol*flimit
+        x = [-load%fx/k0, -load%fy/k0]
+        total_it = 0; total_mv = 0; total_cpu = 0
+        converged = .false.
+        call evaluate(x, r, res)
+        if (stat /= 0) return
+        do outer = 1, 60
+            if (norm2(r) <= ftol) then
+                converged = .true.; exit
+            end if
+            det = jac(1, 1)*jac(2, 2) - jac(1, 2)*jac(2, 1)
+            if (det == 0) exit
+            dx = -[jac(2, 2)*r(1) - jac(1, 2)*r(2), -jac(2, 1)*r(1) + jac(1, 1)*r(2)]/det
+            step = 1
+            do halvings = 0, 30
+                xn = x + step*dx
+                call evaluate(xn, rn, trial)
+                if (stat /= 0) return
+                if (norm2(rn) < norm2(r) .or. halvings == 30) exit
+                step = step/2
+            end do
+            ! Broyden update of the 2×2 Jacobian with the step actually taken
+            dr = rn - r
+            dx = xn - x
+            if (dot_product(dx, dx) > 0) jac = jac + spread(dr - matmul(jac, dx), 2, 2)*spread(dx, 1, 2)/dot_product(dx, dx)
+            x = xn; r = rn
+            call move_alloc_result(trial, res)
+        end do
+        res%outer_iterations = outer
+        res%iterations = total_it
+        res%matvecs = total_mv
+        res%cpu_seconds = total_cpu
+        if (res%status == FC_CONVERGED .and. .not. converged) then
+            res%status = FC_NOT_CONVERGED
+            write (res%message, '(a,es10.3,a)') 'force loop not converged: force error ', norm2(r), ' N'
+        end if
+    contains
+        subroutine evaluate(shift, resid, out)
+            real(dp), intent(in) :: shift(2)
+            real(dp), intent(out) :: resid(2)
+            type(fc_tangential_result), intent(inout) :: out
+            call solve_tangential(top, pn, load%mu, settings, out, stat, errmsg, shift(1), shift(2), load%phi, &
+                                  zx, zy, qx, qy, ox, oy)
+            if (stat /= 0) return
+            total_it = total_it + out%iterations
+            total_mv = total_mv + out%matvecs
+            total_cpu = total_cpu + out%cpu_seconds
+            qx = out%px; qy = out%py          ! warm start of the next solve
+            resid = [out%fx - load%fx, out%fy - load%fy]
+        end subroutine evaluate
+    end subroutine solve_tangential_loading
+
+    subroutine move_alloc_result(from, to)
+        type(fc_tangential_result), intent(inout) :: from
+        type(fc_tangential_result), intent(inout) :: to
+        to = from
+    end subroutine move_alloc_result
+
+    !> Normal and tangential problems together.  Quasi-identical bodies (K = 0): one normal
+    !! and one tangential solve.  Dissimilar bodies: Panagiotopoulos process — alternate
+    !! normal solves (with the normal displacement A^zx·px + A^zy·py of the current
+    !! tangential tractions) and tangential solves (with the tangential displacement A^xz·pn
+    !! of the current pressure) until pressure and tractions change by less than 10·tol
+    !! (relative RMS), at most 50 rounds.  `approach` or `fn` as in [[solve_normal]].
+    subroutine solve_normal_tangential(nop, top, h0, nsettings, tsettings, load, nres, tres, stat, errmsg, &
+                                       approach, fn, rounds)
+        type(fc_normal_operator), intent(inout) :: nop
+        type(fc_tangential_operator), intent(inout) :: top
+        real(dp), intent(in) :: h0(:, :)
+        type(fc_normal_settings), intent(in) :: nsettings
+        type(fc_tangential_settings), intent(in) :: tsettings
+        type(fc_tangential_loading), intent(in) :: load
+        type(fc_normal_result), intent(out) :: nres
+        type(fc_tangential_result), intent(out) :: tres
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        real(dp), intent(in), optional :: approach, fn
+        integer, intent(out), optional :: rounds   !! Panagiotopoulos rounds done (1 when K = 0)
+        real(dp), allocatable :: uxn(:, :), uyn(:, :), uzt(:, :), pn_old(:, :), px_old(:, :), py_old(:, :)
+        type(fc_normal_result) :: nprev
+        integer :: round, nx, ny, it_n, it_t, mv_n, mv_t
+        real(dp) :: dn, dt, cpu_n, cpu_t
+        nx = size(h0, 1); ny = size(h0, 2)
+        allocate (uxn(nx, ny), uyn(nx, ny), uzt(nx, ny), pn_old(nx, ny), px_old(nx, ny), py_old(nx, ny))
+        uzt = 0; uxn = 0; uyn = 0
+        it_n = 0; it_t = 0; mv_n = 0; mv_t = 0; cpu_n = 0; cpu_t = 0
+        do round = 1, 50
+            if (round == 1) then
+                call solve_normal(nop, h0 + uzt, nsettings, nres, stat, errmsg, approach=approach, fn=fn)
+            else
+                nprev = nres
+                call solve_normal(nop, h0 + uzt, nsettings, nres, stat, errmsg, approach=approach, fn=fn, &
+                                  p_start=nprev%pn)
+            end if
+            if (stat /= 0) return
+            it_n = it_n + nres%iterations; mv_n = mv_n + nres%matvecs; cpu_n = cpu_n + nres%cpu_seconds
+            if (nres%status /= FC_CONVERGED) exit
+            if (top%coupled()) then
+                if (round == 1) then
+                    call coupling_displacements(top, nres%pn, 0*h0, 0*h0, uxn, uyn, uzt)
+                else
+                    call coupling_displacements(top, nres%pn, tres%px, tres%py, uxn, uyn, uzt)
+                end if
+            end if
+            if (round == 1) then
+                call solve_tangential_loading(top, nres%pn, load, tsettings, tres, stat, errmsg, offset_x=uxn, offset_y=uyn)
+            else
+                px_old = tres%px; py_old = tres%py
+                call solve_tangential_loading(top, nres%pn, load, tsettings, tres, stat, errmsg, &
+                                              px_start=px_old, py_start=py_old, offset_x=uxn, offset_y=uyn)
+            end if
+            if (stat /= 0) return
+            it_t = it_t + tres%iterations; mv_t = mv_t + tres%matvecs; cpu_t = cpu_t + tres%cpu_seconds
+            if (.not. top%coupled()) exit
+            if (tres%status /= FC_CONVERGED) exit
+            call coupling_displacements(top, nres%pn, tres%px, tres%py, uxn, uyn, uzt)
+            if (round > 1) then
+                dn = sqrt(sum((nres%pn - pn_old)**2)/max(sum(nres%pn**2), tiny(1.0_dp)))
+                dt = sqrt(sum((tres%px - px_old)**2 + (tres%py - py_old)**2)/max(sum(tres%px**2 + tres%py**2), tiny(1.0_dp)))
+                if (max(dn, dt) < 10*max(nsettings%tol, tsettings%tol)) exit
+            end if
+            pn_old = nres%pn
+            if (round == 50) then
+                tres%status = FC_NOT_CONVERGED
+                tres%message = 'Panagiotopoulos process not converged in 50 rounds'
+            end if
+        end do
+        if (present(rounds)) rounds = min(round, 50)
+        nres%iterations = it_n; nres%matvecs = mv_n; nres%cpu_seconds = cpu_n
+        tres%iterations = it_t; tres%matvecs = mv_t; tres%cpu_seconds = cpu_t
+    end subroutine solve_normal_tangential
+
+    !> Forces, moment and element counts of a tangential solution.
+    subroutine tangential_summary(grid, res)
+        type(fc_grid), intent(in) :: grid
+        type(fc_tangential_result), intent(inout) :: res
+        integer :: i, j
+        res%fx = sum(res%px)*grid%area()
+        res%fy = sum(res%py)*grid%area()
+        res%mz = 0
+        do j = 1, grid%ny
+            do i = 1, grid%nx
+                res%mz = res%mz + (grid%x(i)*res%py(i, j) - grid%y(j)*res%px(i, j))
+            end do
+        end do
+        res%mz = res%mz*grid%area()
+        res%nadh = count(res%state == EL_ADHESION)
+        res%nslip = count(res%state == EL_SLIP)
+        res%ncon = res%nadh + res%nslip
+    end subroutine tangential_summary
+
+    !> Relative RMS change of the traction vector (eq. 4.49).
+    pure real(dp) function traction_change(px, py, qx, qy)
+        real(dp), intent(in) :: px(:, :), py(:, :), qx(:, :), qy(:, :)
+        real(dp) :: num, den
+        num = sum((px - qx)**2 + (py - qy)**2)
+        den = sum(px**2 + py**2)
+        if (den > 0) then
+            traction_change = sqrt(num/den)
+        else if (num > 0) then
+            traction_change = huge(1.0_dp)
+        else
+            traction_change = 0
+        end if
+    end function traction_change
+
+    !> TangCG(K), thesis §4.3.3 with the early exit of Remark 4.2.
+    subroutine run_tangcg(top, contact, g, wx, wy, settings, res)
+        type(fc_tangential_operator), intent(inout) :: top
+        logical, intent(in) :: contact(:, :)
+        real(dp), intent(in) :: g(:, :), wx(:, :), wy(:, :)
+        type(fc_tangential_settings), intent(in) :: settings
+        type(fc_tangential_result), intent(inout) :: res
+        real(dp), dimension(size(g, 1), size(g, 2)) :: px, py, sx, sy, ux, uy, dax, day, zx, zy, vax, vay, &
+            vsx, vsy, qsx, qsy, qax, qay, pox, poy, dox, doy, mx, my, tnorm
+        logical, dimension(size(g, 1), size(g, 2)) :: adh, slp
+        real(dp) :: axx, ayy, alpha, beta, zd_old, zd, denom, change, pnorm
+        integer :: it, inner, nmoved
+        logical :: changed, converged, check_now
+        real(dp), allocatable :: hist(:)
+        axx = top%a_xx%kernel(0, 0); ayy = top%a_yy%kernel(0, 0)
+        px = res%px; py = res%py
+        ! initial subdivision (step 0): adhesion everywhere in contact; a warm start whose
+        ! traction reaches the bound starts in slip
+        adh = contact; slp = .false.
+        where (contact .and. g > 0 .and. px**2 + py**2 >= g**2)
+            slp = .true.; adh = .false.
+        end where
+        where (slp)
+            tnorm = sqrt(px**2 + py**2)
+            px = g*px/tnorm; py = g*py/tnorm
+        end where
+        where (contact .and. .not. g > 0)      ! zero bound: traction must vanish
+            adh = .false.; slp = .false.; px = 0; py = 0
+        end where
+        call top%apply(px, py, ux, uy)
+        sx = wx + ux; sy = wy + uy
+        allocate (hist(settings%maxit))
+        changed = .true.; converged = .false.
+        zd_old = 1; vax = 0; vay = 0; dox = 0; doy = 0
+        inner = 0
+        res%status = FC_NOT_CONVERGED
+        res%outer_iterations = 0
+        change = huge(1.0_dp)
+        do it = 1, settings%maxit
+            ! step 2: primary defect
+            where (adh)
+                dax = -sx; day = -sy
+            elsewhere (slp)
+                dax = -(px*sy - py*sx); day = 0
+            elsewhere
+                dax = 0; day = 0
+            end where
+            ! step 3: diagonal preconditioner, eq. (4.43): scale the diagonal to A^xx_II
+            if (settings%precondition) then
+                where (adh)
+                    mx = 1; my = axx/ayy
+                elsewhere (slp)
+                    ! diagonal of the reduced Jacobian, px²A^yy + py²A^xx − p·s; −p·s = g|s| > 0
+                    ! once p opposes s, but an element just moved to slip may not yet: keep
+                    ! the part that is positive so that M stays positive definite
+                    mx = axx/(px**2*ayy + py**2*axx + max(0.0_dp, -(px*sx + py*sy))); my = 0
+                elsewhere
+                    mx = 0; my = 0
+                end where
+            else
+                where (adh .or. slp)
+                    mx = 1
+                elsewhere
+                    mx = 0
+                end where
+                where (adh)
+                    my = 1
+                elsewhere
+                    my = 0
+                end where
+            end if
+            zx = mx*dax; zy = my*day
+            zd = sum(zx*dax + zy*day)
+            ! step 4: search direction (Polak–Ribière, β ≥ 0; restart on a new subdivision)
+            if (changed) then
+                vax = zx; vay = zy
+            else
+                beta = max(0.0_dp, sum(zx*(dax - dox) + zy*(day - doy))/zd_old)
+                vax = zx + beta*vax; vay = zy + beta*vay
+            end if
+            dox = dax; doy = day; zd_old = zd
+            ! step 5: auxiliary direction
+            where (adh)
+                vsx = vax; vsy = vay
+            elsewhere (slp)
+                vsx = -vax*py; vsy = vax*px
+            elsewhere
+                vsx = 0; vsy = 0
+            end where
+            ! steps 6–7: change of slip and of the primary defect
+            call top%apply(vsx, vsy, qsx, qsy)
+            where (adh)
+                qax = qsx; qay = qsy
+            elsewhere (slp)
+                qax = px*qsy - py*qsx + sy*vsx - sx*vsy; qay = 0
+            elsewhere
+                qax = 0; qay = 0
+            end where
+            ! step 8: step length
+            denom = sum(qax*vax + qay*vay)
+            if (.not. (abs(denom) > 0)) then
+                if (zd == 0) then       ! nothing to do: the defect vanishes
+                    change = 0
+                else
+                    res%status = FC_DIVERGED
+                    res%message = 'TangCG: zero curvature along the search direction'
+                    exit
+                end if
+                alpha = 0
+            else
+                alpha = sum(dax*vax + day*vay)/denom
+            end if
+            ! step 9: update and project slip tractions on the circle
+            pox = px; poy = py
+            px = px + alpha*vsx; py = py + alpha*vsy
+            where (slp)
+                tnorm = sqrt(px**2 + py**2)
+                px = g*px/tnorm; py = g*py/tnorm
+            end where
+            change = traction_change(px, py, pox, poy)
+            if (change /= change .or. change > 1.0e12_dp) then
+                res%status = FC_DIVERGED
+                res%message = 'TangCG diverged (traction change not finite)'
+                exit
+            end if
+            hist(it) = change
+            res%iterations = it
+            inner = inner + 1
+            ! u = A p is linear: u + α·q_s is exact on adhesion.  The projection on the circle
+            ! moves slip tractions by O(α²|v_s|²/g) more; that second-order part is picked up
+            ! by the exact product at each subdivision check (at least every K iterations).
+            check_now = inner >= settings%inner_k .or. change < settings%tol
+            if (check_now .and. any(slp)) then
+                call top%apply(px, py, ux, uy)
+            else
+                ux = ux + alpha*qsx; uy = uy + alpha*qsy
+            end if
+            sx = wx + ux; sy = wy + uy
+            changed = .false.
+            if (check_now) then
+                inner = 0
+                res%outer_iterations = res%outer_iterations + 1
+                ! 11.1: adhesion elements above the bound go to slip
+                nmoved = count(adh .and. px**2 + py**2 > g**2)
+                if (nmoved > 0) then
+                    where (adh .and. px**2 + py**2 > g**2)
+                        slp = .true.; adh = .false.
+                        tnorm = sqrt(px**2 + py**2)
+                        px = g*px/tnorm; py = g*py/tnorm
+                    end where
+                    call top%apply(px, py, ux, uy)
+                    sx = wx + ux; sy = wy + uy
+                    changed = .true.
+                end if
+                ! 11.2: slip elements whose traction does not oppose the slip go to adhesion
+                if (any(slp .and. px*sx + py*sy > 0)) then
+                    where (slp .and. px*sx + py*sy > 0)
+                        adh = .true.; slp = .false.
+                    end where
+                    changed = .true.
+                end if
+                ! 11.3: convergence
+                if (.not. changed .and. change < settings%tol) then
+                    converged = .true.
+                    exit
+                end if
+            end if
+        end do
+        if (converged) then
+            res%status = FC_CONVERGED
+            res%message = 'converged'
+        else if (res%status == FC_NOT_CONVERGED) then
+            write (res%message, '(a,i0,a,es10.3)') 'TangCG not converged in maxit = ', settings%maxit, &
+                ' iterations; last traction change ', change
+        end if
+        pnorm = change
+        res%residual = pnorm
+        res%px = px; res%py = py
+        res%ux = ux; res%uy = uy
+        res%sx = sx; res%sy = sy
+        res%state = EL_EXTERIOR
+        where (adh) res%state = EL_ADHESION
+        where (slp) res%state = EL_SLIP
+        where (.not. contact)
+            res%sx = 0; res%sy = 0
+        end where
+        allocate (res%history(res%iterations), source=hist(1:res%iterations))
+    end subroutine run_tangcg
+
+    !> ConvexGS: block Gauss–Seidel over the contact elements (thesis §4.2.4).
+    subroutine run_convexgs(top, contact, g, wx, wy, settings, res)
+        type(fc_tangential_operator), intent(inout) :: top
+        logical, intent(in) :: contact(:, :)
+        real(dp), intent(in) :: g(:, :), wx(:, :), wy(:, :)
+        type(fc_tangential_settings), intent(in) :: settings
+        type(fc_tangential_result), intent(inout) :: res
+        real(dp), dimension(size(g, 1), size(g, 2)) :: px, py, sx, sy, ux, uy, pox, poy
+        integer, dimension(size(g, 1), size(g, 2)) :: state
+        real(dp) :: axx, ayy, stx, sty, tx, ty, dpx, dpy, change
+        integer :: sweep, i, j, l, nx, ny
+        real(dp), allocatable :: hist(:)
+        logical :: converged
+        nx = size(g, 1); ny = size(g, 2)
+        axx = top%a_xx%kernel(0, 0); ayy = top%a_yy%kernel(0, 0)
+        px = res%px; py = res%py
+        call top%apply(px, py, ux, uy)
+        sx = wx + ux; sy = wy + uy
+        state = EL_EXTERIOR
+        where (contact) state = EL_ADHESION
+        allocate (hist(settings%maxit))
+        converged = .false.
+        res%status = FC_NOT_CONVERGED
+        change = huge(1.0_dp)
+        do sweep = 1, settings%maxit
+            pox = px; poy = py
+            do j = 1, ny
+                do i = 1, nx
+                    if (.not. contact(i, j)) cycle
+                    ! slip without the element's own contribution (A^xy_II = 0 by symmetry)
+                    stx = sx(i, j) - axx*px(i, j)
+                    sty = sy(i, j) - ayy*py(i, j)
+                    tx = -stx/axx; ty = -sty/ayy
+                    if (tx**2 + ty**2 <= g(i, j)**2) then
+                        state(i, j) = EL_ADHESION
+                    else
+                        state(i, j) = EL_SLIP
+                        call circle_newton(g(i, j), axx, ayy, stx, sty, tx, ty)
+                    end if
+                    dpx = tx - px(i, j); dpy = ty - py(i, j)
+                    if (dpx == 0 .and. dpy == 0) cycle
+                    px(i, j) = tx; py(i, j) = ty
+                    ! s_J += A_JI Δp_I for every J: O(n) column update
+                    do l = 1, ny
+                        sx(:, l) = sx(:, l) + dpx*top%a_xx%kernel(1 - i:nx - i, l - j) &
+                            + dpy*top%a_xy%kernel(1 - i:nx - i, l - j)
+                        sy(:, l) = sy(:, l) + dpx*top%a_xy%kernel(1 - i:nx - i, l - j) &
+                            + dpy*top%a_yy%kernel(1 - i:nx - i, l - j)
+                    end do
+                end do
+            end do
+            change = traction_change(px, py, pox, poy)
+            hist(sweep) = change
+            res%iterations = sweep
+            if (change /= change) then
+                res%status = FC_DIVERGED
+                res%message = 'ConvexGS diverged (traction change not finite)'
+                exit
+            end if
+            if (change < settings%tol) then
+                converged = .true.
+                exit
+            end if
+        end do
+        if (converged) then
+            res%status = FC_CONVERGED
+            res%message = 'converged'
+        else if (res%status == FC_NOT_CONVERGED) then
+            write (res%message, '(a,i0,a,es10.3)') 'ConvexGS not converged in maxit = ', settings%maxit, &
+                ' sweeps; last traction change ', change
+        end if
+        res%outer_iterations = res%iterations
+        res%residual = change
+        ! report the exact slip of the final tractions (one FFT product)
+        call top%apply(px, py, ux, uy)
+        res%px = px; res%py = py
+        res%ux = ux; res%uy = uy
+        res%sx = wx + ux; res%sy = wy + uy
+        where (.not. contact)
+            res%sx = 0; res%sy = 0
+        end where
+        res%state = state
+        allocate (res%history(res%iterations), source=hist(1:res%iterations))
+    end subroutine run_convexgs
+
+    !> Traction on the circle |p| = g opposing the slip s = s̃ + diag(axx, ayy)·p:
+    !! Newton on the angle θ of F(θ) = px·sy − py·sx = 0, started opposite to s̃.
+    pure subroutine circle_newton(g, axx, ayy, stx, sty, px, py)
+        real(dp), intent(in) :: g, axx, ayy, stx, sty
+        real(dp), intent(out) :: px, py
+        real(dp) :: th, f, df, c, s, dth
+        integer :: it
+        th = atan2(-sty, -stx)
+        do it = 1, 50
+            c = cos(th); s = sin(th)
+            f = g*(c*sty - s*stx) + g**2*(ayy - axx)*s*c
+            df = g*(-s*sty - c*stx) + g**2*(ayy - axx)*(c**2 - s**2)
+            if (df == 0) exit
+            dth = -f/df
+            th = th + dth
+            if (abs(dth) < 1.0e-15_dp) exit
+        end do
+        px = g*cos(th); py = g*sin(th)
+    end subroutine circle_newton
+
+end module fc_tangcg
