@@ -5,6 +5,7 @@ program tester
     use test_influence, only: collect_influence
     use test_hertz, only: collect_hertz
     use test_normal, only: collect_normal
+    use test_tangential, only: collect_tangential
     use test_driver, only: collect_driver
     implicit none
     character(len=64) :: suite, only
@@ -22,6 +23,9 @@ program tester
     end if
     if (want('normal')) then
         call collect_normal(tests); call run_suite('normal', tests, only, npass, nfail)
+    end if
+    if (want('tangential')) then
+        call collect_tangential(tests); call run_suite('tangential', tests, only, npass, nfail)
     end if
     if (want('driver')) then
         call collect_driver(tests); call run_suite('driver', tests, only, npass, nfail)
