@@ -15,8 +15,11 @@ module fc_driver
     use fc_geometry, only: fc_grid
     use fc_influence, only: fc_material
     use fc_norm, only: fc_normal_operator, fc_normal_result, build_normal_operator, solve_normal
+    use fc_tangcg, only: fc_tangential_operator, fc_tangential_result, build_tangential_operator, &
+        solve_normal_tangential, EL_EXTERIOR, EL_ADHESION
     use fc_hertz, only: hertz_from_approach, hertz_from_force
-    use fc_input, only: fc_case_chunk, fc_case_input, read_case_file, apply_case, validate_case, setup_case, fmt_real
+    use fc_input, only: fc_case_chunk, fc_case_input, read_case_file, apply_case, validate_case, setup_case, fmt_real, &
+        is_tangential, tangential_loading
     use fc_output, only: fc_case_summary, write_case_json, write_case_csv, write_case_report
     implicit none
     private
@@ -36,7 +39,8 @@ contains
         text = 'usage: fastcontact CASES.nml [--out DIR]'//nl// &
             '       fastcontact --help'//nl//nl// &
             'Solves every case of the namelist file CASES.nml in order (groups &case, &material,'//nl// &
-            '&grid, &geometry, &normal, &solver, &output; a later case repeats only what changes)'//nl// &
+            '&grid, &geometry, &normal, &tangential, &solver, &output; a later case repeats only what'//nl// &
+            'changes)'//nl// &
             'and writes DIR/<name>.json and DIR/<name>.csv per case (DIR: --out, else &output dir,'//nl// &
             "else 'out').  See doc/namelist.md."//nl//nl// &
             'Exit status: 0 all cases converged, 1 input error in some case, 2 some solver did not converge.'
@@ -57,6 +61,7 @@ contains
         character(len=64) :: name
         character(len=msg_len) :: errmsg
         type(fc_normal_operator) :: nop
+        type(fc_tangential_operator) :: top
         integer :: case_status, nused_before
         rep = output_unit; err = error_unit_default
         if (present(report_unit)) rep = report_unit
@@ -119,6 +124,7 @@ contains
             end select
         end do
         call nop%destroy()
+        call top%destroy()
         write (rep, '(a,i0,a,i0,a,i0,a,i0,a)') 'fastcontact: ', size(cases), ' case(s): ', &
             size(cases) - ncase_err - ncase_fail, ' converged, ', ncase_fail, ' not converged, ', ncase_err, &
             ' with input errors'
@@ -138,10 +144,12 @@ contains
             type(fc_grid) :: grid
             real(dp), allocatable :: h0(:, :)
             type(fc_normal_result) :: res
+            type(fc_tangential_result) :: tres
             type(fc_case_summary) :: s
             integer(int64) :: t0, t1, t2, rate
-            integer :: j
+            integer :: j, rounds, final_status
             real(dp) :: ca, cb
+            logical :: tang
             call system_clock(t0, rate)
             case_status = 1
             nused_before = size(used)
@@ -177,14 +185,29 @@ contains
                 errmsg = "&output dir = '"//dir//"': cannot create the directory"
                 call case_error(clean=.false.); return
             end if
-            ! ---- solve (reuse the operator when grid and material are unchanged)
+            ! ---- solve (reuse the operators when grid and material are unchanged)
+            tang = is_tangential(state)
             call system_clock(t1)
-            s%setup_seconds = 0
+            s%setup_seconds = 0; s%setup_seconds_tangential = 0
             if (needs_rebuild(nop, mat, grid)) then
                 call build_normal_operator(nop, mat, grid)
                 s%setup_seconds = nop%setup_seconds
             end if
-            if (state%force_prescribed) then
+            rounds = 0
+            if (tang) then
+                if (needs_rebuild_tangential(top, mat, grid)) then
+                    call build_tangential_operator(top, mat, grid)
+                    s%setup_seconds_tangential = top%setup_seconds
+                end if
+                if (state%force_prescribed) then
+                    call solve_normal_tangential(nop, top, h0, state%settings, state%tsettings, tangential_loading(state), &
+                        res, tres, stat, errmsg, fn=state%fn, rounds=rounds)
+                else
+                    call solve_normal_tangential(nop, top, h0, state%settings, state%tsettings, tangential_loading(state), &
+                        res, tres, stat, errmsg, approach=state%approach, rounds=rounds)
+                end if
+                if (stat /= 0) call library_message(errmsg, state)
+            else if (state%force_prescribed) then
                 call solve_normal(nop, h0, state%settings, res, stat, errmsg, fn=state%fn)
             else
                 call solve_normal(nop, h0, state%settings, res, stat, errmsg, approach=state%approach)
@@ -195,15 +218,21 @@ contains
             end if
             ! ---- summary
             s%name = state%name; s%title = state%title; s%problem = state%problem; s%geometry = state%kind
-            s%status = status_name(res%status); s%message = res%message; s%solver = state%settings%solver
+            s%status = status_name(res%status); s%message = res%message
+            s%solver = state%settings%solver; s%solver_normal = state%settings%solver
+            s%status_normal = status_name(res%status)
             s%material = mat; s%grid = grid; s%force_prescribed = state%force_prescribed
             s%fn = res%fn; s%approach = res%approach; s%pmax = res%pmax
             s%ncon = res%ncon; s%nadh = res%ncon; s%nslip = 0
             s%iterations = res%iterations; s%outer_iterations = res%outer_iterations; s%matvecs = res%matvecs
+            s%iterations_normal = res%iterations; s%outer_iterations_normal = res%outer_iterations
+            s%matvecs_normal = res%matvecs; s%residual_normal = res%residual
             s%residual = res%residual; s%tol = state%settings%tol
             s%cpu_seconds_normal = real(t2 - t1, dp)/rate
             s%notes = state%notes
-            if (mat%k /= 0) s%notes = s%notes//'K = '//fmt_real(mat%k)// &
+            final_status = res%status
+            if (tang) call tangential_summary(s, state, res, tres, grid, rounds, final_status)
+            if (mat%k /= 0 .and. .not. tang) s%notes = s%notes//'K = '//fmt_real(mat%k)// &
                 ' /= 0: the normal problem is solved without the tangential coupling. '
             if (state%kind == 'quadratic' .and. state%rx > 0 .and. state%ry > 0) then
                 ca = 0.5_dp/state%rx; cb = 0.5_dp/state%ry
@@ -216,7 +245,12 @@ contains
             end if
             ! ---- outputs
             if (state%table) then
-                call write_case_csv(dir//'/'//trim(state%name)//'.csv', grid, res%pn, res%gap, stat, errmsg)
+                if (tang) then
+                    call write_case_csv(dir//'/'//trim(state%name)//'.csv', grid, res%pn, res%gap, stat, errmsg, &
+                        tres%state, tres%px, tres%py, tres%sx, tres%sy)
+                else
+                    call write_case_csv(dir//'/'//trim(state%name)//'.csv', grid, res%pn, res%gap, stat, errmsg)
+                end if
                 if (stat /= 0) then
                     call case_error(); return
                 end if
@@ -230,13 +264,17 @@ contains
                 call remove_file(dir//'/'//trim(state%name)//'.csv')
                 call case_error(); return
             end if
-            call write_case_report(rep, s, res%pn)
-            if (res%status == FC_CONVERGED) then
+            if (tang) then
+                call write_case_report(rep, s, res%pn, tres%state)
+            else
+                call write_case_report(rep, s, res%pn)
+            end if
+            if (final_status == FC_CONVERGED) then
                 case_status = 0
             else
                 case_status = 2
                 write (err, '(a,i0,a)') 'fastcontact: case ', k, " '"//trim(state%name)//"': solver "// &
-                    trim(status_name(res%status))//': '//trim(res%message)
+                    trim(status_name(final_status))//': '//trim(s%message)
             end if
         end subroutine run_one_case
 
@@ -280,6 +318,83 @@ contains
             .or. nop%grid%dx /= grid%dx .or. nop%grid%dy /= grid%dy .or. nop%material%g /= mat%g &
             .or. nop%material%nu /= mat%nu
     end function needs_rebuild
+
+    !> Tangential part of the summary; status = worst of both stages.  When the normal
+    !! stage failed the tangential stage was not run: zero tractions, states from the
+    !! pressure (adhesion where pn > 0), status of the normal stage.
+    subroutine tangential_summary(s, state, res, tres, grid, rounds, final_status)
+        type(fc_case_summary), intent(inout) :: s
+        type(fc_case_input), intent(in) :: state
+        type(fc_normal_result), intent(in) :: res
+        type(fc_tangential_result), intent(inout) :: tres
+        type(fc_grid), intent(in) :: grid
+        integer, intent(in) :: rounds
+        integer, intent(inout) :: final_status
+        s%tangential = .true.
+        s%solver_tangential = state%tsettings%solver
+        s%solver = trim(state%settings%solver)//'+'//trim(state%tsettings%solver)
+        s%mu = state%mu; s%tforce_prescribed = state%tforce_prescribed
+        s%fx_prescribed = state%fx; s%fy_prescribed = state%fy
+        s%panagiotopoulos_rounds = rounds
+        s%cpu_seconds_normal = s%setup_seconds + res%cpu_seconds
+        s%tangential_run = allocated(tres%px)
+        if (.not. s%tangential_run) then
+            allocate (tres%px(grid%nx, grid%ny), tres%py(grid%nx, grid%ny), tres%sx(grid%nx, grid%ny), &
+                tres%sy(grid%nx, grid%ny), tres%state(grid%nx, grid%ny))
+            tres%px = 0; tres%py = 0; tres%sx = 0; tres%sy = 0
+            tres%state = merge(EL_ADHESION, EL_EXTERIOR, res%pn > 0)
+            s%status_tangential = 'not_run'
+            s%message = trim(res%message)//' (tangential stage not run)'
+            s%xi = state%xi; s%eta = state%eta; s%phi = state%phi
+            s%cpu_seconds_tangential = s%setup_seconds_tangential
+            return
+        end if
+        s%status_tangential = status_name(tres%status)
+        s%fx = tres%fx; s%fy = tres%fy; s%mz = tres%mz
+        s%xi = tres%xi; s%eta = tres%eta; s%phi = tres%phi
+        s%nadh = tres%nadh; s%nslip = tres%nslip
+        s%iterations_tangential = tres%iterations; s%outer_iterations_tangential = tres%outer_iterations
+        s%matvecs_tangential = tres%matvecs; s%residual_tangential = tres%residual
+        s%iterations = res%iterations + tres%iterations
+        s%outer_iterations = res%outer_iterations + tres%outer_iterations
+        s%matvecs = res%matvecs + tres%matvecs
+        s%residual = max(res%residual, tres%residual)
+        s%cpu_seconds_tangential = s%setup_seconds_tangential + tres%cpu_seconds
+        final_status = max(res%status, tres%status)
+        s%status = status_name(final_status)
+        if (tres%status /= FC_CONVERGED) then
+            if (res%status == FC_CONVERGED) then
+                s%message = 'tangential: '//trim(tres%message)
+            else
+                s%message = 'normal: '//trim(res%message)//'; tangential: '//trim(tres%message)
+            end if
+        end if
+    end subroutine tangential_summary
+
+    !> Library messages start with the group ('tangential: ...', 'solver: ...'):
+    !! make them name the group as the input checks do, with the values given.
+    subroutine library_message(errmsg, state)
+        character(len=*), intent(inout) :: errmsg
+        type(fc_case_input), intent(in) :: state
+        if (index(errmsg, 'tangential: |(fx, fy)|') == 1) then
+            errmsg = '&tangential fx = '//fmt_real(state%fx)//', fy = '//fmt_real(state%fy)//', mu = '// &
+                fmt_real(state%mu)//': '//trim(errmsg(13:))//' for &normal approach = '//fmt_real(state%approach)
+        else if (index(errmsg, 'tangential: ') == 1 .or. index(errmsg, 'solver: ') == 1 .or. &
+                 index(errmsg, 'normal: ') == 1) then
+            errmsg = '&'//trim(errmsg)
+        end if
+    end subroutine library_message
+
+    !> Whether the tangential operator must be (re)built: the blocks depend on G, ν and,
+    !! through the coupling blocks, on K.
+    logical function needs_rebuild_tangential(top, mat, grid)
+        type(fc_tangential_operator), intent(in) :: top
+        type(fc_material), intent(in) :: mat
+        type(fc_grid), intent(in) :: grid
+        needs_rebuild_tangential = .not. top%a_xx%built() .or. top%grid%nx /= grid%nx .or. top%grid%ny /= grid%ny &
+            .or. top%grid%dx /= grid%dx .or. top%grid%dy /= grid%dy .or. top%material%g /= mat%g &
+            .or. top%material%nu /= mat%nu .or. top%material%k /= mat%k
+    end function needs_rebuild_tangential
 
     !> mkdir -p DIR.
     subroutine make_directory(dir, stat)

@@ -12,7 +12,8 @@
 !! Groups, keys and defaults (see also doc/namelist.md):
 !!
 !! * `&case name, title, problem` — name: file stem of the outputs, not inherited, default
-!!   `case<N>`; title: ''; problem: 'normal' (the only one supported so far).
+!!   `case<N>`; title: ''; problem: 'normal' (default), 'normal+tangential' or 'tangential'
+!!   (the same pipeline: the normal problem is solved as the prerequisite of the tangential one).
 !! * `&material g1, g2, nu1, nu2, ic_file` — g1, g2 required (≥ 1e29: rigid);
 !!   nu1 = nu2 = 0.28; ic_file: not yet supported.
 !! * `&grid nx, ny, xmin, xmax, ymin, ymax` — all required (outer edges of the potential
@@ -22,10 +23,15 @@
 !!   m_modes = 12, n_modes = 10, seed = 2015), 'wavy' (amplitude > 0, wavelength_x = 0,
 !!   wavelength_y = 0; 0 = flat), 'table' (file: nx·ny values, x fastest).
 !! * `&normal approach | fn` — exactly one required; giving one clears the inherited other.
-!! * `&tangential mu, xi, eta, phi, fx, fy` — accepted, ignored for problem = 'normal'.
-!! * `&solver normal, tol, maxit, inner_maxit, precondition, deflation` (normal = 'bccg',
-!!   tol = 1e-5, maxit = 1000, inner_maxit = 0, precondition = .true., deflation: library default);
-!!   tangential, inner_k, cycle, omega, beta accepted and noted as ignored.
+!! * `&tangential mu, xi, eta, phi | mu, fx, fy, phi` — mu required for tangential problems
+!!   (≥ 0; > 0 with forces); xi = eta = phi = 0; giving fx or fy switches to prescribed
+!!   forces and clears inherited xi, eta (and vice versa); both kinds in one group: error.
+!!   Ignored (noted) for problem = 'normal'.
+!! * `&solver normal, tangential, tol, maxit, inner_maxit, inner_k, precondition,
+!!   precondition_tangential, deflation` (normal = 'bccg', tangential = 'tangcg', tol = 1e-5,
+!!   maxit = 1000, inner_maxit = 0, inner_k = 3, precondition = .true. for both stages,
+!!   precondition_tangential overrides it for TangCG, deflation: library default); tol and
+!!   maxit apply to both stages; cycle, omega, beta accepted and noted as ignored.
 !! * `&output dir, table` — dir = 'out' (the command line `--out` wins), table = .true.
 !!
 !! Every value persists from case to case except `name`.  A case with an input error does
@@ -37,6 +43,7 @@ module fc_input
         read_gap_table, h_no_contact
     use fc_influence, only: fc_material, combine_material, rigid_modulus
     use fc_norm, only: fc_normal_settings
+    use fc_tangcg, only: fc_tangential_settings, fc_tangential_loading
     implicit none
     private
 
@@ -74,7 +81,7 @@ module fc_input
         ! &case
         character(len=64) :: name = ''             !! output file stem (not inherited)
         character(len=128) :: title = ''           !! free text for the report
-        character(len=32) :: problem = 'normal'    !! 'normal' ('tangential', 'normal+tangential': not yet)
+        character(len=32) :: problem = 'normal'    !! 'normal', 'tangential', 'normal+tangential'
         ! &material
         real(dp) :: g1 = 0, g2 = 0                 !! shear moduli [N/mm²] (≥ 1e29: rigid)
         real(dp) :: nu1 = 0.28_dp, nu2 = 0.28_dp   !! Poisson ratios
@@ -94,13 +101,19 @@ module fc_input
         logical :: force_prescribed = .false.      !! fn given (else approach)
         real(dp) :: approach = 0                   !! prescribed approach δ [mm]
         real(dp) :: fn = 0                         !! prescribed normal force [N]
-        ! &tangential (accepted, not used yet)
-        real(dp) :: mu = 0, xi = 0, eta = 0, phi = 0, fx = 0, fy = 0
+        ! &tangential
+        real(dp) :: mu = 0                         !! coefficient of friction
+        real(dp) :: xi = 0, eta = 0                !! prescribed rigid shift [mm] (tforce_prescribed false)
+        real(dp) :: phi = 0                        !! spin shift [rad]
+        real(dp) :: fx = 0, fy = 0                 !! prescribed tangential forces [N] (tforce_prescribed)
+        logical :: tforce_prescribed = .false.     !! fx or fy given (else xi, eta)
         ! &solver
         type(fc_normal_settings) :: settings       !! normal solver settings
         character(len=32) :: normal_solver = 'bccg'  !! &solver normal as given (checked, then copied)
-        character(len=16) :: tangential = 'tangcg' !! not used yet
-        integer :: inner_k = 3                     !! not used yet
+        type(fc_tangential_settings) :: tsettings  !! tangential solver settings (tol, maxit from &solver)
+        character(len=32) :: tangential = 'tangcg' !! &solver tangential as given (checked, then copied)
+        integer :: inner_k = 3                     !! TangCG inner iterations K
+        logical :: precondition_tangential = .true.  !! TangCG diagonal preconditioner
         character(len=16) :: cycle = 'V(1,1)'      !! not used yet
         real(dp) :: omega = 0.8_dp, beta = 0.003_dp  !! not used yet
         ! &output
@@ -114,6 +127,7 @@ module fc_input
     character(len=*), parameter :: known_groups = 'case material grid geometry normal tangential solver output'
 
     public :: read_case_file, split_cases, apply_case, validate_case, setup_case, is_given, fmt_real
+    public :: is_tangential, tangential_loading
 
 contains
 
@@ -396,8 +410,9 @@ contains
         integer :: ig, k, ios
         character(len=256) :: iomsg
         character(len=msg_len) :: where
-        logical :: has_fn, has_approach
+        logical :: has_fn, has_approach, has_shift, has_force, tangential_group
         stat = 0; errmsg = ''
+        tangential_group = .false.
         s = state
         if (.not. allocated(s%given)) allocate (s%given(0))
         s%index = icase
@@ -436,6 +451,16 @@ contains
                         return
                     end if
                 end if
+                if (g%name == 'tangential') then
+                    has_shift = any(g%items%key == 'xi') .or. any(g%items%key == 'eta')
+                    has_force = any(g%items%key == 'fx') .or. any(g%items%key == 'fy')
+                    if (has_shift .and. has_force) then
+                        stat = 1
+                        errmsg = trim(where)//': give either the shifts xi, eta or the forces fx, fy, not both ('// &
+                            trim(given_list(g, ['xi ', 'eta', 'fx ', 'fy ']))//')'
+                        return
+                    end if
+                end if
                 call read_group(g%name, g%text, s, ios, iomsg)
                 if (ios /= 0) then
                     stat = 1
@@ -455,22 +480,70 @@ contains
                         call unmark_given(s, 'normal', 'fn')
                     end if
                 end if
+                if (g%name == 'tangential') then
+                    tangential_group = .true.
+                    if (any(g%items%key == 'fx') .or. any(g%items%key == 'fy')) then
+                        s%tforce_prescribed = .true.; s%xi = 0; s%eta = 0
+                        call unmark_given(s, 'tangential', 'xi'); call unmark_given(s, 'tangential', 'eta')
+                    else if (any(g%items%key == 'xi') .or. any(g%items%key == 'eta')) then
+                        s%tforce_prescribed = .false.; s%fx = 0; s%fy = 0
+                        call unmark_given(s, 'tangential', 'fx'); call unmark_given(s, 'tangential', 'fy')
+                    end if
+                end if
                 if (g%name == 'solver') then
+                    ! precondition sets both stages unless precondition_tangential is given too
+                    if (any(g%items%key == 'precondition') .and. .not. any(g%items%key == 'precondition_tangential')) &
+                        s%precondition_tangential = s%settings%precondition
                     do k = 1, size(g%items)
                         select case (g%items(k)%key)
-                        case ('tangential', 'inner_k', 'cycle', 'omega', 'beta')
+                        case ('cycle', 'omega', 'beta')
                             s%notes = s%notes//'&solver '//trim(g%items(k)%key)//' = '//trim(g%items(k)%value)// &
-                                ' accepted but not used by the normal solvers yet. '
+                                ' accepted but not used yet (multigrid). '
                         end select
                     end do
                 end if
-                if (g%name == 'tangential') s%notes = s%notes//'&tangential ignored for problem = normal. '
             end associate
         end do
+        if (tangential_group .and. .not. is_tangential(s)) &
+            s%notes = s%notes//"&tangential ignored for problem = 'normal'. "
         if (len_trim(s%name) == 0) s%name = name
         name = s%name
         state = s
     end subroutine apply_case
+
+    !> `key = value` of those `keys` that appear in group `g`, comma separated.
+    function given_list(g, keys) result(list)
+        type(fc_nml_group), intent(in) :: g
+        character(len=*), intent(in) :: keys(:)
+        character(len=:), allocatable :: list
+        integer :: k
+        list = ''
+        do k = 1, size(keys)
+            if (any(g%items%key == keys(k))) then
+                if (len(list) > 0) list = list//', '
+                list = list//trim(keys(k))//' = '//trim(item_value(g, keys(k)))
+            end if
+        end do
+    end function given_list
+
+    !> Whether the case solves the tangential problem too.
+    pure logical function is_tangential(s)
+        type(fc_case_input), intent(in) :: s
+        is_tangential = s%problem == 'tangential' .or. s%problem == 'normal+tangential'
+    end function is_tangential
+
+    !> The tangential loading of a validated case.
+    pure function tangential_loading(s) result(load)
+        type(fc_case_input), intent(in) :: s
+        type(fc_tangential_loading) :: load
+        load%mu = s%mu; load%phi = s%phi
+        load%force_prescribed = s%tforce_prescribed
+        if (s%tforce_prescribed) then
+            load%fx = s%fx; load%fy = s%fy
+        else
+            load%xi = s%xi; load%eta = s%eta
+        end if
+    end function tangential_loading
 
     !> Value text of `key` in group `g` ('' if absent).
     function item_value(g, key) result(v)
@@ -625,19 +698,22 @@ contains
         integer, intent(out) :: ios
         character(len=*), intent(out) :: iomsg
         character(len=32) :: normal
-        character(len=16) :: tangential, cycle
+        character(len=32) :: tangential
+        character(len=16) :: cycle
         real(dp) :: tol, omega, beta
         integer :: maxit, inner_maxit, inner_k
-        logical :: precondition, deflation
-        namelist /solver/ normal, tangential, tol, maxit, inner_maxit, precondition, deflation, inner_k, &
-            cycle, omega, beta
+        logical :: precondition, precondition_tangential, deflation
+        namelist /solver/ normal, tangential, tol, maxit, inner_maxit, precondition, precondition_tangential, &
+            deflation, inner_k, cycle, omega, beta
         normal = s%normal_solver; tangential = s%tangential; tol = s%settings%tol; maxit = s%settings%maxit
         inner_maxit = s%settings%inner_maxit; precondition = s%settings%precondition
+        precondition_tangential = s%precondition_tangential
         deflation = s%settings%deflation; inner_k = s%inner_k; cycle = s%cycle; omega = s%omega; beta = s%beta
         read (text, nml=solver, iostat=ios, iomsg=iomsg)
         if (ios /= 0) return
         s%normal_solver = lower(normal); s%tangential = lower(tangential); s%settings%tol = tol
         s%settings%maxit = maxit; s%settings%inner_maxit = inner_maxit; s%settings%precondition = precondition
+        s%precondition_tangential = precondition_tangential
         s%settings%deflation = deflation; s%inner_k = inner_k; s%cycle = cycle; s%omega = omega; s%beta = beta
     end subroutine read_solver_group
 
@@ -667,7 +743,9 @@ contains
             keys = 'kind rx ry diameter sigma gamma m_modes n_modes seed amplitude wavelength_x wavelength_y file'
         case ('normal');     keys = 'approach fn'
         case ('tangential'); keys = 'mu xi eta phi fx fy'
-        case ('solver');     keys = 'normal tangential tol maxit inner_maxit precondition deflation inner_k cycle omega beta'
+        case ('solver')
+            keys = 'normal tangential tol maxit inner_maxit inner_k precondition precondition_tangential deflation '// &
+                'cycle omega beta'
         case ('output');     keys = 'dir table'
         case default;        keys = ''
         end select
@@ -732,11 +810,11 @@ contains
             return
         end if
         select case (s%problem)
-        case ('normal')
-        case ('tangential', 'normal+tangential')
-            errmsg = "&case problem = '"//trim(s%problem)//"': not yet supported (only 'normal')"; return
+        case ('normal', 'tangential', 'normal+tangential')
         case default
-            errmsg = "&case problem = '"//trim(s%problem)//"': unknown problem; use 'normal'"; return
+            errmsg = "&case problem = '"//trim(s%problem)//"': unknown problem; use 'normal', 'normal+tangential' "// &
+                "or 'tangential'"
+            return
         end select
         ! &material
         if (.not. is_given(s, 'material', 'g1')) then
@@ -869,6 +947,36 @@ contains
                 errmsg = '&normal approach = '//fmt_real(s%approach)//': not a finite number'; return
             end if
         end if
+        ! &tangential: values are checked whenever given; requirements only for tangential problems
+        if (.not. (s%mu >= 0 .and. ieee_is_finite(s%mu))) then
+            errmsg = '&tangential mu = '//fmt_real(s%mu)//': must be >= 0 (coefficient of friction)'; return
+        end if
+        if (.not. all(ieee_is_finite([s%xi, s%eta, s%phi, s%fx, s%fy]))) then
+            errmsg = '&tangential xi = '//fmt_real(s%xi)//', eta = '//fmt_real(s%eta)//', phi = '//fmt_real(s%phi)// &
+                ', fx = '//fmt_real(s%fx)//', fy = '//fmt_real(s%fy)//': not finite numbers'
+            return
+        end if
+        if (is_tangential(s)) then
+            if (.not. is_given(s, 'tangential', 'mu')) then
+                errmsg = "&tangential mu: missing required value for problem = '"//trim(s%problem)// &
+                    "' (coefficient of friction, >= 0)"
+                return
+            end if
+            if (s%tforce_prescribed) then
+                if (.not. (s%mu > 0)) then
+                    errmsg = '&tangential mu = '//fmt_real(s%mu)//': must be > 0 when the forces fx, fy are prescribed'
+                    return
+                end if
+                if (s%force_prescribed) then
+                    if (.not. (hypot(s%fx, s%fy) < s%mu*s%fn)) then
+                        errmsg = '&tangential fx = '//fmt_real(s%fx)//', fy = '//fmt_real(s%fy)//': |(fx, fy)| = '// &
+                            fmt_real(hypot(s%fx, s%fy))//' must be < mu*fn = '//fmt_real(s%mu*s%fn)// &
+                            ' (mu = '//fmt_real(s%mu)//', &normal fn = '//fmt_real(s%fn)//'; full slip has no unique shift)'
+                        return
+                    end if
+                end if
+            end if
+        end if
         ! &solver
         select case (s%normal_solver)
         case ('bccg', 'norm')
@@ -887,6 +995,21 @@ contains
         if (s%settings%inner_maxit < 0) then
             errmsg = '&solver inner_maxit = '//fmt_int(s%settings%inner_maxit)//': must be >= 0 (0: no limit)'; return
         end if
+        select case (s%tangential)
+        case ('tangcg', 'convexgs')
+            s%tsettings%solver = trim(s%tangential)
+        case default
+            errmsg = "&solver tangential = '"//trim(s%tangential)//"': unknown solver; use 'tangcg' or 'convexgs'"; return
+        end select
+        if (s%inner_k < 1) then
+            errmsg = '&solver inner_k = '//fmt_int(s%inner_k)//': must be >= 1 (TangCG iterations between '// &
+                'subdivision checks)'
+            return
+        end if
+        s%tsettings%inner_k = s%inner_k
+        s%tsettings%tol = s%settings%tol
+        s%tsettings%maxit = s%settings%maxit
+        s%tsettings%precondition = s%precondition_tangential
         ! &output
         if (len_trim(s%dir) == 0) then
             errmsg = "&output dir = '': must not be empty"; return

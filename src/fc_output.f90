@@ -17,7 +17,13 @@ module fc_output
         character(len=32) :: problem = 'normal'      !! problem type
         character(len=16) :: geometry = ''           !! geometry kind
         character(len=16) :: status = 'error'        !! converged, not_converged, diverged, error
-        character(len=16) :: solver = ''             !! normal solver used
+        character(len=24) :: solver = ''             !! solver(s) used: 'bccg' or 'bccg+tangcg'
+        character(len=16) :: solver_normal = ''      !! normal solver
+        character(len=16) :: solver_tangential = ''  !! tangential solver ('' for problem = normal)
+        logical :: tangential = .false.              !! tangential problem solved (results below valid)
+        logical :: tangential_run = .false.          !! tangential stage was reached
+        character(len=16) :: status_normal = 'error' !! status of the normal stage
+        character(len=16) :: status_tangential = 'not_run' !! status of the tangential stage
         type(fc_material) :: material                !! combined constants
         type(fc_grid) :: grid                        !! potential contact area
         logical :: force_prescribed = .false.        !! fn prescribed (else approach)
@@ -32,9 +38,18 @@ module fc_output
         real(dp) :: tol = 0                          !! requested tolerance
         real(dp) :: cpu_seconds = 0                  !! whole case
         real(dp) :: cpu_seconds_normal = 0           !! operator set-up + normal solve
-        real(dp) :: cpu_seconds_tangential = 0       !! tangential stage (none yet)
-        real(dp) :: setup_seconds = 0                !! operator set-up (0 when reused)
-        real(dp) :: xi = 0, eta = 0, phi = 0         !! rigid shift used
+        real(dp) :: cpu_seconds_tangential = 0       !! tangential operator set-up + tangential solve
+        real(dp) :: setup_seconds = 0                !! normal operator set-up (0 when reused)
+        real(dp) :: xi = 0, eta = 0, phi = 0         !! rigid shift used [mm, mm, rad]
+        real(dp) :: mu = 0                           !! coefficient of friction
+        logical :: tforce_prescribed = .false.       !! tangential forces prescribed (else shifts)
+        real(dp) :: fx_prescribed = 0, fy_prescribed = 0  !! prescribed tangential forces [N]
+        integer :: iterations_normal = 0, iterations_tangential = 0  !! per stage (all rounds)
+        integer :: outer_iterations_normal = 0, outer_iterations_tangential = 0
+        integer :: matvecs_normal = 0, matvecs_tangential = 0
+        integer :: panagiotopoulos_rounds = 0        !! normal–tangential rounds (1 when K = 0)
+        real(dp) :: residual_normal = 0, residual_tangential = 0
+        real(dp) :: setup_seconds_tangential = 0     !! tangential operator set-up (0 when reused)
         logical :: has_hertz = .false.               !! quadratic geometry: analytic comparison
         type(fc_hertz_solution) :: hertz             !! analytic Hertz solution
         character(len=msg_len) :: message = ''       !! solver message
@@ -44,7 +59,7 @@ module fc_output
     integer, parameter, public :: map_max_cols = 100  !! widest contact map
     integer, parameter, public :: map_max_rows = 50   !! tallest contact map
 
-    public :: write_case_json, write_case_csv, write_case_report, json_string, contact_map
+    public :: write_case_json, write_case_csv, write_case_report, json_string, contact_map, state_map
 
 contains
 
@@ -90,6 +105,28 @@ contains
         call kv_real('cpu_seconds_normal', s%cpu_seconds_normal)
         call kv_real('cpu_seconds_tangential', s%cpu_seconds_tangential)
         call kv_real('setup_seconds', s%setup_seconds)
+        call kv_str('solver_normal', s%solver_normal)
+        call kv_str('status_normal', s%status_normal)
+        call kv_int('iterations_normal', s%iterations_normal)
+        call kv_int('outer_iterations_normal', s%outer_iterations_normal)
+        call kv_int('matvecs_normal', s%matvecs_normal)
+        call kv_real('residual_normal', s%residual_normal)
+        if (s%tangential) then
+            call kv_str('solver_tangential', s%solver_tangential)
+            call kv_str('status_tangential', s%status_tangential)
+            call kv_real('mu', s%mu)
+            call kv_str('tangential_load', merge('forces', 'shifts', s%tforce_prescribed))
+            if (s%tforce_prescribed) then
+                call kv_real('fx_prescribed', s%fx_prescribed)
+                call kv_real('fy_prescribed', s%fy_prescribed)
+            end if
+            call kv_int('iterations_tangential', s%iterations_tangential)
+            call kv_int('outer_iterations_tangential', s%outer_iterations_tangential)
+            call kv_int('matvecs_tangential', s%matvecs_tangential)
+            call kv_real('residual_tangential', s%residual_tangential)
+            call kv_int('panagiotopoulos_rounds', s%panagiotopoulos_rounds)
+            call kv_real('setup_seconds_tangential', s%setup_seconds_tangential)
+        end if
         call kv_int('nx', s%grid%nx)
         call kv_int('ny', s%grid%ny)
         call kv_real('dx', s%grid%dx)
@@ -167,18 +204,25 @@ contains
         s = s//'"'
     end function json_string
 
-    !> Write the element table `ix,iy,x,y,status,pn,px,py,sx,sy,gap` (normal problem:
-    !! status A in contact, E exterior; px..sy = 0).
-    subroutine write_case_csv(path, grid, pn, gap, stat, errmsg)
+    !> Write the element table `ix,iy,x,y,status,pn,px,py,sx,sy,gap`.  With the tangential
+    !! solution (`state`, `px`, `py`, `sx`, `sy` all present): status E exterior, A adhesion,
+    !! S slip from `state`.  Without (normal problem): status A in contact, E exterior;
+    !! px..sy = 0.
+    subroutine write_case_csv(path, grid, pn, gap, stat, errmsg, state, px, py, sx, sy)
         character(len=*), intent(in) :: path
         type(fc_grid), intent(in) :: grid
         real(dp), intent(in) :: pn(:, :), gap(:, :)
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
+        integer, intent(in), optional :: state(:, :)        !! EL_EXTERIOR, EL_ADHESION, EL_SLIP
+        real(dp), intent(in), optional :: px(:, :), py(:, :), sx(:, :), sy(:, :)
         integer :: u, i, j
         character(len=256) :: iomsg
         character(len=1) :: st
+        character(len=:), allocatable :: mid
         character(len=*), parameter :: zero4 = ',0,0,0,0,'
+        logical :: tang
+        tang = present(state) .and. present(px) .and. present(py) .and. present(sx) .and. present(sy)
         open (newunit=u, file=path, status='replace', action='write', iostat=stat, iomsg=iomsg)
         if (stat /= 0) then
             errmsg = "cannot write '"//trim(path)//"': "//trim(iomsg); return
@@ -186,16 +230,65 @@ contains
         write (u, '(a)') 'ix,iy,x,y,status,pn,px,py,sx,sy,gap'
         do j = 1, grid%ny
             do i = 1, grid%nx
-                st = 'E'
-                if (pn(i, j) > 0) st = 'A'
+                if (tang) then
+                    st = state_char(state(i, j))
+                    mid = ','//json_real(px(i, j))//','//json_real(py(i, j))//','//json_real(sx(i, j))//','// &
+                        json_real(sy(i, j))//','
+                else
+                    st = 'E'
+                    if (pn(i, j) > 0) st = 'A'
+                    mid = zero4
+                end if
                 write (u, '(i0,a,i0,a)', advance='no') i, ',', j, ','
                 write (u, '(a)') json_real(grid%x(i))//','//json_real(grid%y(j))//','//st//','// &
-                    json_real(pn(i, j))//zero4//json_real(gap(i, j))
+                    json_real(pn(i, j))//mid//json_real(gap(i, j))
             end do
         end do
         close (u, iostat=stat, iomsg=iomsg)
         if (stat /= 0) errmsg = "cannot close '"//trim(path)//"': "//trim(iomsg)
     end subroutine write_case_csv
+
+    !> Status letter of an element state: E exterior (0), A adhesion (1), S slip (2).
+    pure character function state_char(state)
+        integer, intent(in) :: state
+        select case (state)
+        case (1); state_char = 'A'
+        case (2); state_char = 'S'
+        case default; state_char = 'E'
+        end select
+    end function state_char
+
+    !> Character map of the adhesion and slip areas: 'A' adhesion, 'S' slip, '.' exterior,
+    !! rows with y decreasing from the top.  Subsampled as [[contact_map]]: a block gets the
+    !! letter of its majority contact state (ties: S), upper case when at least half of the
+    !! block is in contact, lower case when only part of it is, '.' when none.
+    subroutine state_map(state, lines, sx, sy)
+        integer, intent(in) :: state(:, :)
+        character(len=:), allocatable, intent(out) :: lines(:)
+        integer, intent(out) :: sx, sy
+        integer :: nx, ny, mx, my, i, j, nadh, nslip, ntot
+        character :: c
+        nx = size(state, 1); ny = size(state, 2)
+        sx = (nx + map_max_cols - 1)/map_max_cols
+        sy = (ny + map_max_rows - 1)/map_max_rows
+        mx = (nx + sx - 1)/sx
+        my = (ny + sy - 1)/sy
+        allocate (character(len=mx) :: lines(my))
+        do j = 1, my
+            do i = 1, mx
+                associate (blk => state((i - 1)*sx + 1:min(nx, i*sx), (my - j)*sy + 1:min(ny, (my - j + 1)*sy)))
+                    nadh = count(blk == 1); nslip = count(blk == 2); ntot = size(blk)
+                end associate
+                if (nadh + nslip == 0) then
+                    c = '.'
+                else
+                    c = merge('A', 'S', nadh > nslip)
+                    if (2*(nadh + nslip) < ntot) c = merge('a', 's', nadh > nslip)
+                end if
+                lines(j)(i:i) = c
+            end do
+        end do
+    end subroutine state_map
 
     !> Character map of the contact area: one character per element ('.' exterior, '*'
     !! contact), rows with y decreasing from the top.  Grids wider than `map_max_cols` or
@@ -228,14 +321,16 @@ contains
         end do
     end subroutine contact_map
 
-    !> Readable report of one case on `unit`.  `pn` may be empty (no solution).
-    subroutine write_case_report(unit, s, pn)
+    !> Readable report of one case on `unit`.  `pn` may be empty (no solution); `state`
+    !! (tangential problems) gives the adhesion/slip map instead of the contact map.
+    subroutine write_case_report(unit, s, pn, state)
         integer, intent(in) :: unit
         type(fc_case_summary), intent(in) :: s
         real(dp), intent(in) :: pn(:, :)
+        integer, intent(in), optional :: state(:, :)
         character(len=:), allocatable :: lines(:)
         integer :: sx, sy, j
-        real(dp) :: pct
+        real(dp) :: pct, pct_adh, pct_slip
         character(len=*), parameter :: rule = &
             '------------------------------------------------------------------------------------------'
         write (unit, '(a)') rule
@@ -265,9 +360,34 @@ contains
             write (unit, '(a,4(a,es12.5))') ' Hertz        ', 'a = ', s%hertz%a, '   b = ', s%hertz%b, '   p0 = ', &
                 s%hertz%p0, '   Fn = ', s%hertz%fn
         end if
-        write (unit, '(a,a,a,i0,a,i0,a,i0,a,es10.3,a,es10.3)') ' solver       ', trim(s%solver), ':  iterations ', &
-            s%iterations, ' (outer ', s%outer_iterations, ')   matvecs ', s%matvecs, '   residual ', s%residual, &
-            '   tol ', s%tol
+        if (s%tangential) then
+            write (unit, '(a,es12.5,a)') ' friction     mu = ', s%mu, &
+                trim(merge('   prescribed tangential forces', '   prescribed rigid shifts     ', s%tforce_prescribed))
+            if (s%tforce_prescribed) write (unit, '(a,es12.5,a,es12.5,a,es12.5,a)') '              Fx = ', &
+                s%fx_prescribed, '   Fy = ', s%fy_prescribed, '   (mu*Fn = ', s%mu*s%fn, ')'
+            write (unit, '(a,es14.6,a,es14.6,a,es14.6)') ' shifts used  xi = ', s%xi, '   eta = ', s%eta, '   phi = ', s%phi
+            write (unit, '(a,es14.6,a,es14.6,a,es14.6)') ' tangential   Fx = ', s%fx, '   Fy = ', s%fy, '   Mz = ', s%mz
+            if (s%mu*s%fn > 0) write (unit, '(a,f9.5,a,f9.5)') '              Fx/(mu Fn) = ', s%fx/(s%mu*s%fn), &
+                '   Fy/(mu Fn) = ', s%fy/(s%mu*s%fn)
+            pct_adh = 0; pct_slip = 0
+            if (s%nadh + s%nslip > 0) then
+                pct_adh = 100.0_dp*s%nadh/(s%nadh + s%nslip); pct_slip = 100.0_dp*s%nslip/(s%nadh + s%nslip)
+            end if
+            write (unit, '(a,i0,a,f6.2,a,i0,a,f6.2,a)') ' adhesion     nadh = ', s%nadh, ' (', pct_adh, &
+                ' % of contact)   nslip = ', s%nslip, ' (', pct_slip, ' % of contact)'
+            write (unit, '(a,a,a,i0,a,i0,a,i0,a,es10.3,a)') ' normal       ', trim(s%solver_normal), ':  iterations ', &
+                s%iterations_normal, ' (outer ', s%outer_iterations_normal, ')   matvecs ', s%matvecs_normal, &
+                '   residual ', s%residual_normal, '   '//trim(s%status_normal)
+            write (unit, '(a,a,a,i0,a,i0,a,i0,a,es10.3,a)') ' tangential   ', trim(s%solver_tangential), ':  iterations ', &
+                s%iterations_tangential, ' (outer ', s%outer_iterations_tangential, ')   matvecs ', s%matvecs_tangential, &
+                '   residual ', s%residual_tangential, '   '//trim(s%status_tangential)
+            write (unit, '(a,i0,a,es10.3)') '              Panagiotopoulos rounds ', s%panagiotopoulos_rounds, &
+                '   (1: K = 0, decoupled)   tol ', s%tol
+        else
+            write (unit, '(a,a,a,i0,a,i0,a,i0,a,es10.3,a,es10.3)') ' solver       ', trim(s%solver), ':  iterations ', &
+                s%iterations, ' (outer ', s%outer_iterations, ')   matvecs ', s%matvecs, '   residual ', s%residual, &
+                '   tol ', s%tol
+        end if
         if (s%status == 'converged') then
             write (unit, '(a)') ' status       converged'
         else
@@ -277,10 +397,27 @@ contains
         end if
         write (unit, '(a,f10.4,a,f10.4,a,f10.4,a)') ' cpu time     ', s%cpu_seconds, ' s  (normal ', s%cpu_seconds_normal, &
             ' s, of which operator set-up ', s%setup_seconds, ' s)'
+        if (s%tangential) write (unit, '(a,f10.4,a,f10.4,a)') '              tangential ', s%cpu_seconds_tangential, &
+            ' s, of which operator set-up ', s%setup_seconds_tangential, ' s'
         if (allocated(s%notes)) then
             if (len_trim(s%notes) > 0) write (unit, '(a)') ' note         '//trim(s%notes)
         end if
-        if (size(pn) > 0) then
+        if (present(state)) then
+            if (size(state) > 0) then
+                call state_map(state, lines, sx, sy)
+                if (sx > 1 .or. sy > 1) then
+                    write (unit, '(a,i0,a,i0,a)') ' adhesion/slip (y up, x right; subsampled: one character per ', sx, &
+                        ' x ', sy, " elements; 'A' adhesion, 'S' slip by majority, lower case: block partly in contact,"// &
+                        " '.' exterior)"
+                else
+                    write (unit, '(a)') " adhesion/slip (y up, x right; one character per element, 'A' adhesion, 'S' slip, "// &
+                        "'.' exterior)"
+                end if
+                do j = 1, size(lines)
+                    write (unit, '(3x,a)') lines(j)
+                end do
+            end if
+        else if (size(pn) > 0) then
             call contact_map(pn, lines, sx, sy)
             if (sx > 1 .or. sy > 1) then
                 write (unit, '(a,i0,a,i0,a)') ' contact area (y up, x right; subsampled: one character per ', sx, &
