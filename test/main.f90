@@ -7,6 +7,7 @@ program tester
     use test_normal, only: collect_normal
     use test_tangential, only: collect_tangential
     use test_driver, only: collect_driver
+    use test_fmg, only: collect_fmg
     implicit none
     character(len=64) :: suite, only
     integer :: npass, nfail
@@ -29,6 +30,9 @@ program tester
     end if
     if (want('driver')) then
         call collect_driver(tests); call run_suite('driver', tests, only, npass, nfail)
+    end if
+    if (want('fmg')) then
+        call collect_fmg(tests); call run_suite('fmg', tests, only, npass, nfail)
     end if
     write (*, '(i0,a,i0,a)') npass, ' passed, ', nfail, ' failed'
     if (nfail > 0 .or. npass == 0) error stop 1
