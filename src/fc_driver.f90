@@ -7,6 +7,11 @@
 !! naming group, key and value, no outputs (stale files of that name are removed), and the
 !! driver continues with the next case.
 !!
+!! Problems: 'normal' ([[solve_normal]]) and 'normal+tangential' / 'tangential' (the same:
+!! [[solve_normal_tangential]], normal then tangential, Panagiotopoulos rounds when K ≠ 0).
+!! The normal and tangential operators are kept across cases and rebuilt only when the grid
+!! or the material changes.
+!!
 !! Exit code: 0 all cases converged; 1 a case had an input error (or the command line /
 !! case file was bad); 2 no input error but a solver did not converge or diverged.
 module fc_driver

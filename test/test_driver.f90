@@ -38,7 +38,20 @@ contains
             new_unittest('fn_not_positive', test_fn_not_positive), &
             new_unittest('approach_and_fn', test_approach_and_fn), &
             new_unittest('unknown_solver', test_unknown_solver), &
-            new_unittest('problem_not_supported', test_problem_not_supported), &
+            new_unittest('unknown_problem', test_unknown_problem), &
+            new_unittest('tangential_case', test_tangential_case), &
+            new_unittest('tangential_prescribed_force', test_tangential_force), &
+            new_unittest('tangcg_vs_convexgs', test_tangcg_vs_convexgs), &
+            new_unittest('tangential_normal_not_converged', test_tangential_normal_not_converged), &
+            new_unittest('tangential_ignored_for_normal', test_tangential_ignored), &
+            new_unittest('mu_negative', test_mu_negative), &
+            new_unittest('mu_missing', test_mu_missing), &
+            new_unittest('mu_zero_with_forces', test_mu_zero_forces), &
+            new_unittest('shift_and_force', test_shift_and_force), &
+            new_unittest('unknown_tangential_solver', test_unknown_tangential_solver), &
+            new_unittest('inner_k_zero', test_inner_k_zero), &
+            new_unittest('force_above_limit_fn', test_force_limit_fn), &
+            new_unittest('force_above_limit_approach', test_force_limit_approach), &
             new_unittest('strip2d_needs_ny_1', test_strip2d_ny), &
             new_unittest('missing_table_file', test_missing_table), &
             new_unittest('bad_command_line', test_bad_command_line) &
@@ -342,11 +355,223 @@ contains
             [character(len=16) :: '&solver', 'normal', 'magic_solver_x'])
     end subroutine test_unknown_solver
 
-    subroutine test_problem_not_supported(error)
+    subroutine test_unknown_problem(error)
         type(error_type), allocatable, intent(out) :: error
-        call expect_bad(error, replace(base_case('bad'), "name = 'bad'", "name = 'bad', problem = 'tangential'"), &
-            [character(len=20) :: '&case', 'problem', 'tangential', 'not yet supported'])
-    end subroutine test_problem_not_supported
+        call expect_bad(error, replace(base_case('bad'), "name = 'bad'", "name = 'bad', problem = 'rolling'"), &
+            [character(len=20) :: '&case', 'problem', 'rolling', 'unknown'])
+    end subroutine test_unknown_problem
+
+    ! ---------------------------------------------------------------- tangential ----
+
+    !> Cattaneo (SPEC §4) on 30×25, Table 4.1 case 3 shifts, named `name`.
+    function cattaneo_case(name) result(text)
+        character(len=*), intent(in) :: name
+        character(len=:), allocatable :: text
+        text = "&case name = '"//name//"', problem = 'normal+tangential' /"//nl// &
+            '&material g1 = 200.0, g2 = 200.0, nu1 = 0.42, nu2 = 0.42 /'//nl// &
+            '&grid nx = 30, ny = 25, xmin = -1.2857, xmax = 1.2857, ymin = -1.2857, ymax = 1.2857 /'//nl// &
+            "&geometry kind = 'quadratic', rx = 50.0, ry = 50.0 /"//nl// &
+            '&normal fn = 9.1954 /'//nl// &
+            '&tangential mu = 0.4, xi = 0.0, eta = 0.0015, phi = 0.0012 /'//nl
+    end function cattaneo_case
+
+    !> Value of a numeric JSON key (huge() when absent or unreadable).
+    real(dp) function json_num(text, key)
+        character(len=*), intent(in) :: text, key
+        integer :: p, q, ios
+        json_num = huge(1.0_dp)
+        p = index(text, '"'//key//'": ')
+        if (p == 0) return
+        p = p + len(key) + 4
+        q = scan(text(p:), ','//nl//'}') + p - 2
+        read (text(p:q), *, iostat=ios) json_num
+        if (ios /= 0) json_num = huge(1.0_dp)
+    end function json_num
+
+    !> Sums over the CSV table: Σ px, Σ py, Σ (x py − y px) (times dx·dy by the caller),
+    !! and the number of rows with status A, S, E.
+    subroutine csv_sums(path, spx, spy, smz, na, ns, ne)
+        character(len=*), intent(in) :: path
+        real(dp), intent(out) :: spx, spy, smz
+        integer, intent(out) :: na, ns, ne
+        character(len=1024) :: line
+        character(len=1) :: st
+        integer :: u, ios, ix, iy
+        real(dp) :: x, y, pn, px, py, sx, sy, gap
+        spx = 0; spy = 0; smz = 0; na = 0; ns = 0; ne = 0
+        open (newunit=u, file=path, status='old', action='read', iostat=ios)
+        if (ios /= 0) return
+        read (u, '(a)', iostat=ios) line
+        do
+            read (u, '(a)', iostat=ios) line
+            if (ios /= 0) exit
+            read (line, *) ix, iy, x, y, st, pn, px, py, sx, sy, gap
+            spx = spx + px; spy = spy + py; smz = smz + (x*py - y*px)
+            select case (st)
+            case ('A'); na = na + 1
+            case ('S'); ns = ns + 1
+            case ('E'); ne = ne + 1
+            end select
+        end do
+        close (u)
+    end subroutine csv_sums
+
+    subroutine test_tangential_case(error)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: code, na, ns, ne
+        character(len=:), allocatable :: errors, dir, j, rep
+        real(dp) :: spx, spy, smz, da, fx, fy, mz, fscale
+        call run_text(cattaneo_case('cat3'), code, errors, dir)
+        call check(error, code == 0, 'exit code 0 expected, errors: '//errors)
+        if (allocated(error)) return
+        j = read_all(dir//'/cat3.json')
+        call check(error, index(j, '"status": "converged"') > 0, 'not converged: '//j)
+        call check(error, index(j, '"status_tangential": "converged"') > 0, 'tangential stage not converged')
+        call check(error, index(j, '"solver": "bccg+tangcg"') > 0, 'solver must name both stages')
+        call check(error, json_num(j, 'iterations_normal') > 0 .and. json_num(j, 'iterations_tangential') > 0 &
+            .and. json_num(j, 'matvecs_tangential') > 0 .and. json_num(j, 'outer_iterations_tangential') > 0 &
+            .and. json_num(j, 'panagiotopoulos_rounds') == 1 .and. json_num(j, 'cpu_seconds_tangential') < huge(1.0_dp), &
+            'per-stage JSON keys missing: '//j)
+        call check(error, json_num(j, 'eta') == 0.0015_dp .and. json_num(j, 'phi') == 0.0012_dp, 'shifts used')
+        call csv_sums(dir//'/cat3.csv', spx, spy, smz, na, ns, ne)
+        call check(error, na > 0 .and. ns > 0 .and. ne > 0, 'CSV must have A, S and E rows')
+        call check(error, na + ns == nint(json_num(j, 'ncon')) .and. na == nint(json_num(j, 'nadh')) .and. &
+            ns == nint(json_num(j, 'nslip')), 'CSV status counts must match ncon/nadh/nslip')
+        da = json_num(j, 'dx')*json_num(j, 'dy')
+        fx = json_num(j, 'fx'); fy = json_num(j, 'fy'); mz = json_num(j, 'mz')
+        fscale = hypot(fx, fy)
+        call check(error, fscale > 0.1_dp, 'tangential force expected for case 3')
+        call check(error, abs(spx*da - fx) <= 1e-10_dp*fscale, 'CSV sum px dx dy must equal fx')
+        call check(error, abs(spy*da - fy) <= 1e-10_dp*fscale, 'CSV sum py dx dy must equal fy')
+        call check(error, abs(smz*da - mz) <= 1e-10_dp*abs(mz), 'CSV moment must equal mz')
+        ! thesis Table 4.1 case 3: 20 % slip (120 x 100); a 30 x 25 grid gives roughly the same
+        call check(error, ns > 0.1_dp*(na + ns) .and. ns < 0.3_dp*(na + ns), 'case 3 slip fraction near 20 %')
+        rep = read_all(dir//'/report.txt')
+        call check(error, index(rep, "'A' adhesion, 'S' slip") > 0 .and. index(rep, 'nslip') > 0, 'report map legend')
+        call cleanup(dir)
+    end subroutine test_tangential_case
+
+    subroutine test_tangential_force(error)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: code
+        character(len=:), allocatable :: errors, dir, j
+        real(dp), parameter :: fx_target = 3.218390_dp, mu = 0.4_dp, fn = 9.1954_dp, tol = 1.0e-5_dp
+        call run_text(replace(cattaneo_case('catf'), 'xi = 0.0, eta = 0.0015, phi = 0.0012', &
+            'fx = 3.218390, phi = 0.0'), code, errors, dir)
+        call check(error, code == 0, 'exit code 0 expected, errors: '//errors)
+        if (allocated(error)) return
+        j = read_all(dir//'/catf.json')
+        call check(error, index(j, '"tangential_load": "forces"') > 0, 'forces must be prescribed: '//j)
+        call check(error, abs(json_num(j, 'fx') - fx_target) <= 2*tol*mu*fn, 'fx must hit the prescribed force')
+        call check(error, abs(json_num(j, 'fy')) <= 2*tol*mu*fn, 'fy must be 0')
+        call check(error, json_num(j, 'xi') < -0.006_dp .and. json_num(j, 'xi') > -0.010_dp, &
+            'shift used must be near -0.0082 (tractions oppose the motion of body 1)')
+        call check(error, json_num(j, 'fx_prescribed') == fx_target, 'fx_prescribed in the JSON')
+        call cleanup(dir)
+    end subroutine test_tangential_force
+
+    !> Same case with TangCG and ConvexGS (inherited, only the solver changes; the
+    !! tangential operator is reused).
+    subroutine test_tangcg_vs_convexgs(error)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: code
+        character(len=:), allocatable :: errors, dir, j1, j2
+        real(dp) :: f1, f2
+        call run_text(replace(cattaneo_case('cg'), 'xi = 0.0, eta = 0.0015, phi = 0.0012', &
+            'xi = 0.0021, eta = 0.0010, phi = 0.003')//"&solver tol = 1e-8, maxit = 5000 /"//nl// &
+            "&case name = 'gs' /"//nl//"&solver tangential = 'convexgs' /"//nl, code, errors, dir)
+        call check(error, code == 0, 'exit code 0 expected, errors: '//errors)
+        if (allocated(error)) return
+        j1 = read_all(dir//'/cg.json'); j2 = read_all(dir//'/gs.json')
+        call check(error, index(j2, '"solver_tangential": "convexgs"') > 0, 'second case must use convexgs')
+        f1 = json_num(j1, 'fx'); f2 = json_num(j2, 'fx')
+        call check(error, abs(f1 - f2) <= 1e-4_dp*abs(f1), 'fx of tangcg and convexgs must agree to 1e-4')
+        f1 = json_num(j1, 'fy'); f2 = json_num(j2, 'fy')
+        call check(error, abs(f1 - f2) <= 1e-4_dp*abs(f1), 'fy of tangcg and convexgs must agree to 1e-4')
+        call check(error, json_num(j2, 'setup_seconds_tangential') == 0, 'tangential operator must be reused')
+        call check(error, json_num(j1, 'nslip') == json_num(j2, 'nslip'), 'same slip area')
+        call cleanup(dir)
+    end subroutine test_tangcg_vs_convexgs
+
+    !> The normal stage fails: JSON and CSV written, status not_converged, tangential not run.
+    subroutine test_tangential_normal_not_converged(error)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: code
+        character(len=:), allocatable :: errors, dir, j
+        call run_text(cattaneo_case('nc')//'&solver maxit = 2 /'//nl, code, errors, dir)
+        call check(error, code == 2, 'exit code 2 expected for not converged')
+        j = read_all(dir//'/nc.json')
+        call check(error, index(j, '"status": "not_converged"') > 0, 'status must be not_converged: '//j)
+        call check(error, index(j, '"status_tangential": "not_run"') > 0 .or. &
+            index(j, '"status_tangential": "not_converged"') > 0, 'tangential status: '//j)
+        call check(error, exists(dir//'/nc.csv'), 'CSV written with the failed status')
+        call cleanup(dir)
+    end subroutine test_tangential_normal_not_converged
+
+    subroutine test_tangential_ignored(error)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: code
+        character(len=:), allocatable :: errors, dir, j
+        call run_text(replace(cattaneo_case('n'), "problem = 'normal+tangential'", "problem = 'normal'"), &
+            code, errors, dir)
+        call check(error, code == 0, 'exit code 0 expected, errors: '//errors)
+        if (allocated(error)) return
+        j = read_all(dir//'/n.json')
+        call check(error, json_num(j, 'fx') == 0 .and. json_num(j, 'eta') == 0, 'normal problem: no tangential results')
+        call check(error, index(read_all(dir//'/report.txt'), '&tangential ignored') > 0, 'report must note it')
+        call cleanup(dir)
+    end subroutine test_tangential_ignored
+
+    subroutine test_mu_negative(error)
+        type(error_type), allocatable, intent(out) :: error
+        call expect_bad(error, replace(cattaneo_case('bad'), 'mu = 0.4', 'mu = -0.1'), &
+            [character(len=16) :: '&tangential', 'mu', '-0.1'])
+    end subroutine test_mu_negative
+
+    subroutine test_mu_missing(error)
+        type(error_type), allocatable, intent(out) :: error
+        call expect_bad(error, replace(cattaneo_case('bad'), 'mu = 0.4, ', ''), &
+            [character(len=16) :: '&tangential', 'mu', 'missing'])
+    end subroutine test_mu_missing
+
+    subroutine test_mu_zero_forces(error)
+        type(error_type), allocatable, intent(out) :: error
+        call expect_bad(error, replace(cattaneo_case('bad'), 'mu = 0.4, xi = 0.0, eta = 0.0015', 'mu = 0.0, fx = 1.0'), &
+            [character(len=16) :: '&tangential', 'mu', '0.0', 'fx'])
+    end subroutine test_mu_zero_forces
+
+    subroutine test_shift_and_force(error)
+        type(error_type), allocatable, intent(out) :: error
+        call expect_bad(error, replace(cattaneo_case('bad'), 'xi = 0.0', 'xi = 0.0, fx = 1.5'), &
+            [character(len=16) :: '&tangential', 'xi', 'fx', '1.5', 'not both'])
+    end subroutine test_shift_and_force
+
+    subroutine test_unknown_tangential_solver(error)
+        type(error_type), allocatable, intent(out) :: error
+        call expect_bad(error, cattaneo_case('bad')//"&solver tangential = 'magic_tangential_x' /"//nl, &
+            [character(len=20) :: '&solver', 'tangential', 'magic_tangential_x'])
+    end subroutine test_unknown_tangential_solver
+
+    subroutine test_inner_k_zero(error)
+        type(error_type), allocatable, intent(out) :: error
+        call expect_bad(error, cattaneo_case('bad')//'&solver inner_k = 0 /'//nl, &
+            [character(len=16) :: '&solver', 'inner_k', '0'])
+    end subroutine test_inner_k_zero
+
+    !> |fx| >= mu fn with fn prescribed: caught by the input check.
+    subroutine test_force_limit_fn(error)
+        type(error_type), allocatable, intent(out) :: error
+        call expect_bad(error, replace(cattaneo_case('bad'), 'xi = 0.0, eta = 0.0015', 'fx = 3.7'), &
+            [character(len=16) :: '&tangential', 'fx', '3.7', 'mu*fn'])
+    end subroutine test_force_limit_fn
+
+    !> |fx| >= mu fn with the approach prescribed: caught by the library after the normal
+    !! solve, reported as a case error.
+    subroutine test_force_limit_approach(error)
+        type(error_type), allocatable, intent(out) :: error
+        call expect_bad(error, replace(replace(cattaneo_case('bad'), 'xi = 0.0, eta = 0.0015', 'fx = 3.7'), &
+            'fn = 9.1954', 'approach = 0.02'), [character(len=16) :: '&tangential', 'fx', '3.7', 'mu*fn'])
+    end subroutine test_force_limit_approach
 
     subroutine test_strip2d_ny(error)
         type(error_type), allocatable, intent(out) :: error
