@@ -12,7 +12,8 @@ module fc_fftw
     public :: c_ptr, c_null_ptr, c_associated, c_int
     public :: fftw_plan_dft_r2c_2d, fftw_plan_dft_c2r_2d
     public :: fftw_execute_dft_r2c, fftw_execute_dft_c2r
+    public :: fftw_plan_many_dft_r2c, fftw_plan_many_dft_c2r, fftw_plan_many_dft, fftw_execute_dft
     public :: fftw_destroy_plan
-    public :: FFTW_ESTIMATE, FFTW_MEASURE, FFTW_UNALIGNED, FFTW_DESTROY_INPUT
+    public :: FFTW_ESTIMATE, FFTW_MEASURE, FFTW_UNALIGNED, FFTW_DESTROY_INPUT, FFTW_FORWARD, FFTW_BACKWARD
 
 end module fc_fftw

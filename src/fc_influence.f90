@@ -44,6 +44,11 @@ module fc_influence
         real(dp), allocatable :: rbuf(:, :)
         complex(dp), allocatable :: cbuf(:, :)
         type(c_ptr) :: plan_fwd = c_null_ptr, plan_bwd = c_null_ptr
+        ! Products skip the zero padding: r2c along x on the ny data columns only, then c2c
+        ! along y; inverse in the opposite order, c2r only for the ny columns kept.
+        type(c_ptr) :: plan_x_fwd = c_null_ptr, plan_y_fwd = c_null_ptr
+        type(c_ptr) :: plan_y_bwd = c_null_ptr, plan_x_bwd = c_null_ptr
+        logical :: split = .false.         !! use the padding-aware passes
         integer :: nproducts = 0           !! number of products applied (work counter)
     contains
         procedure :: apply => bttb_apply
@@ -325,6 +330,7 @@ contains
     subroutine setup_buffers(op, nx, ny, mx, my)
         type(fc_bttb), intent(inout) :: op
         integer, intent(in) :: nx, ny, mx, my
+        integer :: mxh
         call op%destroy()
         op%nx = nx; op%ny = ny; op%mx = mx; op%my = my
         op%periodic = .false.
@@ -332,6 +338,18 @@ contains
         ! FFTW's row-major dimensions are the reverse of Fortran's: (my, mx).
         op%plan_fwd = fftw_plan_dft_r2c_2d(int(my, c_int), int(mx, c_int), op%rbuf, op%cbuf, FFTW_ESTIMATE)
         op%plan_bwd = fftw_plan_dft_c2r_2d(int(my, c_int), int(mx, c_int), op%cbuf, op%rbuf, FFTW_ESTIMATE)
+        op%split = my > ny
+        if (op%split) then
+            mxh = mx/2 + 1
+            op%plan_x_fwd = fftw_plan_many_dft_r2c(1_c_int, [int(mx, c_int)], int(ny, c_int), op%rbuf, [int(mx, c_int)], &
+                1_c_int, int(mx, c_int), op%cbuf, [int(mxh, c_int)], 1_c_int, int(mxh, c_int), FFTW_ESTIMATE)
+            op%plan_y_fwd = fftw_plan_many_dft(1_c_int, [int(my, c_int)], int(mxh, c_int), op%cbuf, [int(my, c_int)], &
+                int(mxh, c_int), 1_c_int, op%cbuf, [int(my, c_int)], int(mxh, c_int), 1_c_int, FFTW_FORWARD, FFTW_ESTIMATE)
+            op%plan_y_bwd = fftw_plan_many_dft(1_c_int, [int(my, c_int)], int(mxh, c_int), op%cbuf, [int(my, c_int)], &
+                int(mxh, c_int), 1_c_int, op%cbuf, [int(my, c_int)], int(mxh, c_int), 1_c_int, FFTW_BACKWARD, FFTW_ESTIMATE)
+            op%plan_x_bwd = fftw_plan_many_dft_c2r(1_c_int, [int(mx, c_int)], int(ny, c_int), op%cbuf, [int(mxh, c_int)], &
+                1_c_int, int(mxh, c_int), op%rbuf, [int(mx, c_int)], 1_c_int, int(mx, c_int), FFTW_ESTIMATE)
+        end if
     end subroutine setup_buffers
 
     !> Transform the circulant in rbuf into the scaled symbol.
@@ -408,20 +426,9 @@ contains
         class(fc_bttb), intent(inout) :: self
         real(dp), intent(in) :: x(:, :)
         real(dp), intent(out) :: y(:, :)
-        integer :: nx, ny
-        nx = self%nx; ny = self%ny
-        if (self%mx == nx .and. self%my == ny) then
-            self%rbuf = x
-        else
-            self%rbuf(1:nx, 1:ny) = x
-            self%rbuf(nx + 1:, 1:ny) = 0
-            self%rbuf(:, ny + 1:) = 0
-        end if
-        call fftw_execute_dft_r2c(self%plan_fwd, self%rbuf, self%cbuf)
+        call transform_forward(self, x)
         self%cbuf = self%cbuf*self%symbol
-        call fftw_execute_dft_c2r(self%plan_bwd, self%cbuf, self%rbuf)
-        y = self%rbuf(1:nx, 1:ny)
-        self%nproducts = self%nproducts + 1
+        call transform_backward(self, y)
     end subroutine bttb_apply
 
     !> Spectrum of x (zero-padded to the circulant size): the first half of a product,
@@ -430,9 +437,7 @@ contains
         class(fc_bttb), intent(inout) :: self
         real(dp), intent(in) :: x(:, :)
         complex(dp), intent(out) :: spectrum(:, :)
-        self%rbuf = 0
-        self%rbuf(1:self%nx, 1:self%ny) = x
-        call fftw_execute_dft_r2c(self%plan_fwd, self%rbuf, self%cbuf)
+        call transform_forward(self, x)
         spectrum = self%cbuf
     end subroutine bttb_forward
 
@@ -442,10 +447,45 @@ contains
         complex(dp), intent(in) :: spectrum(:, :)
         real(dp), intent(out) :: y(:, :)
         self%cbuf = spectrum
-        call fftw_execute_dft_c2r(self%plan_bwd, self%cbuf, self%rbuf)
+        call transform_backward(self, y)
+    end subroutine bttb_backward
+
+    !> cbuf ← FFT of x zero-padded to mx×my.
+    subroutine transform_forward(self, x)
+        class(fc_bttb), intent(inout) :: self
+        real(dp), intent(in) :: x(:, :)
+        integer :: nx, ny
+        nx = self%nx; ny = self%ny
+        if (self%split) then
+            self%rbuf(1:nx, 1:ny) = x
+            self%rbuf(nx + 1:, 1:ny) = 0
+            call fftw_execute_dft_r2c(self%plan_x_fwd, self%rbuf, self%cbuf)
+            self%cbuf(:, ny + 1:) = 0
+            call fftw_execute_dft(self%plan_y_fwd, self%cbuf, self%cbuf)
+        else
+            if (self%mx == nx) then
+                self%rbuf = x
+            else
+                self%rbuf(1:nx, :) = x
+                self%rbuf(nx + 1:, :) = 0
+            end if
+            call fftw_execute_dft_r2c(self%plan_fwd, self%rbuf, self%cbuf)
+        end if
+    end subroutine transform_forward
+
+    !> y ← inverse FFT of cbuf, restricted to the grid (cbuf is destroyed).
+    subroutine transform_backward(self, y)
+        class(fc_bttb), intent(inout) :: self
+        real(dp), intent(out) :: y(:, :)
+        if (self%split) then
+            call fftw_execute_dft(self%plan_y_bwd, self%cbuf, self%cbuf)
+            call fftw_execute_dft_c2r(self%plan_x_bwd, self%cbuf, self%rbuf)
+        else
+            call fftw_execute_dft_c2r(self%plan_bwd, self%cbuf, self%rbuf)
+        end if
         y = self%rbuf(1:self%nx, 1:self%ny)
         self%nproducts = self%nproducts + 1
-    end subroutine bttb_backward
+    end subroutine transform_backward
 
     !> y = A x by the direct O(n²) sum over the stored coefficients: the test oracle.
     subroutine bttb_apply_direct(self, x, y)
@@ -477,6 +517,13 @@ contains
         if (c_associated(self%plan_fwd)) call fftw_destroy_plan(self%plan_fwd)
         if (c_associated(self%plan_bwd)) call fftw_destroy_plan(self%plan_bwd)
         self%plan_fwd = c_null_ptr; self%plan_bwd = c_null_ptr
+        if (c_associated(self%plan_x_fwd)) call fftw_destroy_plan(self%plan_x_fwd)
+        if (c_associated(self%plan_y_fwd)) call fftw_destroy_plan(self%plan_y_fwd)
+        if (c_associated(self%plan_y_bwd)) call fftw_destroy_plan(self%plan_y_bwd)
+        if (c_associated(self%plan_x_bwd)) call fftw_destroy_plan(self%plan_x_bwd)
+        self%plan_x_fwd = c_null_ptr; self%plan_y_fwd = c_null_ptr
+        self%plan_y_bwd = c_null_ptr; self%plan_x_bwd = c_null_ptr
+        self%split = .false.
         if (allocated(self%kernel)) deallocate (self%kernel)
         if (allocated(self%symbol)) deallocate (self%symbol)
         if (allocated(self%rbuf)) deallocate (self%rbuf)
