@@ -8,6 +8,7 @@ program tester
     use test_tangential, only: collect_tangential
     use test_driver, only: collect_driver
     use test_fmg, only: collect_fmg
+    use test_mg2d, only: collect_mg2d
     implicit none
     character(len=64) :: suite, only
     integer :: npass, nfail
@@ -33,6 +34,9 @@ program tester
     end if
     if (want('fmg')) then
         call collect_fmg(tests); call run_suite('fmg', tests, only, npass, nfail)
+    end if
+    if (want('mg2d')) then
+        call collect_mg2d(tests); call run_suite('mg2d', tests, only, npass, nfail)
     end if
     write (*, '(i0,a,i0,a)') npass, ' passed, ', nfail, ' failed'
     if (nfail > 0 .or. npass == 0) error stop 1

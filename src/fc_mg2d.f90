@@ -1,0 +1,653 @@
+!> Multigrid with the FFT smoother for the 2D no-slip strip problems (thesis ch. 3).
+!!
+!! A cylinder on a plane in plane strain is modelled on an n×1 grid of the strip
+!! [−4,4]×[−50,50] mm (thesis §3.2.4): A = A^xx is a dense SPD Toeplitz matrix and the
+!! no-slip problem is A p = u (eq. 3.9).  Three model problems (§3.2.5, §3.5):
+!!
+!! * MP1: steel (G = 82000, ν = 0.28), constant rigid shift 0.0008 mm;
+!! * MP2: rubber (G = 0.3, ν = 0.49), rigid shift δt·w = −x;
+!! * MP3: as MP1 on the two strips [−4,−2] ∪ [0,4] of the potential area (A_r is A with
+!!   the rows and columns outside the strips removed; products by FFT on the whole strip
+!!   with masking, thesis [100]).
+!!
+!! Smoothers (Richardson p ← p + S (u − A p)):
+!!
+!! * 'fft'     — S = M, the Toeplitz matrix whose coefficients approximate one interior
+!!               column of A⁻¹ (§3.3.1: pointwise inverse of the FFT of A's coefficients on
+!!               the (2n−1)-circulant).  Multigrid diverges from 32×1 on (Table 3.1).
+!! * 'fft-sd'  — S = P M with two-subdomain deflation P = I − MA·Z E⁻¹ Zᵀ, E = Zᵀ M A Z
+!!               (§3.4.1, eqs. 3.14–3.17).
+!! * 'fft-rsm' — S = M̄ = M_r − diag(sum(M_r) − γ), γ = min row sum of M on the potential
+!!               area (row-sum modification, eqs. 3.18–3.19, and its MP3 form 3.21).
+!!
+!! Multigrid (§3.3.3): coarsening by pairs of cells, restriction by averaging (3.12), copy
+!! interpolation (3.13), each level's own coefficients, coarsest level (2×1) solved
+!! directly (LAPACK); on MP3 a coarse cell belongs to the strips when either child does.
+!! FFT+RSM is also available as a one-grid solver (§3.5.3).
+!!
+!! Stopping: ‖u − A p‖_rms/‖u‖_rms ≤ tol (1e−8 in the thesis) from a random initial guess;
+!! convergence factor q = (‖d_k‖/‖d_0‖)^(1/k).  Work units: one product with A or M on
+!! the finest grid = 1, halved per coarser level; the defect after a cycle is reused by
+!! the next one, so a V(1,1)-cycle costs 5 products on the finest grid, V(1,0)/V(0,1) 3
+!! (as counted in the thesis, §3.5.2).
+module fc_mg2d
+    use fc_kinds
+    use fc_geometry, only: fc_grid, make_grid
+    use fc_influence
+    use fc_fftw
+    implicit none
+    private
+
+    !> A 2D strip problem A_r p = u on an n×1 grid.
+    type, public :: fc_strip_problem
+        type(fc_grid) :: grid                 !! n×1 grid of the potential contact strip
+        type(fc_material) :: material         !! combined constants
+        integer :: block = IC_XX              !! influence block (A^xx: tangential no-slip)
+        real(dp), allocatable :: rhs(:)       !! u = −δt·w [mm]
+        logical, allocatable :: contact(:)    !! elements of the contact strips (MP3); all true else
+    end type fc_strip_problem
+
+    !> Settings of the strip solvers.
+    type, public :: fc_mg2d_settings
+        character(len=8) :: smoother = 'fft-rsm'  !! 'fft', 'fft-sd' or 'fft-rsm'
+        integer :: nu1 = 1                        !! pre-smoothing steps of V(nu1,nu2)
+        integer :: nu2 = 1                        !! post-smoothing steps
+        real(dp) :: tol = 1.0e-8_dp               !! ‖d‖_rms/‖u‖_rms
+        integer :: maxit = 100                    !! cycles (MG) or iterations (one-grid solver)
+        integer :: coarsest = 2                   !! coarsest grid size (cells)
+        integer :: seed = 12345                   !! random initial guess p ∈ [0,1) (thesis §3.5)
+        logical :: random_start = .true.          !! .false.: start from p = 0
+    end type fc_mg2d_settings
+
+    !> Result of a strip solve.
+    type, public :: fc_mg2d_result
+        real(dp), allocatable :: p(:)        !! traction per element [N/mm²]
+        integer :: status = FC_ERROR         !! FC_CONVERGED, FC_NOT_CONVERGED, FC_DIVERGED
+        integer :: iterations = 0            !! cycles / iterations
+        real(dp) :: residual = huge(1.0_dp)  !! final ‖d‖_rms/‖u‖_rms
+        real(dp) :: factor = 0               !! convergence factor q
+        real(dp) :: work_units = 0           !! products in finest-grid units
+        integer :: levels = 0                !! grid levels used
+        real(dp) :: cpu_seconds = 0          !! solve time including set-up
+        character(len=msg_len) :: message = ''
+        real(dp), allocatable :: history(:)  !! relative defect before each cycle (0…k)
+    end type fc_mg2d_result
+
+    !> One level of the strip hierarchy.
+    type :: strip_level
+        integer :: n = 0
+        type(fc_grid) :: grid
+        type(fc_bttb) :: a                 !! A (full potential strip)
+        type(fc_bttb) :: m                 !! Toeplitz M ≈ A⁻¹
+        real(dp) :: gamma = 0              !! min row sum of M (eq. 3.19)
+        logical, allocatable :: con(:, :)  !! contact strips on this level
+        real(dp), allocatable :: shift(:, :)   !! RSM: sum(M_r) − γ on con
+        real(dp), allocatable :: w(:, :)   !! SD: Ā Z (n×2)
+        real(dp), allocatable :: z(:, :)   !! SD: Z (n×2)
+        real(dp) :: einv(2, 2) = 0         !! SD: E⁻¹
+        real(dp) :: cost = 1               !! n_level/n_finest
+    end type strip_level
+
+    type :: strip_hierarchy
+        type(strip_level), allocatable :: lev(:)   !! 1 = coarsest
+        integer :: nlev = 0
+        real(dp) :: work = 0
+    end type strip_hierarchy
+
+    interface
+        subroutine dposv(uplo, n, nrhs, a, lda, b, ldb, info)
+            import :: dp
+            character(len=1), intent(in) :: uplo
+            integer, intent(in) :: n, nrhs, lda, ldb
+            real(dp), intent(inout) :: a(lda, *), b(ldb, *)
+            integer, intent(out) :: info
+        end subroutine dposv
+        subroutine dgeev(jobvl, jobvr, n, a, lda, wr, wi, vl, ldvl, vr, ldvr, work, lwork, info)
+            import :: dp
+            character(len=1), intent(in) :: jobvl, jobvr
+            integer, intent(in) :: n, lda, ldvl, ldvr, lwork
+            real(dp), intent(inout) :: a(lda, *)
+            real(dp), intent(out) :: wr(*), wi(*), vl(ldvl, *), vr(ldvr, *), work(*)
+            integer, intent(out) :: info
+        end subroutine dgeev
+    end interface
+
+    public :: strip_model_problem, solve_strip_mg, solve_strip_fft_rsm, mg2d_spectral_radius
+    public :: strip_toeplitz_inverse, strip_smoother_radius
+
+contains
+
+    !> Model problem MP1, MP2 or MP3 (`which` = 1, 2, 3) on an n×1 grid (thesis §3.2.5, §3.5).
+    subroutine strip_model_problem(which, n, prob, stat, errmsg)
+        integer, intent(in) :: which, n
+        type(fc_strip_problem), intent(out) :: prob
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        integer :: i
+        real(dp) :: x
+        stat = 0; errmsg = ''
+        if (which < 1 .or. which > 3) then
+            stat = 1; write (errmsg, '(a,i0,a)') 'strip2d: model problem ', which, ' is not 1, 2 or 3'; return
+        end if
+        if (n < 4 .or. iand(n, n - 1) /= 0) then
+            stat = 1; write (errmsg, '(a,i0,a)') 'strip2d: n = ', n, ' must be a power of 2 >= 4'; return
+        end if
+        call make_grid(prob%grid, n, 1, -4.0_dp, 4.0_dp, -50.0_dp, 50.0_dp, stat, errmsg)
+        if (stat /= 0) return
+        if (which == 2) then
+            prob%material%g1 = 0.3_dp; prob%material%g2 = 0.3_dp
+            prob%material%nu1 = 0.49_dp; prob%material%nu2 = 0.49_dp
+        else
+            prob%material%g1 = 82000; prob%material%g2 = 82000
+            prob%material%nu1 = 0.28_dp; prob%material%nu2 = 0.28_dp
+        end if
+        call combine_material(prob%material, stat, errmsg)
+        if (stat /= 0) return
+        prob%block = IC_XX
+        allocate (prob%rhs(n), prob%contact(n))
+        prob%contact = .true.
+        do i = 1, n
+            x = prob%grid%x(i)
+            select case (which)
+            case (2)
+                prob%rhs(i) = x                       ! u = −δt·w with δt·w = −x
+            case default
+                prob%rhs(i) = -0.0008_dp              ! u = −δt·w with δt·w = 0.0008 mm
+            end select
+            if (which == 3) prob%contact(i) = (x > -4 .and. x < -2) .or. (x > 0 .and. x < 4)
+        end do
+        where (.not. prob%contact) prob%rhs = 0
+    end subroutine strip_model_problem
+
+    !> Coefficients m(−(n−1):n−1) of the Toeplitz M ≈ A⁻¹ (thesis §3.3.1): A's coefficients
+    !! a_{−(n−1)…n−1} form a (2n−1)-circulant, its symbol is inverted pointwise and the
+    !! inverse circulant's coefficients for offsets |d| ≤ n−1 are M's (equivalently: the
+    !! centre column of the inverse of the circulant, "m = IFFT(FFT(u)./FFT(a))").
+    subroutine strip_toeplitz_inverse(n, a, m, min_symbol)
+        integer, intent(in) :: n                         !! grid size
+        real(dp), intent(in) :: a(-(n - 1):n - 1)        !! A's coefficients
+        real(dp), intent(out) :: m(-(n - 1):n - 1)       !! M's coefficients
+        real(dp), intent(out), optional :: min_symbol    !! smallest symbol / largest
+        integer :: nn, d
+        real(dp), allocatable :: rbuf(:, :)
+        complex(dp), allocatable :: cbuf(:, :)
+        type(c_ptr) :: pf, pb
+        real(dp) :: smax
+        nn = 2*n - 1
+        allocate (rbuf(nn, 1), cbuf(nn/2 + 1, 1))
+        pf = fftw_plan_dft_r2c_2d(1_c_int, int(nn, c_int), rbuf, cbuf, FFTW_ESTIMATE)
+        pb = fftw_plan_dft_c2r_2d(1_c_int, int(nn, c_int), cbuf, rbuf, FFTW_ESTIMATE)
+        do d = -(n - 1), n - 1
+            rbuf(modulo(d, nn) + 1, 1) = a(d)
+        end do
+        call fftw_execute_dft_r2c(pf, rbuf, cbuf)
+        smax = maxval(real(cbuf, dp))
+        if (present(min_symbol)) min_symbol = minval(real(cbuf, dp))/smax
+        cbuf = 1/cmplx(max(real(cbuf, dp), 1.0e-12_dp*smax), 0.0_dp, dp)/real(nn, dp)
+        call fftw_execute_dft_c2r(pb, cbuf, rbuf)
+        do d = -(n - 1), n - 1
+            m(d) = rbuf(modulo(d, nn) + 1, 1)
+        end do
+        call fftw_destroy_plan(pf)
+        call fftw_destroy_plan(pb)
+    end subroutine strip_toeplitz_inverse
+
+    ! ---- hierarchy -------------------------------------------------------------------------
+
+    subroutine build_hierarchy(prob, settings, nlev_max, hier, stat, errmsg)
+        type(fc_strip_problem), intent(in) :: prob
+        type(fc_mg2d_settings), intent(in) :: settings
+        integer, intent(in) :: nlev_max
+        type(strip_hierarchy), intent(inout) :: hier
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        integer :: n, nlev, l, i, nf
+        integer, allocatable :: sizes(:)
+        stat = 0; errmsg = ''
+        nf = prob%grid%nx
+        nlev = 1; n = nf
+        do while (mod(n, 2) == 0 .and. n/2 >= max(1, settings%coarsest) .and. nlev < nlev_max)
+            n = n/2; nlev = nlev + 1
+        end do
+        allocate (sizes(nlev))
+        sizes(nlev) = nf
+        do l = nlev - 1, 1, -1
+            sizes(l) = sizes(l + 1)/2
+        end do
+        hier%nlev = nlev
+        allocate (hier%lev(nlev))
+        do l = nlev, 1, -1
+            associate (lv => hier%lev(l))
+                lv%n = sizes(l)
+                lv%cost = real(sizes(l), dp)/nf
+                call make_grid(lv%grid, sizes(l), 1, prob%grid%xmin, prob%grid%xmax, prob%grid%ymin, prob%grid%ymax, &
+                    stat, errmsg)
+                if (stat /= 0) return
+                allocate (lv%con(sizes(l), 1))
+                if (l == nlev) then
+                    lv%con(:, 1) = prob%contact
+                else
+                    do i = 1, sizes(l)
+                        lv%con(i, 1) = any(hier%lev(l + 1)%con(2*i - 1:2*i, 1))
+                    end do
+                end if
+                call build_level(prob, settings, lv)
+            end associate
+        end do
+    end subroutine build_hierarchy
+
+    !> A, M, γ, the RSM shift and the SD matrices of one level.
+    subroutine build_level(prob, settings, lv)
+        type(fc_strip_problem), intent(in) :: prob
+        type(fc_mg2d_settings), intent(in) :: settings
+        type(strip_level), intent(inout) :: lv
+        real(dp), allocatable :: kern(:, :), mk(:, :), ones(:, :), rs(:, :), t(:, :)
+        real(dp) :: e(2, 2), det
+        integer :: n, j
+        n = lv%n
+        call ic_kernel(prob%block, prob%material, lv%grid, kern)
+        call build_bttb_from_kernel(lv%a, kern, n, 1)
+        allocate (mk(-(n - 1):n - 1, 0:0))
+        call strip_toeplitz_inverse(n, kern(:, 0), mk(:, 0))
+        call build_bttb_from_kernel(lv%m, mk, n, 1)
+        allocate (ones(n, 1), rs(n, 1), t(n, 1))
+        ones = 1
+        call lv%m%apply(ones, rs)
+        lv%gamma = minval(rs)                                ! eq. (3.19), full potential strip
+        where (.not. lv%con) ones = 0
+        call lv%m%apply(ones, rs)
+        allocate (lv%shift(n, 1))
+        where (lv%con)
+            lv%shift = rs - lv%gamma                         ! eq. (3.21): sum(M_r) − γ
+        elsewhere
+            lv%shift = 0
+        end where
+        if (settings%smoother == 'fft-sd') then
+            allocate (lv%z(n, 2), lv%w(n, 2))
+            lv%z = 0
+            lv%z(1:n/2, 1) = 1; lv%z(n/2 + 1:n, 2) = 1
+            lv%z(:, 1) = merge(lv%z(:, 1), 0.0_dp, lv%con(:, 1))
+            lv%z(:, 2) = merge(lv%z(:, 2), 0.0_dp, lv%con(:, 1))
+            do j = 1, 2
+                call lv%a%apply(lv%z(:, j:j), t)
+                where (.not. lv%con) t = 0
+                call lv%m%apply(t, rs)
+                where (.not. lv%con) rs = 0
+                lv%w(:, j) = rs(:, 1)
+            end do
+            e = matmul(transpose(lv%z), lv%w)
+            det = e(1, 1)*e(2, 2) - e(1, 2)*e(2, 1)
+            if (abs(det) > 0) then
+                lv%einv = reshape([e(2, 2), -e(2, 1), -e(1, 2), e(1, 1)], [2, 2])/det
+            else
+                lv%einv = 0
+            end if
+        end if
+    end subroutine build_level
+
+    subroutine destroy_hierarchy(hier)
+        type(strip_hierarchy), intent(inout) :: hier
+        integer :: l
+        if (.not. allocated(hier%lev)) return
+        do l = 1, size(hier%lev)
+            call hier%lev(l)%a%destroy()
+            call hier%lev(l)%m%destroy()
+        end do
+        deallocate (hier%lev)
+        hier%nlev = 0
+    end subroutine destroy_hierarchy
+
+    ! ---- operators -----------------------------------------------------------------------
+
+    !> d ← rhs − A_r p on the contact strips (0 elsewhere); one product.
+    subroutine defect(hier, l, rhs, p, d)
+        type(strip_hierarchy), intent(inout) :: hier
+        integer, intent(in) :: l
+        real(dp), intent(in) :: rhs(:, :), p(:, :)
+        real(dp), intent(out) :: d(:, :)
+        call hier%lev(l)%a%apply(p, d)
+        hier%work = hier%work + hier%lev(l)%cost
+        where (hier%lev(l)%con)
+            d = rhs - d
+        elsewhere
+            d = 0
+        end where
+    end subroutine defect
+
+    !> p ← p + S d for the chosen smoother (one product with M).
+    subroutine smooth_step(hier, l, smoother, d, p)
+        type(strip_hierarchy), intent(inout) :: hier
+        integer, intent(in) :: l
+        character(len=*), intent(in) :: smoother
+        real(dp), intent(in) :: d(:, :)
+        real(dp), intent(inout) :: p(:, :)
+        real(dp) :: md(size(p, 1), size(p, 2)), c(2)
+        associate (lv => hier%lev(l))
+            call lv%m%apply(d, md)
+            hier%work = hier%work + lv%cost
+            where (.not. lv%con) md = 0
+            select case (smoother)
+            case ('fft-rsm')
+                md = md - lv%shift*d
+            case ('fft-sd')
+                ! P y = y − Ā Z E⁻¹ Zᵀ y  (eq. 3.14 with precomputed Ā Z)
+                c = matmul(lv%einv, matmul(transpose(lv%z), md(:, 1)))
+                md(:, 1) = md(:, 1) - matmul(lv%w, c)
+            end select
+            where (lv%con) p = p + md
+        end associate
+    end subroutine smooth_step
+
+    !> Direct solve A_r v = d on the coarsest level (dposv); v = 0 off the strips.
+    subroutine coarse_solve(lv, d, v)
+        type(strip_level), intent(in) :: lv
+        real(dp), intent(in) :: d(:, :)
+        real(dp), intent(out) :: v(:, :)
+        integer, allocatable :: idx(:)
+        real(dp), allocatable :: a(:, :), b(:, :)
+        integer :: nc, i, j, info
+        v = 0
+        nc = count(lv%con)
+        if (nc == 0) return
+        idx = pack([(i, i=1, lv%n)], lv%con(:, 1))
+        allocate (a(nc, nc), b(nc, 1))
+        do j = 1, nc
+            do i = 1, nc
+                a(i, j) = lv%a%kernel(idx(i) - idx(j), 0)
+            end do
+            b(j, 1) = d(idx(j), 1)
+        end do
+        call dposv('U', nc, 1, a, nc, b, nc, info)
+        if (info /= 0) return
+        v(idx, 1) = b(:, 1)
+    end subroutine coarse_solve
+
+    !> One V(ν1,ν2)-cycle for A_r p = rhs on level l.  On entry d is the defect of p, on exit
+    !! the defect of the new p (so the caller's stopping test and the next cycle reuse it).
+    recursive subroutine vcycle(hier, l, settings, rhs, p, d)
+        type(strip_hierarchy), intent(inout) :: hier
+        integer, intent(in) :: l
+        type(fc_mg2d_settings), intent(in) :: settings
+        real(dp), intent(in) :: rhs(:, :)
+        real(dp), intent(inout) :: p(:, :), d(:, :)
+        real(dp), allocatable :: dc(:, :), pc(:, :), dd(:, :)
+        integer :: k, nc, i
+        if (l == 1) then
+            allocate (pc(size(p, 1), 1))
+            call coarse_solve(hier%lev(1), d, pc)
+            p = p + pc
+            d = 0
+            return
+        end if
+        do k = 1, settings%nu1
+            call smooth_step(hier, l, settings%smoother, d, p)
+            call defect(hier, l, rhs, p, d)
+        end do
+        nc = hier%lev(l - 1)%n
+        allocate (dc(nc, 1), pc(nc, 1), dd(nc, 1))
+        do i = 1, nc
+            dc(i, 1) = 0.5_dp*(d(2*i - 1, 1) + d(2*i, 1))          ! eq. (3.12)
+        end do
+        where (.not. hier%lev(l - 1)%con) dc = 0
+        pc = 0; dd = dc
+        call vcycle(hier, l - 1, settings, dc, pc, dd)
+        do i = 1, nc                                                ! eq. (3.13)
+            where (hier%lev(l)%con(2*i - 1:2*i, 1)) p(2*i - 1:2*i, 1) = p(2*i - 1:2*i, 1) + pc(i, 1)
+        end do
+        call defect(hier, l, rhs, p, d)
+        do k = 1, settings%nu2
+            call smooth_step(hier, l, settings%smoother, d, p)
+            call defect(hier, l, rhs, p, d)
+        end do
+    end subroutine vcycle
+
+    ! ---- solvers ---------------------------------------------------------------------------
+
+    subroutine check_input(prob, settings, stat, errmsg)
+        type(fc_strip_problem), intent(in) :: prob
+        type(fc_mg2d_settings), intent(in) :: settings
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        stat = 0; errmsg = ''
+        if (.not. allocated(prob%rhs) .or. .not. allocated(prob%contact)) then
+            stat = 1; errmsg = 'strip2d: problem not set (rhs/contact)'; return
+        end if
+        if (prob%grid%ny /= 1 .or. size(prob%rhs) /= prob%grid%nx .or. size(prob%contact) /= prob%grid%nx) then
+            stat = 1; errmsg = 'strip2d: needs an n×1 grid with rhs and contact of size n'; return
+        end if
+        if (.not. any(prob%contact)) then
+            stat = 1; errmsg = 'strip2d: no element in contact'; return
+        end if
+        select case (settings%smoother)
+        case ('fft', 'fft-sd', 'fft-rsm')
+        case default
+            stat = 1; errmsg = "solver: smoother = '"//trim(settings%smoother)//"' is not one of 'fft', 'fft-sd', 'fft-rsm'"
+            return
+        end select
+        if (settings%nu1 < 0 .or. settings%nu2 < 0 .or. settings%nu1 + settings%nu2 == 0) then
+            stat = 1; write (errmsg, '(a,i0,a,i0,a)') 'solver: cycle V(', settings%nu1, ',', settings%nu2, &
+                ') needs nu1, nu2 >= 0 and nu1 + nu2 > 0'
+            return
+        end if
+        if (.not. (settings%tol > 0) .or. settings%maxit < 1) then
+            stat = 1; write (errmsg, '(a,es10.3,a,i0,a)') 'solver: tol = ', settings%tol, ', maxit = ', settings%maxit, &
+                ' need tol > 0, maxit >= 1'
+            return
+        end if
+    end subroutine check_input
+
+    !> Initial guess: uniform random numbers in [0,1) from a portable generator (MINSTD),
+    !! zero off the strips.
+    subroutine initial_guess(settings, con, p)
+        type(fc_mg2d_settings), intent(in) :: settings
+        logical, intent(in) :: con(:, :)
+        real(dp), intent(out) :: p(:, :)
+        integer(i8) :: state
+        integer :: i
+        p = 0
+        if (.not. settings%random_start) return
+        state = max(1_i8, mod(int(abs(settings%seed), i8), 2147483646_i8) + 1)
+        do i = 1, size(p, 1)
+            state = mod(48271_i8*state, 2147483647_i8)
+            p(i, 1) = real(state, dp)/2147483647.0_dp
+        end do
+        where (.not. con) p = 0
+    end subroutine initial_guess
+
+    !> Multigrid with the FFT / FFT+SD / FFT+RSM smoother for A_r p = u (thesis §3.3–3.5).
+    !! Divergence (defect grown 1e6× or not finite) is reported as FC_DIVERGED.
+    subroutine solve_strip_mg(prob, settings, res, stat, errmsg)
+        type(fc_strip_problem), intent(in) :: prob
+        type(fc_mg2d_settings), intent(in) :: settings
+        type(fc_mg2d_result), intent(out) :: res
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        call run_solver(prob, settings, .true., res, stat, errmsg)
+    end subroutine solve_strip_mg
+
+    !> FFT+RSM as a one-grid Richardson solver p ← p + M̄ (u − A_r p) (thesis §3.5.3).
+    subroutine solve_strip_fft_rsm(prob, settings, res, stat, errmsg)
+        type(fc_strip_problem), intent(in) :: prob
+        type(fc_mg2d_settings), intent(in) :: settings
+        type(fc_mg2d_result), intent(out) :: res
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        type(fc_mg2d_settings) :: s
+        s = settings
+        s%smoother = 'fft-rsm'
+        call run_solver(prob, s, .false., res, stat, errmsg)
+    end subroutine solve_strip_fft_rsm
+
+    subroutine run_solver(prob, settings, multigrid, res, stat, errmsg)
+        type(fc_strip_problem), intent(in) :: prob
+        type(fc_mg2d_settings), intent(in) :: settings
+        logical, intent(in) :: multigrid
+        type(fc_mg2d_result), intent(out) :: res
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        type(strip_hierarchy) :: hier
+        real(dp), allocatable :: p(:, :), d(:, :), rhs(:, :)
+        real(dp) :: unorm, d0, dn
+        integer :: k, n, t0, t1, rate
+        call check_input(prob, settings, stat, errmsg)
+        if (stat /= 0) return
+        call system_clock(t0, rate)
+        if (multigrid) then
+            call build_hierarchy(prob, settings, 64, hier, stat, errmsg)
+        else
+            call build_hierarchy(prob, settings, 1, hier, stat, errmsg)
+        end if
+        if (stat /= 0) return
+        n = prob%grid%nx
+        res%levels = hier%nlev
+        allocate (p(n, 1), d(n, 1), rhs(n, 1), res%history(0:settings%maxit))
+        rhs(:, 1) = merge(prob%rhs, 0.0_dp, prob%contact)
+        unorm = sqrt(sum(rhs**2))
+        if (.not. (unorm > 0)) then
+            stat = 1; errmsg = 'strip2d: right-hand side is zero on the contact strips'
+            call destroy_hierarchy(hier); return
+        end if
+        call initial_guess(settings, hier%lev(hier%nlev)%con, p)
+        hier%work = 0
+        call defect(hier, hier%nlev, rhs, p, d)
+        d0 = sqrt(sum(d**2))
+        res%history(0) = d0/unorm
+        res%status = FC_NOT_CONVERGED
+        write (res%message, '(a,i0,a)') 'not converged in maxit = ', settings%maxit, ' iterations'
+        dn = d0
+        do k = 1, settings%maxit
+            if (dn <= settings%tol*unorm) then
+                res%status = FC_CONVERGED; res%message = 'converged'; exit
+            end if
+            if (multigrid) then
+                call vcycle(hier, hier%nlev, settings, rhs, p, d)
+            else
+                call smooth_step(hier, 1, 'fft-rsm', d, p)
+                call defect(hier, 1, rhs, p, d)
+            end if
+            dn = sqrt(sum(d**2))
+            res%iterations = k
+            res%history(k) = dn/unorm
+            if (dn /= dn .or. dn > 1.0e6_dp*d0) then
+                res%status = FC_DIVERGED
+                write (res%message, '(a,es9.2,a,i0,a)') 'diverged: defect grew by ', dn/d0, ' in ', k, &
+                    ' iterations (smoother '''//trim(settings%smoother)//''')'
+                exit
+            end if
+        end do
+        if (res%status == FC_NOT_CONVERGED .and. dn <= settings%tol*unorm) then
+            res%status = FC_CONVERGED; res%message = 'converged'
+        end if
+        res%residual = dn/unorm
+        if (res%iterations > 0 .and. d0 > 0 .and. dn > 0) res%factor = (dn/d0)**(1.0_dp/res%iterations)
+        call trim_history(res%history, res%iterations)
+        res%work_units = hier%work
+        if (res%status == FC_DIVERGED) then
+            allocate (res%p(n)); res%p = 0       ! never hand back a diverged iterate as a result
+        else
+            res%p = p(:, 1)
+        end if
+        call destroy_hierarchy(hier)
+        call system_clock(t1)
+        res%cpu_seconds = real(t1 - t0, dp)/rate
+    end subroutine run_solver
+
+    !> Shrink h(0:) to h(0:k), keeping the lower bound 0.
+    subroutine trim_history(h, k)
+        real(dp), allocatable, intent(inout) :: h(:)
+        integer, intent(in) :: k
+        real(dp), allocatable :: tmp(:)
+        allocate (tmp(0:k))
+        tmp = h(0:k)
+        call move_alloc(tmp, h)
+    end subroutine trim_history
+
+    ! ---- analysis --------------------------------------------------------------------------
+
+    !> Spectral radius of the multigrid iteration matrix (error propagation of one cycle)
+    !! for `prob` and `settings`, built column by column and analysed with LAPACK dgeev
+    !! (thesis Table 3.1).  n ≤ 1024.
+    subroutine mg2d_spectral_radius(prob, settings, rho, stat, errmsg)
+        type(fc_strip_problem), intent(in) :: prob
+        type(fc_mg2d_settings), intent(in) :: settings
+        real(dp), intent(out) :: rho
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        type(strip_hierarchy) :: hier
+        real(dp), allocatable :: t(:, :), p(:, :), d(:, :), zero(:, :)
+        integer :: n, j
+        rho = -1
+        call check_input(prob, settings, stat, errmsg)
+        if (stat /= 0) return
+        n = prob%grid%nx
+        if (n > 1024) then
+            stat = 1; write (errmsg, '(a,i0,a)') 'mg2d_spectral_radius: n = ', n, ' > 1024'; return
+        end if
+        call build_hierarchy(prob, settings, 64, hier, stat, errmsg)
+        if (stat /= 0) return
+        allocate (t(n, n), p(n, 1), d(n, 1), zero(n, 1))
+        zero = 0
+        do j = 1, n
+            p = 0; p(j, 1) = 1
+            where (.not. hier%lev(hier%nlev)%con) p = 0
+            call defect(hier, hier%nlev, zero, p, d)
+            call vcycle(hier, hier%nlev, settings, zero, p, d)
+            t(:, j) = p(:, 1)
+        end do
+        call destroy_hierarchy(hier)
+        call radius_of(t, rho, stat, errmsg)
+    end subroutine mg2d_spectral_radius
+
+    !> Spectral radius of the one-grid smoother iteration matrix I − S A_r (thesis
+    !! Figs. 3.4, 3.7, 3.11).
+    subroutine strip_smoother_radius(prob, smoother, rho, stat, errmsg)
+        type(fc_strip_problem), intent(in) :: prob
+        character(len=*), intent(in) :: smoother
+        real(dp), intent(out) :: rho
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        type(strip_hierarchy) :: hier
+        type(fc_mg2d_settings) :: s
+        real(dp), allocatable :: t(:, :), p(:, :), d(:, :), zero(:, :)
+        integer :: n, j
+        rho = -1
+        s%smoother = smoother
+        call check_input(prob, s, stat, errmsg)
+        if (stat /= 0) return
+        n = prob%grid%nx
+        if (n > 1024) then
+            stat = 1; write (errmsg, '(a,i0,a)') 'strip_smoother_radius: n = ', n, ' > 1024'; return
+        end if
+        call build_hierarchy(prob, s, 1, hier, stat, errmsg)
+        allocate (t(n, n), p(n, 1), d(n, 1), zero(n, 1))
+        zero = 0
+        do j = 1, n
+            p = 0; p(j, 1) = 1
+            where (.not. hier%lev(1)%con) p = 0
+            call defect(hier, 1, zero, p, d)
+            call smooth_step(hier, 1, smoother, d, p)
+            t(:, j) = p(:, 1)
+        end do
+        call destroy_hierarchy(hier)
+        call radius_of(t, rho, stat, errmsg)
+    end subroutine strip_smoother_radius
+
+    subroutine radius_of(t, rho, stat, errmsg)
+        real(dp), intent(inout) :: t(:, :)
+        real(dp), intent(out) :: rho
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        real(dp), allocatable :: wr(:), wi(:), work(:)
+        real(dp) :: vl(1, 1), vr(1, 1)
+        integer :: n, info
+        n = size(t, 1)
+        allocate (wr(n), wi(n), work(8*n))
+        call dgeev('N', 'N', n, t, n, wr, wi, vl, 1, vr, 1, work, size(work), info)
+        stat = 0; errmsg = ''
+        if (info /= 0) then
+            stat = 1; write (errmsg, '(a,i0)') 'dgeev failed, info = ', info; rho = -1; return
+        end if
+        rho = maxval(hypot(wr, wi))
+    end subroutine radius_of
+
+end module fc_mg2d
