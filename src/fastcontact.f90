@@ -3,7 +3,10 @@
 !! A contact problem is a [[fc_problem]]: material, grid, undeformed distance, loading and
 !! solver settings.  [[solve]] builds (or reuses) the influence operator and its
 !! preconditioner and solves the normal contact problem; errors come back through
-!! `stat`/`errmsg`, never by stopping.
+!! `stat`/`errmsg`, never by stopping.  The tangential (frictional) problem is solved with
+!! the operators of [[fc_tangcg]] re-exported here: [[build_tangential_operator]] and
+!! [[solve_normal_tangential]] (normal + tangential, Panagiotopoulos coupling for K ≠ 0) or
+!! [[solve_tangential]] for a given pressure.
 !!
 !! ```fortran
 !! use fastcontact
@@ -21,6 +24,7 @@ module fastcontact
     use fc_influence
     use fc_norm
     use fc_hertz
+    use fc_tangcg
     implicit none
     private
 
@@ -30,6 +34,10 @@ module fastcontact
     public :: fc_material, combine_material, rigid_modulus
     public :: fc_normal_settings, fc_normal_result, fc_normal_operator, build_normal_operator, solve_normal
     public :: fc_hertz_solution, hertz_from_approach, hertz_from_force, elliptic_ke
+    public :: fc_cattaneo_solution, cattaneo_mindlin
+    public :: fc_tangential_settings, fc_tangential_loading, fc_tangential_operator, fc_tangential_result
+    public :: build_tangential_operator, solve_tangential, solve_tangential_loading, solve_normal_tangential
+    public :: coupling_displacements, EL_EXTERIOR, EL_ADHESION, EL_SLIP
 
     !> One normal contact problem and its reusable operator.
     type, public :: fc_problem
