@@ -35,7 +35,9 @@
 !! Work units (thesis §2.5.1): one product with A on the target grid = 1; a smoothing
 !! sweep or a defect on a level with n_l cells costs n_l/n_target; the coarsest exact solve
 !! is free.  As in the thesis, the product u = A p used by the active-set update (done by
-!! FFT) is not counted; it is reported separately in [[fc_fmg_stats]].
+!! FFT) is not counted; it is reported separately in [[fc_fmg_stats]].  Non-GS smoothers
+!! are counted by their FFT products: Jacobi 1 per sweep, FFT+RSM 2 per sweep (A and M)
+!! plus 1 per cycle and level for the row sums M·1_C.
 module fc_fmg
     use fc_kinds
     use fc_geometry, only: fc_grid, make_grid, h_no_contact, quadratic_gap, punch_rough_gap, wavy_gap, &
@@ -613,8 +615,8 @@ contains
         real(dp), intent(out) :: resid
         character(len=*), intent(out) :: msg
         type(fc_fmg_stats), intent(inout), optional :: stats
-        real(dp), dimension(size(p, 1), size(p, 2)) :: h, u, rhs
-        logical, dimension(size(p, 1), size(p, 2)) :: con_new
+        real(dp), allocatable, dimension(:, :) :: h, u, rhs
+        logical, allocatable :: con_new(:, :)
         real(dp) :: hn, r0
         logical :: changed
         integer :: k, kk
@@ -622,6 +624,7 @@ contains
         logical, allocatable :: chist(:)
         associate (lv => hier%lev(l))
             h = lv%h0 - delta
+            allocate (u(size(p, 1), size(p, 2)), rhs(size(p, 1), size(p, 2)), con_new(size(p, 1), size(p, 2)))
             allocate (rhist(maxit), chist(maxit))
             if (present(stats) .and. settings%keep_history) then
                 allocate (phist(size(p, 1), size(p, 2), 0:maxit))
@@ -749,7 +752,7 @@ contains
         logical, intent(in) :: con(:, :)
         real(dp), intent(in) :: rhs(:, :)
         real(dp), intent(inout) :: p(:, :)
-        real(dp), allocatable :: d(:, :), dc(:, :), vc(:, :), v(:, :)
+        real(dp), allocatable :: d(:, :), dc(:, :), vc(:, :), v(:, :), rs(:, :)
         logical, allocatable :: conc(:, :)
         integer :: k, ncx, ncy
         if (.not. any(con)) then
@@ -761,7 +764,7 @@ contains
         end if
         associate (lv => hier%lev(l), lc => hier%lev(l - 1))
             do k = 1, settings%nu1
-                call smooth(hier, l, settings, con, rhs, p)
+                call smooth(hier, l, settings, con, rhs, p, rs)
             end do
             allocate (d(size(p, 1), size(p, 2)))
             call lv%op%apply(p, d)
@@ -779,7 +782,7 @@ contains
             call interp_copy(vc, lv%fx, lv%fy, v)
             where (con) p = p + v
             do k = 1, settings%nu2
-                call smooth(hier, l, settings, con, rhs, p)
+                call smooth(hier, l, settings, con, rhs, p, rs)
             end do
         end associate
     end subroutine vcycle
@@ -850,23 +853,31 @@ contains
 
     ! ---- smoothers -------------------------------------------------------------------------
 
-    !> One smoothing sweep on level l, counted as one product on that level.
-    subroutine smooth(hier, l, settings, con, rhs, p)
+    !> One smoothing sweep on level l.  A GS sweep counts as one product on that level (the
+    !! thesis' convention), a Jacobi sweep as one FFT product, an FFT+RSM sweep as two (A and M).
+    subroutine smooth(hier, l, settings, con, rhs, p, rs)
         type(fc_fmg_hierarchy), intent(inout) :: hier
         integer, intent(in) :: l
         type(fc_fmg_settings), intent(in) :: settings
         logical, intent(in) :: con(:, :)
         real(dp), intent(in) :: rhs(:, :)
         real(dp), intent(inout) :: p(:, :)
+        real(dp), allocatable, intent(inout) :: rs(:, :)
         select case (settings%smoother)
         case ('jacobi')
             call jacobi_sweep(hier%lev(l), con, rhs, p, settings%omega)
+            hier%work = hier%work + hier%lev(l)%cost
         case ('fft-rsm')
-            call fft_rsm_sweep(hier%lev(l), con, rhs, p)
+            if (.not. allocated(rs)) then
+                call rsm_rowsums(hier%lev(l), con, rs)
+                hier%work = hier%work + hier%lev(l)%cost
+            end if
+            call fft_rsm_sweep(hier%lev(l), con, rhs, p, rs)
+            hier%work = hier%work + 2*hier%lev(l)%cost
         case default
             call gs_sweep(hier%lev(l)%op%kernel, con, rhs, p, settings%omega)
+            hier%work = hier%work + hier%lev(l)%cost
         end select
-        hier%work = hier%work + hier%lev(l)%cost
     end subroutine smooth
 
     !> Damped Gauss–Seidel on the contact set, lexicographic order (thesis §2.4.2).
@@ -914,31 +925,42 @@ contains
         real(dp), intent(in) :: rhs(:, :)
         real(dp), intent(inout) :: p(:, :)
         real(dp), intent(in) :: omega
-        real(dp) :: u(size(p, 1), size(p, 2))
+        real(dp), allocatable :: u(:, :)
+        allocate (u(size(p, 1), size(p, 2)))
         call lv%op%apply(p, u)
         where (con) p = p + omega*(rhs - u)/lv%op%kernel(0, 0)
     end subroutine jacobi_sweep
 
     !> FFT smoother with row-sum modification on the contact set (thesis eqs. 3.10, 3.21):
     !! p_C ← p_C + M̄ (rhs − A p)_C,  M̄ = M_CC − diag(sum(M_CC) − γ),  γ = min row sum of M.
-    subroutine fft_rsm_sweep(lv, con, rhs, p)
+    !! `rs` holds sum(M_CC) = M·1_C for the current set (computed once per cycle and level).
+    subroutine fft_rsm_sweep(lv, con, rhs, p, rs)
         type(fmg_level), intent(inout) :: lv
         logical, intent(in) :: con(:, :)
-        real(dp), intent(in) :: rhs(:, :)
+        real(dp), intent(in) :: rhs(:, :), rs(:, :)
         real(dp), intent(inout) :: p(:, :)
-        real(dp), dimension(size(p, 1), size(p, 2)) :: u, d, md, one, rs
+        real(dp), allocatable :: u(:, :), d(:, :)
+        allocate (u(size(p, 1), size(p, 2)), d(size(p, 1), size(p, 2)))
         call lv%op%apply(p, u)
         where (con)
             d = rhs - u
-            one = 1
         elsewhere
             d = 0
-            one = 0
         end where
-        call lv%prec%apply(d, md)
-        call lv%prec%apply(one, rs)
-        where (con) p = p + md - (rs - lv%gamma)*d
+        call lv%prec%apply(d, u)
+        where (con) p = p + u - (rs - lv%gamma)*d
     end subroutine fft_rsm_sweep
+
+    !> Row sums of M over the contact set, M·1_C (one product).
+    subroutine rsm_rowsums(lv, con, rs)
+        type(fmg_level), intent(inout) :: lv
+        logical, intent(in) :: con(:, :)
+        real(dp), allocatable, intent(out) :: rs(:, :)
+        real(dp), allocatable :: one(:, :)
+        allocate (rs(size(con, 1), size(con, 2)), one(size(con, 1), size(con, 2)))
+        one = merge(1.0_dp, 0.0_dp, con)
+        call lv%prec%apply(one, rs)
+    end subroutine rsm_rowsums
 
     !> Exact solve of A_CC p_C = rhs_C on the coarsest level (LAPACK dposv).
     subroutine direct_solve(lv, con, rhs, p)

@@ -321,7 +321,9 @@ contains
         character(len=*), intent(in) :: smoother
         real(dp), intent(in) :: d(:, :)
         real(dp), intent(inout) :: p(:, :)
-        real(dp) :: md(size(p, 1), size(p, 2)), c(2)
+        real(dp), allocatable :: md(:, :)
+        real(dp) :: c(2)
+        allocate (md(size(p, 1), size(p, 2)))
         associate (lv => hier%lev(l))
             call lv%m%apply(d, md)
             hier%work = hier%work + lv%cost
