@@ -44,6 +44,8 @@ contains
             new_unittest('tangcg_vs_convexgs', test_tangcg_vs_convexgs), &
             new_unittest('tangential_normal_not_converged', test_tangential_normal_not_converged), &
             new_unittest('tangential_ignored_for_normal', test_tangential_ignored), &
+            new_unittest('tangential_same_as_normal_plus', test_tangential_synonym), &
+            new_unittest('dissimilar_panagiotopoulos', test_dissimilar), &
             new_unittest('mu_negative', test_mu_negative), &
             new_unittest('mu_missing', test_mu_missing), &
             new_unittest('mu_zero_with_forces', test_mu_zero_forces), &
@@ -521,6 +523,38 @@ contains
         call check(error, index(read_all(dir//'/report.txt'), '&tangential ignored') > 0, 'report must note it')
         call cleanup(dir)
     end subroutine test_tangential_ignored
+
+    !> problem = 'tangential' runs the same pipeline as 'normal+tangential'.
+    subroutine test_tangential_synonym(error)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: code
+        character(len=:), allocatable :: errors, dir, j1, j2
+        call run_text(cattaneo_case('nt')//"&case name = 't', problem = 'tangential' /"//nl, code, errors, dir)
+        call check(error, code == 0, 'exit code 0 expected, errors: '//errors)
+        if (allocated(error)) return
+        j1 = read_all(dir//'/nt.json'); j2 = read_all(dir//'/t.json')
+        call check(error, json_num(j1, 'fy') == json_num(j2, 'fy') .and. json_num(j1, 'nslip') == json_num(j2, 'nslip'), &
+            "'tangential' and 'normal+tangential' must give the same result")
+        call cleanup(dir)
+    end subroutine test_tangential_synonym
+
+    !> Rigid sphere on an elastic plane (K /= 0): coupled by Panagiotopoulos rounds.
+    subroutine test_dissimilar(error)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: code
+        character(len=:), allocatable :: errors, dir, j
+        call run_text(replace(cattaneo_case('k'), 'g1 = 200.0, g2 = 200.0, nu1 = 0.42, nu2 = 0.42', &
+            'g1 = 1.0e30, g2 = 200.0, nu1 = 0.3, nu2 = 0.3'), code, errors, dir)
+        call check(error, code == 0, 'exit code 0 expected, errors: '//errors)
+        if (allocated(error)) return
+        j = read_all(dir//'/k.json')
+        call check(error, json_num(j, 'k') /= 0, 'K must be non-zero')
+        call check(error, json_num(j, 'panagiotopoulos_rounds') > 1, 'K /= 0 needs more than one round: '//j)
+        call check(error, index(j, '"status": "converged"') > 0, 'coupled case must converge')
+        call check(error, index(read_all(dir//'/report.txt'), 'without the tangential coupling') == 0, &
+            'no decoupling note for a tangential problem')
+        call cleanup(dir)
+    end subroutine test_dissimilar
 
     subroutine test_mu_negative(error)
         type(error_type), allocatable, intent(out) :: error
