@@ -369,12 +369,12 @@ contains
         integer, intent(out), optional :: rounds   !! Panagiotopoulos rounds done (1 when K = 0)
         real(dp), allocatable :: uxn(:, :), uyn(:, :), uzt(:, :), pn_old(:, :), px_old(:, :), py_old(:, :)
         type(fc_normal_result) :: nprev
-        integer :: round, nx, ny, it_n, it_t, mv_n, mv_t
+        integer :: round, nx, ny, it_n, it_t, mv_n, mv_t, out_t
         real(dp) :: dn, dt, cpu_n, cpu_t
         nx = size(h0, 1); ny = size(h0, 2)
         allocate (uxn(nx, ny), uyn(nx, ny), uzt(nx, ny), pn_old(nx, ny), px_old(nx, ny), py_old(nx, ny))
         uzt = 0; uxn = 0; uyn = 0
-        it_n = 0; it_t = 0; mv_n = 0; mv_t = 0; cpu_n = 0; cpu_t = 0
+        it_n = 0; it_t = 0; mv_n = 0; mv_t = 0; out_t = 0; cpu_n = 0; cpu_t = 0
         do round = 1, 50
             if (round == 1) then
                 call solve_normal(nop, h0 + uzt, nsettings, nres, stat, errmsg, approach=approach, fn=fn)
@@ -402,6 +402,7 @@ contains
             end if
             if (stat /= 0) return
             it_t = it_t + tres%iterations; mv_t = mv_t + tres%matvecs; cpu_t = cpu_t + tres%cpu_seconds
+            out_t = out_t + tres%outer_iterations
             if (.not. top%coupled()) exit
             if (tres%status /= FC_CONVERGED) exit
             call coupling_displacements(top, nres%pn, tres%px, tres%py, uxn, uyn, uzt)
@@ -419,6 +420,7 @@ contains
         if (present(rounds)) rounds = min(round, 50)
         nres%iterations = it_n; nres%matvecs = mv_n; nres%cpu_seconds = cpu_n
         tres%iterations = it_t; tres%matvecs = mv_t; tres%cpu_seconds = cpu_t
+        tres%outer_iterations = out_t
     end subroutine solve_normal_tangential
 
     !> Forces, moment and element counts of a tangential solution.
