@@ -16,7 +16,7 @@ module fc_kinds
 
     integer, parameter, public :: msg_len = 512         !! length of error messages
 
-    public :: status_name
+    public :: status_name, check_iteration_settings
 
 contains
 
@@ -31,5 +31,20 @@ contains
         case default;            name = 'error'
         end select
     end function status_name
+
+    !> Validate the tolerance and iteration limit shared by every solver; the message names
+    !! the `&solver` key and value (SPEC §5).
+    subroutine check_iteration_settings(tol, maxit, stat, errmsg)
+        real(dp), intent(in) :: tol
+        integer, intent(in) :: maxit
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        stat = 0; errmsg = ''
+        if (.not. (tol > 0)) then
+            stat = 1; write (errmsg, '(a,es12.4,a)') 'solver: tol = ', tol, ' must be > 0'
+        else if (maxit < 1) then
+            stat = 1; write (errmsg, '(a,i0,a)') 'solver: maxit = ', maxit, ' must be >= 1'
+        end if
+    end subroutine check_iteration_settings
 
 end module fc_kinds

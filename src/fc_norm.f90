@@ -142,12 +142,8 @@ contains
                 return
             end if
         end if
-        if (.not. (settings%tol > 0)) then
-            stat = 1; write (errmsg, '(a,es12.4,a)') 'solver: tol = ', settings%tol, ' must be > 0'; return
-        end if
-        if (settings%maxit < 1) then
-            stat = 1; write (errmsg, '(a,i0,a)') 'solver: maxit = ', settings%maxit, ' must be >= 1'; return
-        end if
+        call check_iteration_settings(settings%tol, settings%maxit, stat, errmsg)
+        if (stat /= 0) return
         allocate (res%pn(nx, ny), res%gap(nx, ny))
         res%pn = 0
         if (present(p_start)) then

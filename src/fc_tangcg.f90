@@ -192,12 +192,8 @@ contains
         if (.not. (mu >= 0)) then
             stat = 1; write (errmsg, '(a,g0.6,a)') 'tangential: mu = ', mu, ' must be >= 0'; return
         end if
-        if (.not. (settings%tol > 0)) then
-            stat = 1; write (errmsg, '(a,es12.4,a)') 'solver: tol = ', settings%tol, ' must be > 0'; return
-        end if
-        if (settings%maxit < 1) then
-            stat = 1; write (errmsg, '(a,i0,a)') 'solver: maxit = ', settings%maxit, ' must be >= 1'; return
-        end if
+        call check_iteration_settings(settings%tol, settings%maxit, stat, errmsg)
+        if (stat /= 0) return
         if (settings%inner_k < 1) then
             stat = 1; write (errmsg, '(a,i0,a)') 'solver: inner_k = ', settings%inner_k, ' must be >= 1'; return
         end if
@@ -467,7 +463,7 @@ contains
         real(dp), dimension(size(g, 1), size(g, 2)) :: px, py, sx, sy, ux, uy, dax, day, zx, zy, vax, vay, &
             vsx, vsy, qsx, qsy, qax, qay, pox, poy, dox, doy, mx, my, tnorm
         logical, dimension(size(g, 1), size(g, 2)) :: adh, slp
-        real(dp) :: axx, ayy, alpha, beta, zd_old, zd, denom, change, pnorm
+        real(dp) :: axx, ayy, alpha, beta, zd_old, zd, denom, change
         integer :: it, inner, nmoved
         logical :: changed, converged, check_now
         real(dp), allocatable :: hist(:)
@@ -625,15 +621,7 @@ contains
                 end if
             end if
         end do
-        if (converged) then
-            res%status = FC_CONVERGED
-            res%message = 'converged'
-        else if (res%status == FC_NOT_CONVERGED) then
-            write (res%message, '(a,i0,a,es10.3)') 'TangCG not converged in maxit = ', settings%maxit, &
-                ' iterations; last traction change ', change
-        end if
-        pnorm = change
-        res%residual = pnorm
+        call finish_status(res, converged, 'TangCG', settings%maxit, 'iterations', change)
         res%px = px; res%py = py
         res%ux = ux; res%uy = uy
         res%sx = sx; res%sy = sy
@@ -710,15 +698,8 @@ contains
                 exit
             end if
         end do
-        if (converged) then
-            res%status = FC_CONVERGED
-            res%message = 'converged'
-        else if (res%status == FC_NOT_CONVERGED) then
-            write (res%message, '(a,i0,a,es10.3)') 'ConvexGS not converged in maxit = ', settings%maxit, &
-                ' sweeps; last traction change ', change
-        end if
+        call finish_status(res, converged, 'ConvexGS', settings%maxit, 'sweeps', change)
         res%outer_iterations = res%iterations
-        res%residual = change
         ! report the exact slip of the final tractions (one FFT product)
         call top%apply(px, py, ux, uy)
         res%px = px; res%py = py
@@ -730,6 +711,23 @@ contains
         res%state = state
         allocate (res%history(res%iterations), source=hist(1:res%iterations))
     end subroutine run_convexgs
+
+    !> Final status and message of a tangential solve; `change` is the last traction change.
+    subroutine finish_status(res, converged, solver, maxit, unit_name, change)
+        type(fc_tangential_result), intent(inout) :: res
+        logical, intent(in) :: converged
+        character(len=*), intent(in) :: solver, unit_name
+        integer, intent(in) :: maxit
+        real(dp), intent(in) :: change
+        if (converged) then
+            res%status = FC_CONVERGED
+            res%message = 'converged'
+        else if (res%status == FC_NOT_CONVERGED) then
+            write (res%message, '(a,i0,1x,a,a,es10.3)') solver//' not converged in maxit = ', maxit, unit_name, &
+                '; last traction change ', change
+        end if
+        res%residual = change
+    end subroutine finish_status
 
     !> Traction on the circle |p| = g opposing the slip s = s̃ + diag(axx, ayy)·p:
     !! Newton on the angle θ of F(θ) = px·sy − py·sx = 0, started opposite to s̃.
