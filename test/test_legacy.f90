@@ -1,0 +1,588 @@
+!> Suite `legacy`: the flat handle-based API (fc_legacy, SPEC §6, issue 5).
+module test_legacy
+    use, intrinsic :: iso_c_binding, only: c_null_char
+    use fc_kinds
+    use fc_geometry
+    use fc_influence
+    use fc_norm
+    use fc_tangcg
+    use fc_hertz
+    use fc_legacy
+    use fc_testing
+    implicit none
+    private
+    public :: collect_legacy
+
+    real(dp), parameter :: g_cat = 200, nu_cat = 0.42_dp, r_cat = 50, mu_cat = 0.4_dp, fn_cat = 9.1954_dp
+    real(dp), parameter :: l_cat = 1.2857_dp
+    !> Thesis Table 4.1 shifts (cases 1–7).
+    real(dp), parameter :: case_xi(7) = [0.0_dp, 1.5e-5_dp, 0.0_dp, 0.0021_dp, 0.0037_dp, 0.0_dp, 0.0044_dp]
+    real(dp), parameter :: case_eta(7) = [0.0_dp, 0.0_dp, 0.0015_dp, 0.0010_dp, 0.0048_dp, 0.005_dp, 0.0_dp]
+    real(dp), parameter :: case_phi(7) = [5e-7_dp, 1e-5_dp, 0.0012_dp, 0.003_dp, 0.004_dp, 0.009_dp, 0.08_dp]
+
+contains
+
+    subroutine collect_legacy(tests)
+        type(unittest_type), allocatable, intent(out) :: tests(:)
+        tests = [ &
+            new_unittest('hertz_equals_modern_api', test_hertz), &
+            new_unittest('cattaneo_equals_modern_api', test_cattaneo), &
+            new_unittest('forces_equal_modern_api', test_forces_modern), &
+            new_unittest('warm_start_and_reuse', test_warm_start), &
+            new_unittest('rebuild_each_call_same_result', test_no_reuse), &
+            new_unittest('hysteresis_load_unload_reload', test_hysteresis), &
+            new_unittest('continue_zero_increment_keeps_state', test_continue_still), &
+            new_unittest('rolling_shift_and_steady_state', test_rolling), &
+            new_unittest('errors_and_handles', test_errors) ]
+    end subroutine collect_legacy
+
+    !> Handle with the Cattaneo scene of SPEC §4 (no tangential loading yet).
+    subroutine cattaneo_handle(h, nx, ny, tol)
+        integer, intent(out) :: h
+        integer, intent(in) :: nx, ny
+        real(dp), intent(in) :: tol
+        integer :: ierr
+        call fc_init(h, ierr)
+        call fc_set_material(h, g_cat, g_cat, nu_cat, nu_cat, ierr)
+        call fc_set_grid(h, nx, ny, -l_cat, l_cat, -l_cat, l_cat, ierr)
+        call fc_set_gap_quadratic(h, r_cat, r_cat, ierr)
+        call fc_set_normal_force(h, fn_cat, ierr)
+        call fc_set_friction(h, mu_cat, ierr)
+        call fc_set_solver(h, 1, 1, tol, 2000, 3, 1, ierr)
+    end subroutine cattaneo_handle
+
+    !> Modern-API Cattaneo set-up with the same settings.
+    subroutine cattaneo_modern(nx, ny, tol, grid, mat, nop, top, ns, ts, nres)
+        integer, intent(in) :: nx, ny
+        real(dp), intent(in) :: tol
+        type(fc_grid), intent(out) :: grid
+        type(fc_material), intent(out) :: mat
+        type(fc_normal_operator), intent(inout) :: nop
+        type(fc_tangential_operator), intent(inout) :: top
+        type(fc_normal_settings), intent(out) :: ns
+        type(fc_tangential_settings), intent(out) :: ts
+        type(fc_normal_result), intent(out) :: nres
+        integer :: stat
+        character(len=msg_len) :: msg
+        mat%g1 = g_cat; mat%g2 = g_cat; mat%nu1 = nu_cat; mat%nu2 = nu_cat
+        call combine_material(mat, stat, msg)
+        call make_grid(grid, nx, ny, -l_cat, l_cat, -l_cat, l_cat, stat, msg)
+        call build_normal_operator(nop, mat, grid)
+        call build_tangential_operator(top, mat, grid)
+        ns%tol = tol; ts%tol = tol
+        call solve_normal(nop, quadratic_gap(grid, r_cat, r_cat), ns, nres, stat, msg, fn=fn_cat)
+    end subroutine cattaneo_modern
+
+    !> Message of the last error on h (C string → Fortran).
+    function last_message(h) result(msg)
+        integer, intent(in) :: h
+        character(len=:), allocatable :: msg
+        character(len=400) :: buf
+        integer :: ierr, k
+        call fc_get_error_message(h, buf, len(buf), ierr)
+        k = index(buf, c_null_char)
+        msg = buf(1:max(0, k - 1))
+    end function last_message
+
+    !> Hertz Test I (32², approach 0.1091): flat API = solve_normal to 1e−10, and the SPEC
+    !! self-check values F = 82049.40, 332 contact cells, pmax = 1628.29; then force mode.
+    subroutine test_hertz(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_material) :: mat
+        type(fc_grid) :: grid
+        type(fc_normal_operator) :: nop
+        type(fc_normal_settings) :: ns
+        type(fc_normal_result) :: nr
+        real(dp) :: pn(32*32), px(32*32), py(32*32), fn, fx, fy, mz, pmax, appr
+        integer :: h, ierr, stat, ncon, nadh, nslip, st(32*32)
+        character(len=msg_len) :: msg
+        mat%g1 = 82000; mat%g2 = 82000; mat%nu1 = 0.28_dp; mat%nu2 = 0.28_dp
+        call combine_material(mat, stat, msg)
+        call make_grid(grid, 32, 32, -10.0_dp, 10.0_dp, -6.0_dp, 6.0_dp, stat, msg)
+        call build_normal_operator(nop, mat, grid)
+        ns%tol = 1e-10_dp
+        call solve_normal(nop, quadratic_gap(grid, 300.0_dp, 163.0_dp), ns, nr, stat, msg, approach=0.1091_dp)
+        call fc_init(h, ierr)
+        call fc_set_material(h, 82000.0_dp, 82000.0_dp, 0.28_dp, 0.28_dp, ierr)
+        call fc_set_grid(h, 32, 32, -10.0_dp, 10.0_dp, -6.0_dp, 6.0_dp, ierr)
+        call fc_set_gap_quadratic(h, 300.0_dp, 163.0_dp, ierr)
+        call fc_set_normal_approach(h, 0.1091_dp, ierr)
+        call fc_set_solver(h, 1, 1, 1e-10_dp, 1000, 3, 1, ierr)
+        call fc_calculate(h, ierr)
+        call check(error, ierr == 0, 'calculate: '//last_message(h))
+        call fc_get_forces(h, fn, fx, fy, mz, ierr)
+        call fc_get_pmax(h, pmax, ierr)
+        call fc_get_contact_stats(h, ncon, nadh, nslip, ierr)
+        call fc_get_tractions(h, size(pn), pn, px, py, ierr)
+        call fc_get_status_array(h, size(st), st, ierr)
+        call check(error, rel_diff(pn, reshape(nr%pn, [32*32])) <= 1e-10_dp, 'pressure = modern API')
+        call check(error, fn, nr%fn, 'Fn = modern API', rel=1e-10_dp)
+        call check(error, fn, 82049.40_dp, 'Fn self-check', abs=0.01_dp)
+        call check(error, pmax, 1628.29_dp, 'pmax self-check', abs=0.01_dp)
+        call check(error, ncon == 332 .and. nadh == 332 .and. nslip == 0, 'contact 332 cells, all adhesion')
+        call check(error, count(st == 1) == 332 .and. count(st == 2) == 0, 'status array')
+        call check(error, fx == 0 .and. fy == 0 .and. mz == 0 .and. all(px == 0), 'no tangential loading')
+        ! prescribed force
+        call fc_set_normal_force(h, 82049.40_dp, ierr)
+        call fc_calculate(h, ierr)
+        call fc_get_approach(h, appr, ierr)
+        call fc_get_forces(h, fn, fx, fy, mz, ierr)
+        call check(error, ierr == 0, 'force mode: '//last_message(h))
+        call check(error, fn, 82049.40_dp, 'force mode Fn', rel=1e-10_dp)
+        call check(error, appr, 0.1091_dp, 'force mode approach', rel=1e-6_dp)
+        call fc_finalize(h, ierr)
+        call check(error, ierr == 0 .and. h == 0, 'finalize')
+        call nop%destroy()
+    end subroutine test_hertz
+
+    !> Cattaneo cases 1–7 on 30×25 (tol 1e−10): flat API without warm start = BCCG +
+    !! solve_tangential to 1e−10 relative (tractions, slip, forces, moment); SPEC self-check
+    !! of case 1 (364 cells, Mz = −2.67854e−4).
+    subroutine test_cattaneo(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_grid) :: grid
+        type(fc_material) :: mat
+        type(fc_normal_operator) :: nop
+        type(fc_tangential_operator) :: top
+        type(fc_normal_settings) :: ns
+        type(fc_tangential_settings) :: ts
+        type(fc_normal_result) :: nres
+        type(fc_tangential_result) :: tr
+        integer, parameter :: n = 30*25
+        real(dp) :: pn(n), px(n), py(n), sx(n), sy(n), fn, fx, fy, mz, xi, eta, phi, scale
+        integer :: h, ierr, stat, c, st(n), ncon, nadh, nslip
+        character(len=msg_len) :: msg
+        character(len=8) :: label
+        call cattaneo_modern(30, 25, 1e-10_dp, grid, mat, nop, top, ns, ts, nres)
+        call cattaneo_handle(h, 30, 25, 1e-10_dp)
+        call fc_set_reuse(h, 1, 0, ierr)
+        scale = mu_cat*fn_cat
+        do c = 1, 7
+            write (label, '(a,i0)') 'case ', c
+            call solve_tangential(top, nres%pn, mu_cat, ts, tr, stat, msg, case_xi(c), case_eta(c), case_phi(c))
+            call fc_set_shifts(h, case_xi(c), case_eta(c), case_phi(c), ierr)
+            call fc_calculate(h, ierr)
+            call check(error, ierr == 0, trim(label)//' calculate: '//last_message(h))
+            call fc_get_forces(h, fn, fx, fy, mz, ierr)
+            call fc_get_tractions(h, n, pn, px, py, ierr)
+            call fc_get_slip(h, n, sx, sy, ierr)
+            call fc_get_status_array(h, n, st, ierr)
+            call fc_get_contact_stats(h, ncon, nadh, nslip, ierr)
+            call fc_get_shifts(h, xi, eta, phi, ierr)
+            call check(error, rel_diff(pn, reshape(nres%pn, [n])) <= 1e-10_dp, trim(label)//' pn')
+            call check(error, rel_diff([px, py], [reshape(tr%px, [n]), reshape(tr%py, [n])]) <= 1e-10_dp, &
+                trim(label)//' px, py')
+            if (c > 1) call check(error, rel_diff([sx, sy], [reshape(tr%sx, [n]), reshape(tr%sy, [n])]) <= 1e-10_dp, &
+                trim(label)//' sx, sy')
+            call check(error, all(st == reshape(tr%state, [n])), trim(label)//' status array')
+            call check(error, ncon == tr%ncon .and. nadh == tr%nadh .and. nslip == tr%nslip, trim(label)//' counts')
+            call check(error, fn, nres%fn, trim(label)//' Fn', rel=1e-10_dp)
+            call check(error, fx, tr%fx, trim(label)//' Fx', abs=1e-10_dp*scale)
+            call check(error, fy, tr%fy, trim(label)//' Fy', abs=1e-10_dp*scale)
+            call check(error, mz, tr%mz, trim(label)//' Mz', abs=1e-10_dp*max(abs(tr%mz), 1e-3_dp))
+            call check(error, xi == case_xi(c) .and. eta == case_eta(c) .and. phi == case_phi(c), trim(label)//' shifts')
+            if (c == 1) then
+                call check(error, ncon == 364 .and. nslip == 0, 'case 1: 364 cells in adhesion')
+                call check(error, mz, -2.67854e-4_dp, 'case 1: Mz self-check', abs=0.000005e-4_dp)
+            end if
+        end do
+        call fc_finalize(h, ierr)
+        call nop%destroy(); call top%destroy()
+    end subroutine test_cattaneo
+
+    !> Prescribed forces (Fx = 0.5 μFn, Fy = 0.2 μFn, φ = 0.003): flat API = BCCG +
+    !! solve_tangential_loading to 1e−10 (first call, no previous state).
+    subroutine test_forces_modern(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_grid) :: grid
+        type(fc_material) :: mat
+        type(fc_normal_operator) :: nop
+        type(fc_tangential_operator) :: top
+        type(fc_normal_settings) :: ns
+        type(fc_tangential_settings) :: ts
+        type(fc_normal_result) :: nres
+        type(fc_tangential_result) :: tr
+        type(fc_tangential_loading) :: load
+        integer, parameter :: n = 30*25
+        real(dp) :: pn(n), px(n), py(n), fn, fx, fy, mz, xi, eta, phi
+        integer :: h, ierr, stat
+        character(len=msg_len) :: msg
+        call cattaneo_modern(30, 25, 1e-10_dp, grid, mat, nop, top, ns, ts, nres)
+        load%mu = mu_cat; load%force_prescribed = .true.
+        load%fx = 0.5_dp*mu_cat*fn_cat; load%fy = 0.2_dp*mu_cat*fn_cat; load%phi = 0.003_dp
+        call solve_tangential_loading(top, nres%pn, load, ts, tr, stat, msg)
+        call cattaneo_handle(h, 30, 25, 1e-10_dp)
+        call fc_set_forces(h, load%fx, load%fy, load%phi, ierr)
+        call fc_calculate(h, ierr)
+        call check(error, ierr == 0, 'calculate: '//last_message(h))
+        call fc_get_forces(h, fn, fx, fy, mz, ierr)
+        call fc_get_tractions(h, n, pn, px, py, ierr)
+        call fc_get_shifts(h, xi, eta, phi, ierr)
+        call check(error, rel_diff([px, py], [reshape(tr%px, [n]), reshape(tr%py, [n])]) <= 1e-10_dp, 'px, py')
+        call check(error, xi, tr%xi, 'xi', rel=1e-10_dp)
+        call check(error, eta, tr%eta, 'eta', rel=1e-10_dp)
+        call check(error, fx, load%fx, 'Fx prescribed', abs=1e-9_dp*mu_cat*fn_cat)
+        call check(error, fy, load%fy, 'Fy prescribed', abs=1e-9_dp*mu_cat*fn_cat)
+        call check(error, mz, tr%mz, 'Mz', rel=1e-10_dp)
+        call fc_finalize(h, ierr)
+        call nop%destroy(); call top%destroy()
+    end subroutine test_forces_modern
+
+    !> Warm start: a second identical call needs fewer normal and tangential iterations
+    !! (shifts and forces); operators are built once while grid and material stay; moving the
+    !! area (same spacing) keeps them; a new material or grid rebuilds them.
+    subroutine test_warm_start(error)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: h, ierr, itn1, itt1, itn2, itt2, nb, tb, nc
+        real(dp) :: fn, fx1, fy, mz, fx2
+        call cattaneo_handle(h, 30, 25, 1e-8_dp)
+        call fc_set_shifts(h, case_xi(4), case_eta(4), case_phi(4), ierr)
+        call fc_calculate(h, ierr)
+        call fc_get_iterations(h, itn1, itt1, ierr)
+        call fc_get_forces(h, fn, fx1, fy, mz, ierr)
+        call fc_calculate(h, ierr)
+        call fc_get_iterations(h, itn2, itt2, ierr)
+        call fc_get_forces(h, fn, fx2, fy, mz, ierr)
+        call check(error, ierr == 0, 'second call: '//last_message(h))
+        call check(error, itn2 < itn1, 'shifts: normal warm start needs fewer iterations')
+        call check(error, itt2 < itt1, 'shifts: tangential warm start needs fewer iterations')
+        call check(error, fx2, fx1, 'same Fx', rel=1e-6_dp)
+        call fc_set_forces(h, 0.6_dp*mu_cat*fn_cat, 0.0_dp, 0.0_dp, ierr)
+        call fc_calculate(h, ierr)
+        call fc_get_iterations(h, itn1, itt1, ierr)
+        call fc_calculate(h, ierr)
+        call fc_get_iterations(h, itn2, itt2, ierr)
+        call check(error, ierr == 0, 'forces: '//last_message(h))
+        call check(error, itt2 < itt1, 'forces: tangential warm start needs fewer iterations')
+        call fc_get_rebuilds(h, nb, tb, nc, ierr)
+        call check(error, nb == 1 .and. tb == 1 .and. nc == 4, 'operators built once in 4 calls')
+        call fc_set_grid(h, 30, 25, -l_cat + 0.1_dp, l_cat + 0.1_dp, -l_cat, l_cat, ierr)
+        call fc_calculate(h, ierr)
+        call fc_get_rebuilds(h, nb, tb, nc, ierr)
+        call check(error, nb == 1 .and. tb == 1, 'moved area, same spacing: no rebuild')
+        call fc_set_material(h, 2*g_cat, 2*g_cat, nu_cat, nu_cat, ierr)
+        call fc_calculate(h, ierr)
+        call fc_get_rebuilds(h, nb, tb, nc, ierr)
+        call check(error, nb == 2 .and. tb == 2, 'new material: rebuild')
+        call fc_set_grid(h, 20, 20, -l_cat, l_cat, -l_cat, l_cat, ierr)
+        call fc_calculate(h, ierr)
+        call fc_get_rebuilds(h, nb, tb, nc, ierr)
+        call check(error, ierr == 0 .and. nb == 3 .and. tb == 3 .and. nc == 7, 'new grid: rebuild')
+        call fc_finalize(h, ierr)
+    end subroutine test_warm_start
+
+    !> fc_set_reuse(h, 0, 0): operators rebuilt at every call, results unchanged.
+    subroutine test_no_reuse(error)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: h, ierr, k, nb, tb, nc
+        real(dp) :: fn, fx(3), fy, mz
+        call cattaneo_handle(h, 30, 25, 1e-10_dp)
+        call fc_set_reuse(h, 0, 0, ierr)
+        call fc_set_shifts(h, case_xi(5), case_eta(5), case_phi(5), ierr)
+        do k = 1, 3
+            call fc_calculate(h, ierr)
+            call fc_get_forces(h, fn, fx(k), fy, mz, ierr)
+        end do
+        call fc_get_rebuilds(h, nb, tb, nc, ierr)
+        call check(error, nb == 3 .and. tb == 3 .and. nc == 3, 'rebuilt at each of 3 calls')
+        call check(error, fx(1) == fx(2) .and. fx(2) == fx(3), 'identical results without reuse')
+        call fc_finalize(h, ierr)
+    end subroutine test_no_reuse
+
+    !> Load–shift–unload–reload with the normal force fixed (transient mode 1, prescribed
+    !! Fx): Q/μFn = 0.25, 0.5, 0.75 (loading), 0.5, 0, −0.5, −0.75 (unloading), −0.25, 0.75
+    !! (reloading) on 48×48.  Per step: Fx to 1e−6 μFn; stick radius to one element diagonal
+    !! against Cattaneo–Mindlin (loading, c = a(1 − Q/μP)^{1/3}) and Mindlin–Deresiewicz
+    !! (unloading from Q*: c' of (Q* − Q)/2); the accumulated shift against the analytic
+    !! δ(Q) = δ_CM(Q), δ* − 2δ_CM((Q* − Q)/2), −δ* + 2δ_CM((Q + Q*)/2) within 4 % of δ*
+    !! (discretisation, 48²; the tangential test reaches 1 % at 120²) and against the same
+    !! superposition of the discrete loading curve (steady solves) within 1 % of δ*; the
+    !! tractions follow the superposition q* − 2q((Q* − Q)/2) to 3 % RMS; the reloaded state
+    !! at Q* equals the first one at Q* to 1 %.
+    subroutine test_hysteresis(error)
+        type(error_type), allocatable, intent(out) :: error
+        integer, parameter :: nx = 48, n = nx*nx, nsteps = 9
+        real(dp), parameter :: qs(nsteps) = [0.25_dp, 0.5_dp, 0.75_dp, 0.5_dp, 0.0_dp, -0.5_dp, -0.75_dp, -0.25_dp, 0.75_dp]
+        integer, parameter :: branch(nsteps) = [0, 0, 0, 1, 1, 1, 1, 2, 2]   ! 0 load, 1 unload, 2 reload
+        real(dp) :: pn(n), px(n), py(n), px_star(n), px_ref(n), px_first(n), pxl(n), pyl(n)
+        real(dp) :: fn, fx, fy, mz, xi, eta, phi, shift, qstar, dx, rstick, c_exp, d_exp, d_disc, d_star, dd_star, a
+        real(dp) :: x(n), y(n), diag
+        integer :: h, hl, ierr, k, st(n), i, j
+        type(fc_cattaneo_solution) :: cm
+        character(len=24) :: label
+        a = 1
+        call cattaneo_handle(h, nx, nx, 1e-9_dp)
+        call fc_set_transient(h, FCL_CONTINUE, ierr)
+        call cattaneo_handle(hl, nx, nx, 1e-9_dp)      ! steady solves of the loading curve
+        dx = 2*l_cat/nx; diag = hypot(dx, dx)
+        do j = 1, nx
+            do i = 1, nx
+                x(i + (j - 1)*nx) = -l_cat + (i - 0.5_dp)*dx
+                y(i + (j - 1)*nx) = -l_cat + (j - 0.5_dp)*dx
+            end do
+        end do
+        qstar = 0.75_dp*mu_cat*fn_cat
+        d_star = cm_shift(qstar)
+        dd_star = disc_shift(qstar)
+        shift = 0
+        do k = 1, nsteps
+            write (label, '(a,i0,a,f5.2)') 'step ', k, ' Q/muFn=', qs(k)
+            call fc_set_forces(h, qs(k)*mu_cat*fn_cat, 0.0_dp, 0.0_dp, ierr)
+            call fc_calculate(h, ierr)
+            call check(error, ierr == 0, trim(label)//': '//last_message(h))
+            if (allocated(error)) exit
+            call fc_get_forces(h, fn, fx, fy, mz, ierr)
+            call fc_get_shifts(h, xi, eta, phi, ierr)
+            call fc_get_tractions(h, n, pn, px, py, ierr)
+            call fc_get_status_array(h, n, st, ierr)
+            shift = shift + xi
+            call check(error, fx, qs(k)*mu_cat*fn_cat, trim(label)//' Fx', abs=1e-6_dp*mu_cat*fn_cat)
+            rstick = maxval(hypot(x, y), mask=st == 1)
+            select case (branch(k))
+            case (0)
+                cm = cattaneo_mindlin(a, 4.3905_dp, fn_cat, mu_cat, abs(qs(k))*mu_cat*fn_cat, g_cat, nu_cat)
+                c_exp = cm%c
+                d_exp = -cm_shift(qs(k)*mu_cat*fn_cat)
+                d_disc = -disc_shift(qs(k)*mu_cat*fn_cat)
+                if (k == 3) px_star = px
+                if (k == 3) px_first = px
+            case (1)   ! unloading from +Q*
+                cm = cattaneo_mindlin(a, 4.3905_dp, fn_cat, mu_cat, (qstar - qs(k)*mu_cat*fn_cat)/2, g_cat, nu_cat)
+                c_exp = cm%c
+                d_exp = -(d_star - 2*cm_shift((qstar - qs(k)*mu_cat*fn_cat)/2))
+                d_disc = disc_shift((qstar - qs(k)*mu_cat*fn_cat)/2)
+                d_disc = -(dd_star - 2*d_disc)
+                px_ref = px_star - 2*pxl
+                if (k == 7) px_star = px
+            case default   ! reloading from −Q*
+                cm = cattaneo_mindlin(a, 4.3905_dp, fn_cat, mu_cat, (qstar + qs(k)*mu_cat*fn_cat)/2, g_cat, nu_cat)
+                c_exp = cm%c
+                d_exp = -(-d_star + 2*cm_shift((qstar + qs(k)*mu_cat*fn_cat)/2))
+                d_disc = disc_shift((qstar + qs(k)*mu_cat*fn_cat)/2)
+                d_disc = -(-dd_star + 2*d_disc)
+                px_ref = px_star + 2*pxl
+            end select
+            call check(error, rstick, c_exp, trim(label)//' stick radius', abs=diag)
+            call check(error, shift, d_exp, trim(label)//' shift vs analytic', abs=0.04_dp*d_star)
+            call check(error, shift, d_disc, trim(label)//' shift vs discrete superposition', abs=0.01_dp*d_star)
+            if (branch(k) > 0) call check(error, rel_diff(px, px_ref) <= 0.03_dp, trim(label)//' tractions q* - 2q')
+        end do
+        call check(error, rel_diff(px, px_first) <= 0.01_dp, 'reloaded state at Q* = first state at Q*')
+        call fc_finalize(h, ierr); call fc_finalize(hl, ierr)
+    contains
+        !> Analytic Mindlin shift magnitude for tangential force q ≥ 0.
+        real(dp) function cm_shift(q)
+            real(dp), intent(in) :: q
+            type(fc_cattaneo_solution) :: sol
+            sol = cattaneo_mindlin(a, 4.3905_dp, fn_cat, mu_cat, abs(q), g_cat, nu_cat)
+            cm_shift = sign(sol%shift, q)
+        end function cm_shift
+        !> Discrete loading curve: steady solve at force q (sets pxl, pyl); shift magnitude.
+        real(dp) function disc_shift(q)
+            real(dp), intent(in) :: q
+            real(dp) :: f1, f2, f3, f4, x1, x2, x3, pp(n)
+            integer :: ie
+            if (q == 0) then
+                disc_shift = 0; pxl = 0; pyl = 0; return
+            end if
+            call fc_set_forces(hl, q, 0.0_dp, 0.0_dp, ie)
+            call fc_calculate(hl, ie)
+            call fc_get_forces(hl, f1, f2, f3, f4, ie)
+            call fc_get_shifts(hl, x1, x2, x3, ie)
+            call fc_get_tractions(hl, n, pp, pxl, pyl, ie)
+            disc_shift = -x1
+        end function disc_shift
+    end subroutine test_hysteresis
+
+    !> Mode 1: a step with zero shift increment after a shifted state keeps that state
+    !! (s = u − u' = 0, p = p'); with the increment the forces follow the steady solve
+    !! of the total shift within 1 % (path dependence of Coulomb friction, see the
+    !! tangential suite).
+    subroutine test_continue_still(error)
+        type(error_type), allocatable, intent(out) :: error
+        integer, parameter :: n = 30*25
+        integer :: h, hs, ierr
+        real(dp) :: pn(n), px1(n), py1(n), px2(n), py2(n), fn, fx, fy, mz, fxs
+        call cattaneo_handle(h, 30, 25, 1e-10_dp)
+        call fc_set_transient(h, FCL_CONTINUE, ierr)
+        call fc_set_shifts(h, -0.003_dp, 0.0_dp, 0.0_dp, ierr)
+        call fc_calculate(h, ierr)
+        call fc_get_tractions(h, n, pn, px1, py1, ierr)
+        call fc_set_shifts(h, 0.0_dp, 0.0_dp, 0.0_dp, ierr)
+        call fc_calculate(h, ierr)
+        call fc_get_tractions(h, n, pn, px2, py2, ierr)
+        call check(error, ierr == 0, 'zero increment: '//last_message(h))
+        call check(error, rel_diff([px2, py2], [px1, py1]) <= 1e-8_dp, 'zero increment keeps the state')
+        call fc_set_shifts(h, -0.003_dp, 0.0_dp, 0.0_dp, ierr)
+        call fc_calculate(h, ierr)
+        call fc_get_forces(h, fn, fx, fy, mz, ierr)
+        call cattaneo_handle(hs, 30, 25, 1e-10_dp)
+        call fc_set_shifts(hs, -0.006_dp, 0.0_dp, 0.0_dp, ierr)
+        call fc_calculate(hs, ierr)
+        call fc_get_forces(hs, fn, fxs, fy, mz, ierr)
+        call check(error, fx, fxs, 'two increments ≈ one total shift', rel=0.01_dp)
+        call fc_finalize(h, ierr); call fc_finalize(hs, ierr)
+    end subroutine test_continue_still
+
+    !> Rolling (mode 2): shift_along_x moves whole elements exactly and interpolates
+    !! fractional ones; dq = 0 equals mode 1; rolling from rest with constant creepage
+    !! (ξ = −0.002·dq per step, dq = 2·dx, 40 steps ≈ 3.4 contact diameters) approaches a
+    !! steady state monotonically (measured: geometric decay, time constant ≈ 0.6 contact
+    !! diameters; last step changes Fx by < 0.1 %), with adhesion at the leading edge (x > 0)
+    !! and slip at the trailing edge, and Fx between 0 and μFn opposing the creepage.
+    subroutine test_rolling(error)
+        type(error_type), allocatable, intent(out) :: error
+        integer, parameter :: n = 30*25
+        real(dp) :: f(4, 2), g(4, 2), fn, fx, fy, mz, fx_old, dx, px(n), py(n), pn(n), xs(n), xa, xsl
+        integer :: h, h1, ierr, k, st(n), i, j
+        real(dp) :: fx1, dfx_old
+        f = reshape([1.0_dp, 2.0_dp, 3.0_dp, 4.0_dp, 5.0_dp, 6.0_dp, 7.0_dp, 8.0_dp], [4, 2])
+        call shift_along_x(f, 1.0_dp, g)
+        call check(error, all(g(:, 1) == [2.0_dp, 3.0_dp, 4.0_dp, 0.0_dp]), 'whole-element shift')
+        call shift_along_x(f, -0.5_dp, g)
+        call check(error, all(g(:, 2) == [2.5_dp, 5.5_dp, 6.5_dp, 7.5_dp]), 'half-element shift backwards')
+        call shift_along_x(f, 0.0_dp, g)
+        call check(error, all(g == f), 'zero shift')
+        ! dq = 0 equals mode 1
+        call cattaneo_handle(h, 30, 25, 1e-10_dp)
+        call cattaneo_handle(h1, 30, 25, 1e-10_dp)
+        call fc_set_transient(h, FCL_ROLLING, ierr)
+        call fc_set_rolling_step(h, 0.0_dp, ierr)
+        call fc_set_transient(h1, FCL_CONTINUE, ierr)
+        do k = 1, 2
+            call fc_set_shifts(h, -0.002_dp, 0.0_dp, 0.0_dp, ierr)
+            call fc_set_shifts(h1, -0.002_dp, 0.0_dp, 0.0_dp, ierr)
+            call fc_calculate(h, ierr)
+            call fc_calculate(h1, ierr)
+        end do
+        call fc_get_forces(h, fn, fx, fy, mz, ierr)
+        call fc_get_forces(h1, fn, fx1, fy, mz, ierr)
+        call check(error, fx, fx1, 'dq = 0 equals mode 1', rel=1e-12_dp)
+        call fc_finalize(h1, ierr)
+        ! steady rolling: dq = 2 dx, creepage ξ/dq = −0.002
+        dx = 2*l_cat/30
+        call fc_finalize(h, ierr)
+        call cattaneo_handle(h, 30, 25, 1e-10_dp)
+        call fc_set_transient(h, FCL_ROLLING, ierr)
+        call fc_set_rolling_step(h, 2*dx, ierr)
+        fx = 0; fx_old = 0
+        do k = 1, 40
+            call fc_set_shifts(h, -0.002_dp*2*dx, 0.0_dp, 0.0_dp, ierr)
+            call fc_calculate(h, ierr)
+            if (ierr /= 0) exit
+            dfx_old = fx - fx_old
+            fx_old = fx
+            call fc_get_forces(h, fn, fx, fy, mz, ierr)
+            call check(error, k < 3 .or. fx - fx_old < dfx_old, 'Fx approaches its steady value monotonically')
+        end do
+        call check(error, ierr == 0, 'rolling steps: '//last_message(h))
+        call check(error, fx, fx_old, 'steady state: last step changes Fx < 0.1 %', rel=1e-3_dp)
+        call check(error, fx > 0 .and. fx < mu_cat*fn_cat, 'Fx opposes the creepage, below mu Fn')
+        call fc_get_status_array(h, n, st, ierr)
+        call fc_get_tractions(h, n, pn, px, py, ierr)
+        do j = 1, 25
+            do i = 1, 30
+                xs(i + (j - 1)*30) = -l_cat + (i - 0.5_dp)*dx
+            end do
+        end do
+        call check(error, count(st == 1) > 0 .and. count(st == 2) > 0, 'adhesion and slip present')
+        xa = sum(xs, mask=st == 1)/max(1, count(st == 1))
+        xsl = sum(xs, mask=st == 2)/max(1, count(st == 2))
+        call check(error, xa > 0 .and. xsl < xa, 'adhesion at the leading edge, slip at the trailing edge')
+        call fc_finalize(h, ierr)
+    end subroutine test_rolling
+
+    !> Invalid handles and wrong call order return error codes with messages; bad values
+    !! name the routine and value; too-small arrays; non-convergence keeps a readable
+    !! result; finalised slots are reused; no handle leaks.
+    subroutine test_errors(error)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: h, h2, h3, ierr, nlive0, nlive, itn, itt
+        real(dp) :: fn, fx, fy, mz, small(10), big(30*25), pn(30*25)
+        character(len=8) :: tiny_buf
+        call fc_get_nhandles(nlive0, ierr)
+        call fc_calculate(0, ierr)
+        call check(error, ierr == FCL_INVALID_HANDLE, 'handle 0 → 1')
+        call check(error, index(last_message(0), 'fc_calculate: invalid handle 0') > 0, 'message: '//last_message(0))
+        call fc_set_friction(12345, 0.3_dp, ierr)
+        call check(error, ierr == FCL_INVALID_HANDLE .and. index(last_message(0), '12345') > 0, 'handle 12345 → 1')
+        call fc_get_forces(-3, fn, fx, fy, mz, ierr)
+        call check(error, ierr == FCL_INVALID_HANDLE, 'negative handle → 1')
+        call fc_init(h, ierr)
+        call check(error, ierr == 0 .and. h >= 1, 'init')
+        call fc_calculate(h, ierr)
+        call check(error, ierr == FCL_ORDER .and. index(last_message(h), 'material') > 0, 'calculate first: '//last_message(h))
+        call fc_set_gap_array(h, 10, small, ierr)
+        call check(error, ierr == FCL_ORDER .and. index(last_message(h), 'fc_set_grid') > 0, 'gap before grid')
+        call fc_get_forces(h, fn, fx, fy, mz, ierr)
+        call check(error, ierr == FCL_ORDER .and. index(last_message(h), 'fc_calculate') > 0, 'get before calculate')
+        call fc_set_material(h, -1.0_dp, 200.0_dp, 0.3_dp, 0.3_dp, ierr)
+        call check(error, ierr == FCL_INVALID_VALUE .and. index(last_message(h), 'g1') > 0, 'g1 < 0: '//last_message(h))
+        call fc_set_material(h, 200.0_dp, 200.0_dp, 0.3_dp, 0.6_dp, ierr)
+        call check(error, ierr == FCL_INVALID_VALUE .and. index(last_message(h), 'nu2') > 0, 'nu2: '//last_message(h))
+        call fc_set_grid(h, 0, 5, -1.0_dp, 1.0_dp, -1.0_dp, 1.0_dp, ierr)
+        call check(error, ierr == FCL_INVALID_VALUE .and. index(last_message(h), 'nx') > 0, 'nx = 0: '//last_message(h))
+        call fc_set_normal_force(h, -2.0_dp, ierr)
+        call check(error, ierr == FCL_INVALID_VALUE .and. index(last_message(h), 'fn = -2') > 0, 'fn < 0: '//last_message(h))
+        call fc_set_friction(h, -0.1_dp, ierr)
+        call check(error, ierr == FCL_INVALID_VALUE .and. index(last_message(h), 'mu') > 0, 'mu < 0')
+        call fc_set_solver(h, 7, 1, 1e-8_dp, 100, 3, 1, ierr)
+        call check(error, ierr == FCL_INVALID_VALUE .and. index(last_message(h), 'normal_solver = 7') > 0, 'solver code')
+        call fc_set_solver(h, 1, 1, 1e-8_dp, 100, 0, 1, ierr)
+        call check(error, ierr == FCL_INVALID_VALUE .and. index(last_message(h), 'inner_k') > 0, 'inner_k = 0')
+        call fc_set_transient(h, 5, ierr)
+        call check(error, ierr == FCL_INVALID_VALUE .and. index(last_message(h), 'mode = 5') > 0, 'transient mode')
+        call fc_set_material(h, g_cat, g_cat, nu_cat, nu_cat, ierr)
+        call fc_set_grid(h, 30, 25, -l_cat, l_cat, -l_cat, l_cat, ierr)
+        call fc_set_gap_array(h, 10, small, ierr)
+        call check(error, ierr == FCL_INVALID_VALUE .and. index(last_message(h), 'n = 10') > 0, 'gap size')
+        call fc_calculate(h, ierr)
+        call check(error, ierr == FCL_ORDER .and. index(last_message(h), 'undeformed') > 0, 'no gap: '//last_message(h))
+        call fc_set_gap_quadratic(h, r_cat, r_cat, ierr)
+        call fc_calculate(h, ierr)
+        call check(error, ierr == FCL_ORDER .and. index(last_message(h), 'normal') > 0, 'no normal loading')
+        call fc_set_normal_force(h, fn_cat, ierr)
+        call fc_set_shifts(h, 0.001_dp, 0.0_dp, 0.0_dp, ierr)
+        call fc_calculate(h, ierr)
+        call check(error, ierr == FCL_ORDER .and. index(last_message(h), 'friction') > 0, 'no friction')
+        call fc_set_friction(h, mu_cat, ierr)
+        call fc_set_forces(h, 1.2_dp*mu_cat*fn_cat, 0.0_dp, 0.0_dp, ierr)
+        call fc_calculate(h, ierr)
+        call check(error, ierr == FCL_INVALID_VALUE .and. index(last_message(h), 'mu*fn') > 0, '|F| > mu Fn: '// &
+            last_message(h))
+        call fc_set_normal_approach(h, -1.0_dp, ierr)
+        call fc_calculate(h, ierr)
+        call check(error, ierr == FCL_INVALID_VALUE .and. index(last_message(h), 'no contact') > 0, 'no contact')
+        ! not converged: readable result, error code 4
+        call fc_set_normal_force(h, fn_cat, ierr)
+        call fc_set_shifts(h, case_xi(5), case_eta(5), case_phi(5), ierr)
+        call fc_set_solver(h, 1, 1, 1e-12_dp, 2, 3, 1, ierr)
+        call fc_calculate(h, ierr)
+        call check(error, ierr == FCL_NOT_CONVERGED .and. index(last_message(h), 'not converged') > 0, &
+            'maxit = 2 → 4: '//last_message(h))
+        call fc_get_iterations(h, itn, itt, ierr)
+        call check(error, ierr == 0 .and. itn > 0, 'result readable after non-convergence')
+        call fc_set_solver(h, 1, 1, 1e-8_dp, 1000, 3, 1, ierr)
+        call fc_calculate(h, ierr)
+        call check(error, ierr == 0, 'recovers: '//last_message(h))
+        call fc_get_tractions(h, 10, small, small, small, ierr)
+        call check(error, ierr == FCL_ARRAY_SIZE .and. index(last_message(h), 'n = 10') > 0, 'small array → 6')
+        call fc_get_tractions(h, 30*25, pn, big, big, ierr)
+        call check(error, ierr == 0, 'right-size array')
+        call fc_get_error_message(h, tiny_buf, len(tiny_buf), ierr)
+        call check(error, tiny_buf(8:8) == c_null_char, 'message truncated and NUL-terminated')
+        ! finalise, stale handle, slot reuse
+        h3 = h
+        call fc_finalize(h, ierr)
+        call fc_calculate(h3, ierr)
+        call check(error, ierr == FCL_INVALID_HANDLE, 'finalised handle → 1')
+        call fc_finalize(h3, ierr)
+        call check(error, ierr == FCL_INVALID_HANDLE, 'double finalize → 1')
+        call fc_init(h2, ierr)
+        call check(error, h2 == h3, 'slot reused after finalize')
+        call fc_finalize(h2, ierr)
+        call fc_get_nhandles(nlive, ierr)
+        call check(error, nlive == nlive0, 'no handle leaked')
+    end subroutine test_errors
+
+end module test_legacy
