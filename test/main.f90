@@ -9,6 +9,7 @@ program tester
     use test_driver, only: collect_driver
     use test_fmg, only: collect_fmg
     use test_mg2d, only: collect_mg2d
+    use test_stability, only: collect_stability
     use test_legacy, only: collect_legacy
     implicit none
     character(len=64) :: suite, only
@@ -41,6 +42,9 @@ program tester
     end if
     if (want('legacy')) then
         call collect_legacy(tests); call run_suite('legacy', tests, only, npass, nfail)
+    end if
+    if (want('stability')) then
+        call collect_stability(tests); call run_suite('stability', tests, only, npass, nfail)
     end if
     write (*, '(i0,a,i0,a)') npass, ' passed, ', nfail, ' failed'
     if (nfail > 0 .or. npass == 0) stop 1   ! non-zero exit status (no backtrace, unlike error stop)
