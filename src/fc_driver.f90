@@ -26,6 +26,7 @@ module fc_driver
     use fc_input, only: fc_case_chunk, fc_case_input, read_case_file, apply_case, validate_case, setup_case, fmt_real, &
         is_tangential, tangential_loading
     use fc_output, only: fc_case_summary, write_case_json, write_case_csv, write_case_report
+    use fc_auto, only: fc_auto_outcome, solve_case_auto
     implicit none
     private
 
@@ -155,6 +156,7 @@ contains
             integer :: j, rounds, final_status
             real(dp) :: ca, cb
             logical :: tang
+            type(fc_auto_outcome) :: auto
             call system_clock(t0, rate)
             case_status = 1
             nused_before = size(used)
@@ -177,10 +179,6 @@ contains
             if (stat /= 0) then
                 call case_error(); return
             end if
-            call setup_case(state, mat, grid, h0, stat, errmsg)
-            if (stat /= 0) then
-                call case_error(); return
-            end if
             if (index(dir, "'") > 0) then
                 errmsg = "&output dir = '"//dir//"': quotes are not allowed in the directory name"
                 call case_error(clean=.false.); return
@@ -190,51 +188,63 @@ contains
                 errmsg = "&output dir = '"//dir//"': cannot create the directory"
                 call case_error(clean=.false.); return
             end if
-            ! ---- solve (reuse the operators when grid and material are unchanged)
-            tang = is_tangential(state)
+            ! ---- solve: model choice, potential area, accuracy target (fc_auto); operators reused
             call system_clock(t1)
-            s%setup_seconds = 0; s%setup_seconds_tangential = 0
-            if (needs_rebuild(nop, mat, grid)) then
-                call build_normal_operator(nop, mat, grid)
-                s%setup_seconds = nop%setup_seconds
-            end if
-            rounds = 0
-            if (tang) then
-                if (needs_rebuild_tangential(top, mat, grid)) then
-                    call build_tangential_operator(top, mat, grid)
-                    s%setup_seconds_tangential = top%setup_seconds
-                end if
-                if (state%force_prescribed) then
-                    call solve_normal_tangential(nop, top, h0, state%settings, state%tsettings, tangential_loading(state), &
-                        res, tres, stat, errmsg, fn=state%fn, rounds=rounds)
-                else
-                    call solve_normal_tangential(nop, top, h0, state%settings, state%tsettings, tangential_loading(state), &
-                        res, tres, stat, errmsg, approach=state%approach, rounds=rounds)
-                end if
-                if (stat /= 0) call library_message(errmsg, state)
-            else if (state%force_prescribed) then
-                call solve_normal(nop, h0, state%settings, res, stat, errmsg, fn=state%fn)
-            else
-                call solve_normal(nop, h0, state%settings, res, stat, errmsg, approach=state%approach)
-            end if
+            call solve_case_auto(state, nop, top, auto, stat, errmsg)
             call system_clock(t2)
             if (stat /= 0) then
+                call library_message(errmsg, state)
                 call case_error(); return
             end if
+            tang = auto%tangential
+            mat = auto%material
             ! ---- summary
             s%name = state%name; s%title = state%title; s%problem = state%problem; s%geometry = state%kind
+            s%material = mat; s%force_prescribed = state%force_prescribed
+            s%tol = state%settings%tol
+            s%notes = state%notes
+            s%model = auto%model; s%reductions = auto%reductions; s%warnings = auto%warnings
+            s%grid_auto = auto%grid_auto; s%enlargements = auto%enlargements
+            s%touches_boundary = auto%touches_boundary
+            s%target = auto%target; s%estimate = auto%estimate; s%reliable = auto%reliable
+            s%target_met = auto%target_met; s%quantities = auto%quantities; s%levels = auto%levels
+            s%levels_seconds = auto%total_seconds
+            if (auto%analytic) then
+                call analytic_summary(s, auto, state)
+                final_status = FC_CONVERGED
+                call remove_file(dir//'/'//trim(state%name)//'.csv')
+                call system_clock(t2)
+                s%cpu_seconds = real(t2 - t0, dp)/rate
+                call write_case_json(dir//'/'//trim(state%name)//'.json', s, stat, errmsg)
+                if (stat /= 0) then
+                    call case_error(); return
+                end if
+                call write_case_report(rep, s, reshape([0.0_dp], [0, 0]))
+                case_status = 0
+                return
+            end if
+            grid = auto%grid
+            call move_alloc(auto%h0, h0)
+            call move_alloc(auto%res%pn, res%pn); call move_alloc(auto%res%gap, res%gap)
+            res%approach = auto%res%approach; res%fn = auto%res%fn; res%pmax = auto%res%pmax
+            res%ncon = auto%res%ncon; res%status = auto%res%status; res%iterations = auto%res%iterations
+            res%outer_iterations = auto%res%outer_iterations; res%matvecs = auto%res%matvecs
+            res%residual = auto%res%residual; res%cpu_seconds = auto%res%cpu_seconds; res%message = auto%res%message
+            if (tang) tres = auto%tres
+            rounds = auto%rounds
+            s%setup_seconds = auto%setup_seconds; s%setup_seconds_tangential = auto%setup_seconds_tangential
+            s%grid = grid
             s%status = status_name(res%status); s%message = res%message
             s%solver = state%settings%solver; s%solver_normal = state%settings%solver
             s%status_normal = status_name(res%status)
-            s%material = mat; s%grid = grid; s%force_prescribed = state%force_prescribed
             s%fn = res%fn; s%approach = res%approach; s%pmax = res%pmax
             s%ncon = res%ncon; s%nadh = res%ncon; s%nslip = 0
             s%iterations = res%iterations; s%outer_iterations = res%outer_iterations; s%matvecs = res%matvecs
             s%iterations_normal = res%iterations; s%outer_iterations_normal = res%outer_iterations
             s%matvecs_normal = res%matvecs; s%residual_normal = res%residual
-            s%residual = res%residual; s%tol = state%settings%tol
-            s%cpu_seconds_normal = real(t2 - t1, dp)/rate
-            s%notes = state%notes
+            s%residual = res%residual
+            s%cpu_seconds_normal = s%setup_seconds + res%cpu_seconds
+            if (size(auto%levels) > 1) s%cpu_seconds_normal = real(t2 - t1, dp)/rate
             final_status = res%status
             if (tang) call tangential_summary(s, state, res, tres, grid, rounds, final_status)
             if (mat%k /= 0 .and. .not. tang) s%notes = s%notes//'K = '//fmt_real(mat%k)// &
@@ -313,6 +323,28 @@ contains
             end if
         end function output_dir
     end subroutine run_driver
+
+    !> Summary of an analytic (problem = 'hertz') case: no grid, Hertz values as results.
+    subroutine analytic_summary(s, auto, state)
+        type(fc_case_summary), intent(inout) :: s
+        type(fc_auto_outcome), intent(in) :: auto
+        type(fc_case_input), intent(in) :: state
+        s%analytic = .true.
+        s%status = 'converged'; s%message = 'analytic Hertz solution'
+        s%solver = 'hertz'; s%solver_normal = 'hertz'; s%status_normal = 'converged'
+        s%has_hertz = .true.; s%hertz = auto%hertz
+        s%fn = auto%hertz%fn; s%approach = auto%hertz%approach; s%pmax = auto%hertz%p0
+        s%residual = 0
+        s%has_cattaneo = auto%has_cattaneo
+        if (auto%has_cattaneo) then
+            s%cattaneo = auto%cattaneo
+            s%fx = auto%fx; s%fy = auto%fy
+            s%mu = state%mu
+            ! the shift opposes the force (tractions act on body 1 and oppose its slip)
+            s%xi = -auto%cattaneo%shift*auto%fx/max(hypot(auto%fx, auto%fy), tiny(1.0_dp))
+            s%eta = -auto%cattaneo%shift*auto%fy/max(hypot(auto%fx, auto%fy), tiny(1.0_dp))
+        end if
+    end subroutine analytic_summary
 
     !> Whether the operator must be (re)built for this material and grid.
     logical function needs_rebuild(nop, mat, grid)

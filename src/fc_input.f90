@@ -89,6 +89,9 @@ module fc_input
         ! &grid
         integer :: nx = 0, ny = 0                  !! elements per direction
         real(dp) :: xmin = 0, xmax = 0, ymin = 0, ymax = 0  !! outer edges [mm]
+        logical :: grid_auto = .false.             !! &grid auto as given (see [[grid_is_auto]])
+        real(dp) :: margin = 0.25_dp               !! auto grid: margin around the Hertz estimate (fraction)
+        integer :: n_across = 0                    !! auto grid: elements across the contact (0: 32, or 8 with a target)
         ! &geometry
         character(len=16) :: kind = ''             !! quadratic, punch_rough, wavy, strip2d, table
         real(dp) :: rx = 0, ry = 0                 !! radii of the quadratic profile [mm]
@@ -97,6 +100,7 @@ module fc_input
         real(dp) :: amplitude = 0                  !! wavy amplitude [mm]
         real(dp) :: wavelength_x = 0, wavelength_y = 0  !! wavy wavelengths [mm] (0: flat)
         character(len=path_len) :: file = ''       !! table file of h0
+        real(dp) :: length = 0                     !! cylinder length along y [mm]
         ! &normal
         logical :: force_prescribed = .false.      !! fn given (else approach)
         real(dp) :: approach = 0                   !! prescribed approach δ [mm]
@@ -116,6 +120,10 @@ module fc_input
         logical :: precondition_tangential = .true.  !! TangCG diagonal preconditioner
         character(len=16) :: cycle = 'V(1,1)'      !! not used yet
         real(dp) :: omega = 0.8_dp, beta = 0.003_dp  !! not used yet
+        real(dp) :: target = 0                     !! accuracy target (relative error of the forces; 0: off)
+        logical :: target_pmax = .false.           !! the target also applies to pmax
+        integer :: max_levels = 5                  !! most grids visited by the accuracy target
+        character(len=16) :: model = 'auto'        !! 'auto': apply model reductions; 'full': never
         ! &output
         character(len=path_len) :: dir = 'out'     !! output directory
         logical :: table = .true.                  !! write the CSV table
@@ -127,7 +135,7 @@ module fc_input
     character(len=*), parameter :: known_groups = 'case material grid geometry normal tangential solver output'
 
     public :: read_case_file, split_cases, apply_case, validate_case, setup_case, is_given, fmt_real
-    public :: is_tangential, tangential_loading
+    public :: is_tangential, tangential_loading, namelist_keys, grid_is_auto, is_line_contact
 
 contains
 
@@ -504,7 +512,7 @@ contains
                 end if
             end associate
         end do
-        if (tangential_group .and. .not. is_tangential(s)) &
+        if (tangential_group .and. .not. is_tangential(s) .and. s%problem /= 'hertz') &
             s%notes = s%notes//"&tangential ignored for problem = 'normal'. "
         if (len_trim(s%name) == 0) s%name = name
         name = s%name
@@ -634,13 +642,16 @@ contains
         type(fc_case_input), intent(inout) :: s
         integer, intent(out) :: ios
         character(len=*), intent(out) :: iomsg
-        integer :: nx, ny
-        real(dp) :: xmin, xmax, ymin, ymax
-        namelist /grid/ nx, ny, xmin, xmax, ymin, ymax
+        integer :: nx, ny, n_across
+        real(dp) :: xmin, xmax, ymin, ymax, margin
+        logical :: auto
+        namelist /grid/ nx, ny, xmin, xmax, ymin, ymax, auto, margin, n_across
         nx = s%nx; ny = s%ny; xmin = s%xmin; xmax = s%xmax; ymin = s%ymin; ymax = s%ymax
+        auto = s%grid_auto; margin = s%margin; n_across = s%n_across
         read (text, nml=grid, iostat=ios, iomsg=iomsg)
         if (ios /= 0) return
         s%nx = nx; s%ny = ny; s%xmin = xmin; s%xmax = xmax; s%ymin = ymin; s%ymax = ymax
+        s%grid_auto = auto; s%margin = margin; s%n_across = n_across
     end subroutine read_grid_group
 
     subroutine read_geometry_group(text, s, ios, iomsg)
@@ -649,21 +660,21 @@ contains
         integer, intent(out) :: ios
         character(len=*), intent(out) :: iomsg
         character(len=16) :: kind
-        real(dp) :: rx, ry, diameter, sigma, gamma, amplitude, wavelength_x, wavelength_y
+        real(dp) :: rx, ry, diameter, sigma, gamma, amplitude, wavelength_x, wavelength_y, length
         integer :: m_modes, n_modes, seed
         character(len=path_len) :: file
         namelist /geometry/ kind, rx, ry, diameter, sigma, gamma, m_modes, n_modes, seed, amplitude, &
-            wavelength_x, wavelength_y, file
+            wavelength_x, wavelength_y, file, length
         kind = s%kind; rx = s%rx; ry = s%ry; diameter = s%diameter
         sigma = s%rough%sigma; gamma = s%rough%gamma; m_modes = s%rough%m_modes; n_modes = s%rough%n_modes
         seed = s%rough%seed; amplitude = s%amplitude; wavelength_x = s%wavelength_x; wavelength_y = s%wavelength_y
-        file = s%file
+        file = s%file; length = s%length
         read (text, nml=geometry, iostat=ios, iomsg=iomsg)
         if (ios /= 0) return
         s%kind = lower(kind); s%rx = rx; s%ry = ry; s%diameter = diameter
         s%rough%sigma = sigma; s%rough%gamma = gamma; s%rough%m_modes = m_modes; s%rough%n_modes = n_modes
         s%rough%seed = seed; s%amplitude = amplitude; s%wavelength_x = wavelength_x; s%wavelength_y = wavelength_y
-        s%file = file
+        s%file = file; s%length = length
     end subroutine read_geometry_group
 
     subroutine read_normal_group(text, s, ios, iomsg)
@@ -700,21 +711,24 @@ contains
         character(len=32) :: normal
         character(len=32) :: tangential
         character(len=16) :: cycle
-        real(dp) :: tol, omega, beta
-        integer :: maxit, inner_maxit, inner_k
-        logical :: precondition, precondition_tangential, deflation
+        real(dp) :: tol, omega, beta, target
+        integer :: maxit, inner_maxit, inner_k, max_levels
+        logical :: precondition, precondition_tangential, deflation, target_pmax
+        character(len=16) :: model
         namelist /solver/ normal, tangential, tol, maxit, inner_maxit, precondition, precondition_tangential, &
-            deflation, inner_k, cycle, omega, beta
+            deflation, inner_k, cycle, omega, beta, target, target_pmax, max_levels, model
         normal = s%normal_solver; tangential = s%tangential; tol = s%settings%tol; maxit = s%settings%maxit
         inner_maxit = s%settings%inner_maxit; precondition = s%settings%precondition
         precondition_tangential = s%precondition_tangential
         deflation = s%settings%deflation; inner_k = s%inner_k; cycle = s%cycle; omega = s%omega; beta = s%beta
+        target = s%target; target_pmax = s%target_pmax; max_levels = s%max_levels; model = s%model
         read (text, nml=solver, iostat=ios, iomsg=iomsg)
         if (ios /= 0) return
         s%normal_solver = lower(normal); s%tangential = lower(tangential); s%settings%tol = tol
         s%settings%maxit = maxit; s%settings%inner_maxit = inner_maxit; s%settings%precondition = precondition
         s%precondition_tangential = precondition_tangential
         s%settings%deflation = deflation; s%inner_k = inner_k; s%cycle = cycle; s%omega = omega; s%beta = beta
+        s%target = target; s%target_pmax = target_pmax; s%max_levels = max_levels; s%model = lower(model)
     end subroutine read_solver_group
 
     subroutine read_output_group(text, s, ios, iomsg)
@@ -738,18 +752,74 @@ contains
         select case (group)
         case ('case');       keys = 'name title problem'
         case ('material');   keys = 'g1 g2 nu1 nu2 ic_file'
-        case ('grid');       keys = 'nx ny xmin xmax ymin ymax'
+        case ('grid');       keys = 'nx ny xmin xmax ymin ymax auto margin n_across'
         case ('geometry')
-            keys = 'kind rx ry diameter sigma gamma m_modes n_modes seed amplitude wavelength_x wavelength_y file'
+            keys = 'kind rx ry diameter sigma gamma m_modes n_modes seed amplitude wavelength_x wavelength_y file length'
         case ('normal');     keys = 'approach fn'
         case ('tangential'); keys = 'mu xi eta phi fx fy'
         case ('solver')
             keys = 'normal tangential tol maxit inner_maxit inner_k precondition precondition_tangential deflation '// &
-                'cycle omega beta'
+                'cycle omega beta target target_pmax max_levels model'
         case ('output');     keys = 'dir table'
         case default;        keys = ''
         end select
     end function keys_of
+
+    !> Every key the reader accepts, as 'group key' (lower case), group by group in the
+    !! order of `known_groups`: the list the user guide's key tables are checked against.
+    function namelist_keys() result(list)
+        character(len=2*key_len + 1), allocatable :: list(:)
+        character(len=:), allocatable :: groups, keys
+        character(len=key_len) :: group, key
+        integer :: p, q
+        allocate (list(0))
+        groups = known_groups//' '
+        do while (len_trim(groups) > 0)
+            groups = adjustl(groups)
+            p = index(groups, ' ')
+            group = groups(1:p - 1)
+            groups = groups(p + 1:)
+            keys = keys_of(trim(group))//' '
+            do while (len_trim(keys) > 0)
+                keys = adjustl(keys)
+                q = index(keys, ' ')
+                key = keys(1:q - 1)
+                keys = keys(q + 1:)
+                list = [character(len=2*key_len + 1) :: list, trim(group)//' '//trim(key)]
+            end do
+        end do
+    end function namelist_keys
+
+    !> Whether the potential contact area is sized automatically: `&grid auto` as given,
+    !! else automatic when no `&grid` key fixing the area (nx, ny, xmin … ymax) was given.
+    logical function grid_is_auto(s)
+        type(fc_case_input), intent(in) :: s
+        integer :: k
+        character(len=4), parameter :: keys(6) = ['nx  ', 'ny  ', 'xmin', 'xmax', 'ymin', 'ymax']
+        if (is_given(s, 'grid', 'auto')) then
+            grid_is_auto = s%grid_auto
+            return
+        end if
+        grid_is_auto = .true.
+        do k = 1, 6
+            if (is_given(s, 'grid', trim(keys(k)))) grid_is_auto = .false.
+        end do
+        if (s%kind == 'cylinder' .and. .not. is_given(s, 'grid', 'nx')) grid_is_auto = .true.
+    end function grid_is_auto
+
+    !> Whether the scene is a line contact: kind 'cylinder' or 'strip2d', or a quadratic
+    !! profile that is flat in y (ry = 0) or whose radii differ by a factor ≥ 1e3.
+    pure logical function is_line_contact(s)
+        type(fc_case_input), intent(in) :: s
+        is_line_contact = .false.
+        select case (s%kind)
+        case ('cylinder', 'strip2d')
+            is_line_contact = .true.
+        case ('quadratic')
+            if (s%rx > 0 .and. s%ry == 0) is_line_contact = .true.
+            if (s%rx > 0 .and. s%ry > 0) is_line_contact = s%ry >= 1.0e3_dp*s%rx
+        end select
+    end function is_line_contact
 
     logical function known_key(group, key)
         character(len=*), intent(in) :: group, key
@@ -810,10 +880,10 @@ contains
             return
         end if
         select case (s%problem)
-        case ('normal', 'tangential', 'normal+tangential')
+        case ('normal', 'tangential', 'normal+tangential', 'hertz')
         case default
-            errmsg = "&case problem = '"//trim(s%problem)//"': unknown problem; use 'normal', 'normal+tangential' "// &
-                "or 'tangential'"
+            errmsg = "&case problem = '"//trim(s%problem)//"': unknown problem; use 'normal', 'normal+tangential', "// &
+                "'tangential' or 'hertz'"
             return
         end select
         ! &material
@@ -843,49 +913,106 @@ contains
         end if
         ! &geometry kind first: strip2d decides ny
         if (.not. is_given(s, 'geometry', 'kind')) then
-            errmsg = "&geometry kind: missing required value ('quadratic', 'punch_rough', 'wavy', 'strip2d', 'table')"
+            errmsg = "&geometry kind: missing required value ('quadratic', 'cylinder', 'punch_rough', 'wavy', "// &
+                "'strip2d', 'table')"
             return
         end if
         select case (s%kind)
-        case ('quadratic', 'punch_rough', 'wavy', 'strip2d', 'table')
+        case ('quadratic', 'cylinder', 'punch_rough', 'wavy', 'strip2d', 'table')
         case default
-            errmsg = "&geometry kind = '"//trim(s%kind)//"': unknown; use 'quadratic', 'punch_rough', 'wavy', "// &
-                "'strip2d' or 'table'"
+            errmsg = "&geometry kind = '"//trim(s%kind)//"': unknown; use 'quadratic', 'cylinder', 'punch_rough', "// &
+                "'wavy', 'strip2d' or 'table'"
             return
         end select
+        if (s%problem == 'hertz') then
+            if (s%kind /= 'quadratic' .or. .not. (s%rx > 0 .and. s%ry > 0)) then
+                errmsg = "&case problem = 'hertz': needs &geometry kind = 'quadratic' with rx > 0 and ry > 0 (got kind = '"// &
+                    trim(s%kind)//"', rx = "//fmt_real(s%rx)//', ry = '//fmt_real(s%ry)//')'
+                return
+            end if
+        end if
+        if (s%kind == 'cylinder') then
+            if (.not. (s%length > 0)) then
+                errmsg = '&geometry length = '//fmt_real(s%length)//": must be > 0 for kind = 'cylinder' "// &
+                    '(cylinder length along y [mm])'
+                return
+            end if
+            ! the cylinder spans the potential area in y
+            s%ymin = -0.5_dp*s%length; s%ymax = 0.5_dp*s%length
+            if (.not. is_given(s, 'grid', 'ny')) s%ny = 1
+        end if
+        ! &grid auto / accuracy-target keys
+        if (.not. (s%margin >= 0 .and. s%margin <= 10)) then
+            errmsg = '&grid margin = '//fmt_real(s%margin)//': must lie in [0, 10] (fraction added around the '// &
+                'Hertz estimate)'
+            return
+        end if
+        if (s%n_across < 0 .or. s%n_across > 4096) then
+            errmsg = '&grid n_across = '//fmt_int(s%n_across)//': must lie in [0, 4096] (0: default)'; return
+        end if
+        if (.not. (s%target >= 0 .and. s%target < 1)) then
+            errmsg = '&solver target = '//fmt_real(s%target)//': must lie in [0, 1) (relative error; 0: off)'; return
+        end if
+        if (s%max_levels < 2 .or. s%max_levels > 12) then
+            errmsg = '&solver max_levels = '//fmt_int(s%max_levels)//': must lie in [2, 12]'; return
+        end if
+        select case (s%model)
+        case ('auto', 'full')
+        case default
+            errmsg = "&solver model = '"//trim(s%model)//"': use 'auto' (reduce the model where possible) or 'full'"
+            return
+        end select
+        if (grid_is_auto(s) .or. s%problem == 'hertz') then
+            if (.not. any(s%kind == [character(len=16) :: 'quadratic', 'cylinder', 'strip2d']) .and. &
+                s%problem /= 'hertz') then
+                errmsg = "&grid auto = .true.: the automatic potential contact area needs a Hertzian geometry "// &
+                    "(kind = 'quadratic', 'cylinder' or 'strip2d'); give nx, ny, xmin, xmax, ymin, ymax for kind = '"// &
+                    trim(s%kind)//"'"
+                return
+            end if
+            ! placeholders, replaced by the automatic sizing before the solve
+            if (s%kind == 'strip2d' .and. .not. is_given(s, 'grid', 'ymin')) then
+                s%ymin = -50; s%ymax = 50
+            end if
+        end if
         ! &grid
-        if (s%kind == 'strip2d') then
+        if (grid_is_auto(s) .or. s%problem == 'hertz') then
+            ! skip the fixed-grid checks: sized automatically (or no grid at all)
+        else if (s%kind == 'strip2d') then
             if (.not. is_given(s, 'grid', 'ny')) s%ny = 1
             if (s%ny /= 1) then
                 errmsg = '&grid ny = '//fmt_int(s%ny)//": must be 1 for &geometry kind = 'strip2d'"; return
             end if
         end if
-        do i = 1, 6
-            associate (key => grid_keys(i))
-                if (.not. is_given(s, 'grid', trim(key)) .and. .not. (key == 'ny' .and. s%kind == 'strip2d')) then
-                    errmsg = '&grid '//trim(key)//': missing required value'; return
-                end if
-            end associate
-        end do
-        if (s%nx < 1) then
-            errmsg = '&grid nx = '//fmt_int(s%nx)//': must be >= 1'; return
-        end if
-        if (s%ny < 1) then
-            errmsg = '&grid ny = '//fmt_int(s%ny)//': must be >= 1'; return
-        end if
-        if (.not. (s%xmax > s%xmin)) then
-            errmsg = '&grid xmax = '//fmt_real(s%xmax)//': must be > xmin = '//fmt_real(s%xmin)//' (empty grid)'; return
-        end if
-        if (.not. (s%ymax > s%ymin)) then
-            errmsg = '&grid ymax = '//fmt_real(s%ymax)//': must be > ymin = '//fmt_real(s%ymin)//' (empty grid)'; return
-        end if
-        if (int(s%nx, i8)*int(s%ny, i8) > max_grid_elements) then
-            errmsg = '&grid nx = '//fmt_int(s%nx)//', ny = '//fmt_int(s%ny)//': oversized grid (nx*ny > 4096*4096)'
-            return
+        if (.not. (grid_is_auto(s) .or. s%problem == 'hertz')) then
+            do i = 1, 6
+                associate (key => grid_keys(i))
+                    if (.not. is_given(s, 'grid', trim(key)) .and. .not. (key == 'ny' .and. s%kind == 'strip2d') &
+                        .and. .not. (s%kind == 'cylinder' .and. key /= 'nx' .and. key /= 'xmin' .and. key /= 'xmax')) then
+                        errmsg = '&grid '//trim(key)//': missing required value'; return
+                    end if
+                end associate
+            end do
+            if (s%nx < 1) then
+                errmsg = '&grid nx = '//fmt_int(s%nx)//': must be >= 1'; return
+            end if
+            if (s%ny < 1) then
+                errmsg = '&grid ny = '//fmt_int(s%ny)//': must be >= 1'; return
+            end if
+            if (.not. (s%xmax > s%xmin)) then
+                errmsg = '&grid xmax = '//fmt_real(s%xmax)//': must be > xmin = '//fmt_real(s%xmin)//' (empty grid)'; return
+            end if
+            if (.not. (s%ymax > s%ymin)) then
+                errmsg = '&grid ymax = '//fmt_real(s%ymax)//': must be > ymin = '//fmt_real(s%ymin)//' (empty grid)'; return
+            end if
+            if (int(s%nx, i8)*int(s%ny, i8) > max_grid_elements) then
+                errmsg = '&grid nx = '//fmt_int(s%nx)//', ny = '//fmt_int(s%ny)//': oversized grid (nx*ny > 4096*4096)'
+                return
+            end if
         end if
         ! &geometry parameters
         select case (s%kind)
-        case ('quadratic', 'strip2d')
+        case ('quadratic', 'strip2d', 'cylinder')
             if (.not. is_given(s, 'geometry', 'rx')) then
                 errmsg = "&geometry rx: missing required value for kind = '"//trim(s%kind)//"'"; return
             end if
@@ -1051,7 +1178,7 @@ contains
         select case (s%kind)
         case ('quadratic')
             h0 = quadratic_gap(grid, s%rx, s%ry)
-        case ('strip2d')
+        case ('strip2d', 'cylinder')
             h0 = quadratic_gap(grid, s%rx, 0.0_dp)
         case ('punch_rough')
             call punch_rough_gap(grid, s%diameter, s%rough, h0)

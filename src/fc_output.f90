@@ -6,7 +6,8 @@ module fc_output
     use fc_kinds, only: dp, msg_len
     use fc_geometry, only: fc_grid
     use fc_influence, only: fc_material
-    use fc_hertz, only: fc_hertz_solution
+    use fc_hertz, only: fc_hertz_solution, fc_cattaneo_solution
+    use fc_auto, only: fc_level
     implicit none
     private
 
@@ -54,6 +55,23 @@ module fc_output
         type(fc_hertz_solution) :: hertz             !! analytic Hertz solution
         character(len=msg_len) :: message = ''       !! solver message
         character(len=:), allocatable :: notes       !! remarks (ignored keys)
+        ! ---- automatic layer (issue 7)
+        character(len=32) :: model = 'full'          !! 'full', 'strip2d', 'hertz_analytic'
+        character(len=256), allocatable :: reductions(:)  !! model reductions and automatic decisions
+        character(len=512), allocatable :: warnings(:)    !! warnings (clipped contact, target not met, ...)
+        logical :: grid_auto = .false.               !! potential area sized automatically
+        integer :: enlargements = 0                  !! automatic enlargements of the area
+        logical :: touches_boundary = .false.        !! contact reaches the edge of the area
+        real(dp) :: target = 0                       !! accuracy target (0: none)
+        real(dp) :: estimate = -1                    !! estimated relative error of the final grid
+        logical :: reliable = .true.                 !! monotone convergence
+        logical :: target_met = .false.              !! estimate ≤ target
+        character(len=64) :: quantities = ''         !! quantities covered by the estimate
+        type(fc_level), allocatable :: levels(:)     !! grids visited
+        real(dp) :: levels_seconds = 0               !! all grids incl. set-up [s]
+        logical :: analytic = .false.                !! analytic answer, no grid
+        logical :: has_cattaneo = .false.            !! analytic Cattaneo–Mindlin present
+        type(fc_cattaneo_solution) :: cattaneo       !! analytic Cattaneo–Mindlin
     end type fc_case_summary
 
     integer, parameter, public :: map_max_cols = 100  !! widest contact map
@@ -137,6 +155,23 @@ contains
         call kv_real('ymax', s%grid%ymax)
         call kv_real('g', s%material%g)
         call kv_real('nu', s%material%nu)
+        call kv_str('model', s%model)
+        call kv_list('reductions', s%reductions)
+        call kv_list('warnings', s%warnings)
+        write (u, '(a)') '  "grid_auto": '//trim(merge('true ', 'false', s%grid_auto))//','
+        call kv_int('enlargements', s%enlargements)
+        write (u, '(a)') '  "touches_boundary": '//trim(merge('true ', 'false', s%touches_boundary))//','
+        if (s%target > 0) then
+            write (u, '(a)') '  "accuracy": {"target": '//json_real(s%target)//', "estimate": '//json_real(s%estimate)// &
+                ', "target_met": '//trim(merge('true ', 'false', s%target_met))//', "reliable": '// &
+                trim(merge('true ', 'false', s%reliable))//', "quantities": '//json_string(trim(s%quantities))// &
+                ', "seconds": '//json_real(s%levels_seconds)//'},'
+        end if
+        if (allocated(s%levels)) call kv_levels()
+        if (s%has_cattaneo) then
+            write (u, '(a)') '  "cattaneo": {"a": '//json_real(s%cattaneo%a)//', "c": '//json_real(s%cattaneo%c)// &
+                ', "shift": '//json_real(s%cattaneo%shift)//', "mu": '//json_real(s%cattaneo%mu)//'},'
+        end if
         call kv_real('k', s%material%k, last=.not. s%has_hertz)
         if (s%has_hertz) then
             write (u, '(a)') '  "hertz": {"a": '//json_real(s%hertz%a)//', "b": '//json_real(s%hertz%b)// &
@@ -169,6 +204,37 @@ contains
             write (buf, '(i0)') val
             write (u, '(a)') '  "'//key//'": '//trim(buf)//','
         end subroutine kv_int
+        subroutine kv_list(key, list)
+            character(len=*), intent(in) :: key
+            character(len=*), allocatable, intent(in) :: list(:)
+            character(len=:), allocatable :: line
+            integer :: k
+            line = '  "'//key//'": ['
+            if (allocated(list)) then
+                do k = 1, size(list)
+                    if (k > 1) line = line//', '
+                    line = line//json_string(trim(list(k)))
+                end do
+            end if
+            write (u, '(a)') line//'],'
+        end subroutine kv_list
+        subroutine kv_levels()
+            integer :: k
+            character(len=40) :: buf
+            write (u, '(a)') '  "levels": ['
+            do k = 1, size(s%levels)
+                associate (l => s%levels(k))
+                    write (buf, '(i0,a,i0)') l%nx, ', "ny": ', l%ny
+                    write (u, '(a)') '    {"nx": '//trim(buf)//', "fn": '//json_real(l%fn)//', "approach": '// &
+                        json_real(l%approach)//', "fx": '//json_real(l%fx)//', "fy": '//json_real(l%fy)//', "xi": '// &
+                        json_real(l%xi)//', "eta": '//json_real(l%eta)//', "pmax": '//json_real(l%pmax)// &
+                        ', "estimate": '//json_real(l%estimate)//', "ratio": '//json_real(l%ratio)//', "monotone": '// &
+                        trim(merge('true ', 'false', l%monotone))//', "seconds": '//json_real(l%seconds)// &
+                        ', "status": '//json_string(trim(l%status))//'}'//trim(merge(',', ' ', k < size(s%levels)))
+                end associate
+            end do
+            write (u, '(a)') '  ],'
+        end subroutine kv_levels
     end subroutine write_case_json
 
     !> A real as a JSON number at full precision (null for NaN/Inf).
@@ -402,6 +468,7 @@ contains
         if (allocated(s%notes)) then
             if (len_trim(s%notes) > 0) write (unit, '(a)') ' note         '//trim(s%notes)
         end if
+        call write_auto_report(unit, s)
         if (present(state)) then
             if (size(state) > 0) then
                 call state_map(state, lines, sx, sy)
@@ -431,6 +498,45 @@ contains
         end if
         write (unit, '(a)') ''
     end subroutine write_case_report
+
+    !> The automatic layer's part of the report: model, reductions, grids visited with the
+    !! error estimates and their cost, warnings (loud).
+    subroutine write_auto_report(unit, s)
+        integer, intent(in) :: unit
+        type(fc_case_summary), intent(in) :: s
+        integer :: k
+        if (s%grid_auto) then
+            write (unit, '(a)') ' model        '//trim(s%model)//' (potential area sized automatically)'
+        else
+            write (unit, '(a)') ' model        '//trim(s%model)
+        end if
+        if (allocated(s%reductions)) then
+            do k = 1, size(s%reductions)
+                write (unit, '(a)') ' reduction    '//trim(s%reductions(k))
+            end do
+        end if
+        if (s%target > 0 .and. allocated(s%levels)) then
+            write (unit, '(a,es10.3,a)') ' accuracy     target ', s%target, ' (relative error of '//trim(s%quantities)//')'
+            write (unit, '(a)') '              grid            fn               approach         pmax          '// &
+                'estimate    ratio   seconds'
+            do k = 1, size(s%levels)
+                associate (l => s%levels(k))
+                    write (unit, '(14x,i5,a,i5,3(1x,es16.8),1x,es10.3,1x,f7.2,1x,f9.4,a)') l%nx, ' x', l%ny, l%fn, &
+                        l%approach, l%pmax, l%estimate, l%ratio, l%seconds, trim(merge('             ', ' non-monotone', &
+                        l%monotone))
+                end associate
+            end do
+            write (unit, '(a,es10.3,a,a,a,f9.4,a)') '              estimate ', s%estimate, '  target ', &
+                trim(merge('met    ', 'NOT MET', s%target_met)), '   all grids ', s%levels_seconds, ' s'
+        end if
+        if (s%has_cattaneo) write (unit, '(a,3(a,es12.5))') ' Cattaneo     ', 'a = ', s%cattaneo%a, '   c = ', &
+            s%cattaneo%c, '   shift = ', s%cattaneo%shift
+        if (allocated(s%warnings)) then
+            do k = 1, size(s%warnings)
+                write (unit, '(a)') ' *** WARNING  '//trim(s%warnings(k))
+            end do
+        end if
+    end subroutine write_auto_report
 
     pure function upper(s) result(t)
         character(len=*), intent(in) :: s

@@ -1,0 +1,660 @@
+!> Model no more than a scene needs (issue 7): accuracy-targeted grid refinement, the
+!! automatic potential contact area and automatic model reduction, for one case of the
+!! batch driver ([[fc_input]]'s [[fc_case_input]]).
+!!
+!! * **Accuracy target** (`&solver target`): solve on a coarse grid, refine by factors of two
+!!   in each direction (the coarse pressure and tractions, copied to the 2×2 children, start
+!!   the next solve), and estimate the relative discretisation error of the computed loads —
+!!   `fn` (approach prescribed) or the approach (fn prescribed); |(Fx, Fy)| (shifts
+!!   prescribed, relative to max(|Ft|, 0.1·mu·Fn)) or |(xi, eta)| (forces prescribed); `pmax`
+!!   with `target_pmax` — from successive grids.  With d_k the relative change from grid k−1
+!!   to grid k and r = d_{k−1}/d_k the observed ratio (4 for O(h²)):
+!!
+!!       est_k = 1.25 · max( |d_k| / (min(r, 4) − 1),  |d_{k−1}| / 12 )
+!!
+!!   i.e. Richardson for the O(h²) force error measured on Hertz Test I (ratios 3.3–5.0
+!!   between 16² and 512²), never less pessimistic than the observed rate, never below the
+!!   O(h²) prediction from the previous difference (protects against a lucky small change),
+!!   with a safety factor 1.25.  If r ≤ 1 (differences change sign or grow) convergence is
+!!   **non-monotone**: no extrapolation, est_k = max(|d_k|, |d_{k−1}|), and the outcome is
+!!   flagged unreliable.  Differences below the solver noise 10·tol count as converged.
+!!   The refinement stops at the first grid k ≥ 3 with est_k ≤ target (three grids are needed
+!!   to observe r), or after `max_levels` grids (target not met: reported).
+!! * **Automatic potential contact area** (`&grid auto`): the Hertz estimate of the scene
+!!   (elliptic Hertz for quadratic profiles, plane-strain Hertz per unit length for line
+!!   contacts) plus `margin`, with `n_across` elements across the contact.  After the solve,
+!!   contact in the first or last row or column means the area was too small: enlarged ×1.5
+!!   (same element size) and solved again when automatic; a warning when the user fixed it.
+!! * **Model reduction** (`&solver model = 'auto'`): `problem = 'hertz'` → analytic Hertz (and
+!!   Cattaneo–Mindlin for a circular contact with a prescribed tangential force), no grid; a
+!!   line contact → the 2D strip (n×1 grid, the element spanning the cylinder length); no
+!!   tangential loading → no tangential solve; K = 0 → one normal and one tangential solve.
+module fc_auto
+    use fc_kinds, only: dp, i8, pi, FC_CONVERGED, status_name
+    use fc_geometry, only: fc_grid, h_no_contact
+    use fc_influence, only: fc_material, combine_material
+    use fc_norm, only: fc_normal_operator, fc_normal_result, fc_normal_settings, build_normal_operator, solve_normal
+    use fc_tangcg, only: fc_tangential_operator, fc_tangential_result, fc_tangential_loading, &
+        build_tangential_operator, solve_normal_tangential, solve_tangential_loading
+    use fc_hertz, only: fc_hertz_solution, fc_cattaneo_solution, hertz_from_approach, hertz_from_force, &
+        cattaneo_mindlin
+    use fc_input, only: fc_case_input, setup_case, is_tangential, tangential_loading, fmt_real, grid_is_auto, &
+        is_line_contact, is_given
+    implicit none
+    private
+
+    !> One grid visited by the solve.
+    type, public :: fc_level
+        integer :: nx = 0, ny = 0                 !! grid size
+        real(dp) :: fn = 0, approach = 0          !! normal load and approach [N, mm]
+        real(dp) :: fx = 0, fy = 0                !! tangential forces [N]
+        real(dp) :: xi = 0, eta = 0               !! rigid shift used [mm]
+        real(dp) :: pmax = 0                      !! maximum pressure [N/mm²]
+        integer :: ncon = 0                       !! elements in contact
+        integer :: iterations = 0                 !! solver iterations (both stages)
+        real(dp) :: seconds = 0                   !! operator set-up + solve [s]
+        real(dp) :: estimate = -1                 !! estimated relative error (−1: not yet known)
+        real(dp) :: ratio = 0                     !! observed ratio of successive differences (0: n/a)
+        logical :: monotone = .true.              !! successive differences decrease with one sign
+        character(len=16) :: status = ''         !! solver status
+    end type fc_level
+
+    !> Everything the automatic layer decided and computed for one case.
+    type, public :: fc_auto_outcome
+        character(len=32) :: model = 'full'                !! 'full', 'strip2d', 'hertz_analytic'
+        character(len=256), allocatable :: reductions(:)   !! model reductions applied (one line each)
+        character(len=512), allocatable :: warnings(:)     !! warnings (boundary, unreliable estimate, ...)
+        type(fc_level), allocatable :: levels(:)           !! grids visited (coarse to fine)
+        real(dp) :: target = 0                             !! accuracy target (0: none)
+        real(dp) :: estimate = -1                          !! estimated relative error of the final grid
+        logical :: reliable = .true.                       !! convergence was monotone
+        logical :: target_met = .false.                    !! estimate ≤ target
+        character(len=64) :: quantities = ''               !! quantities the estimate covers
+        logical :: grid_auto = .false.                     !! potential area sized automatically
+        integer :: enlargements = 0                        !! automatic enlargements of the area
+        logical :: touches_boundary = .false.              !! final contact reaches the area's edge
+        real(dp) :: total_seconds = 0                      !! all solves incl. set-up [s]
+        type(fc_material) :: material                      !! combined constants
+        type(fc_grid) :: grid                              !! final grid
+        real(dp), allocatable :: h0(:, :)                  !! final undeformed distance
+        type(fc_normal_result) :: res                      !! final normal solution
+        type(fc_tangential_result) :: tres                 !! final tangential solution
+        logical :: tangential = .false.                    !! a tangential solve was done
+        integer :: rounds = 0                              !! Panagiotopoulos rounds (final grid)
+        real(dp) :: setup_seconds = 0, setup_seconds_tangential = 0  !! final grid's set-up [s]
+        logical :: analytic = .false.                      !! answered by the analytic Hertz solution
+        type(fc_hertz_solution) :: hertz                   !! analytic Hertz (problem = 'hertz')
+        logical :: has_cattaneo = .false.                  !! Cattaneo–Mindlin part present
+        type(fc_cattaneo_solution) :: cattaneo             !! analytic Cattaneo–Mindlin
+        real(dp) :: fx = 0, fy = 0                         !! analytic tangential forces [N]
+    end type fc_auto_outcome
+
+    real(dp), parameter, public :: enlarge_factor = 1.5_dp   !! growth of a clipped automatic area
+    real(dp), parameter, public :: estimate_safety = 1.25_dp !! safety factor of the Richardson estimate
+    integer, parameter :: max_enlargements = 6
+
+    public :: solve_case_auto, auto_area, richardson_estimate, prolong_copy, contact_touches_boundary
+    public :: plane_strain_hertz
+
+contains
+
+    !> Solve one validated case with the automatic layer: model choice, potential area,
+    !! accuracy target.  `nop`, `top` are reused when grid and material match.  stat ≠ 0:
+    !! input-type error with a message naming group and key.
+    subroutine solve_case_auto(s_in, nop, top, out, stat, errmsg)
+        type(fc_case_input), intent(in) :: s_in
+        type(fc_normal_operator), intent(inout) :: nop
+        type(fc_tangential_operator), intent(inout) :: top
+        type(fc_auto_outcome), intent(out) :: out
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        type(fc_case_input) :: s
+        logical :: tang, line
+        integer :: attempt
+        real(dp) :: cx, cy, hx, hy
+        s = s_in
+        stat = 0; errmsg = ''
+        allocate (out%reductions(0), out%warnings(0), out%levels(0))
+        out%material%g1 = s%g1; out%material%g2 = s%g2; out%material%nu1 = s%nu1; out%material%nu2 = s%nu2
+        call combine_material(out%material, stat, errmsg)
+        if (stat /= 0) then
+            errmsg = '&'//trim(errmsg); return
+        end if
+        ! ---- analytic answer: no grid at all
+        if (s%problem == 'hertz') then
+            call analytic_answer(s, out, stat, errmsg)
+            return
+        end if
+        ! ---- which stages are needed
+        tang = is_tangential(s)
+        if (tang .and. s%model == 'auto') then
+            if (s%mu == 0) then
+                tang = .false.
+                call add(out%reductions, 'mu = 0: frictionless, no tangential solve (tractions are zero)')
+            else if (out%material%k == 0 .and. s%phi == 0 .and. merge(s%fx == 0 .and. s%fy == 0, &
+                                                                        s%xi == 0 .and. s%eta == 0, s%tforce_prescribed)) then
+                tang = .false.
+                call add(out%reductions, 'no tangential loading (zero shifts or forces, K = 0): no tangential solve '// &
+                    '(tractions are zero)')
+            end if
+        end if
+        if (tang .and. out%material%k == 0) call add(out%reductions, 'quasi-identical materials (K = 0): one '// &
+            'normal and one tangential solve, no Panagiotopoulos loop')
+        out%tangential = tang
+        ! ---- line contact → 2D strip
+        line = is_line_contact(s) .and. s%kind /= 'strip2d'
+        if (line .and. s%model == 'auto') then
+            if (s%kind == 'quadratic' .and. s%ry > 0) then
+                ! elongated ellipse: only a strip when the y curvature is negligible over the area
+                if (grid_is_auto(s)) then
+                    call add(out%reductions, 'not reduced: ry >= 1e3 rx but the automatic area would be sized by the '// &
+                        'elliptic Hertz solution (give a fixed grid or ry = 0 for a line contact)')
+                    line = .false.
+                else if (max(s%ymin**2, s%ymax**2)/(2*s%ry) > 0.01_dp*line_indentation(s, out%material)) then
+                    call add(out%reductions, 'not reduced: ry >= 1e3 rx but the y curvature over the grid exceeds '// &
+                        '1 % of the indentation')
+                    line = .false.
+                end if
+            end if
+            if (line) then
+                if (s%kind == 'quadratic' .and. grid_is_auto(s)) then
+                    stat = 1
+                    errmsg = "&geometry ry = 0 (line contact) with an automatic grid: the length is unknown; use "// &
+                        "kind = 'cylinder' with length, or give &grid ymin, ymax"
+                    return
+                end if
+                out%model = 'strip2d'
+                s%ny = 1
+                call add(out%reductions, 'line contact ('//trim(s%kind)//'): 2D strip model, n x 1 grid, one element '// &
+                    'over the length '//fmt_real(s%ymax - s%ymin)//' mm (plane strain)')
+            end if
+        end if
+        if (s%kind == 'strip2d') out%model = 'strip2d'
+        if (s%kind == 'cylinder' .and. .not. (line .and. s%model == 'auto') .and. grid_is_auto(s)) then
+            ! full model of a cylinder: elements about as long as wide, at most 512 along y
+            s%ny = -1
+        end if
+        ! ---- potential contact area
+        out%grid_auto = grid_is_auto(s)
+        out%target = s%target
+        if (out%grid_auto) then
+            call auto_area(s, out%material, stat, errmsg)
+            if (stat /= 0) return
+        end if
+        if (s%target > 0 .and. s%settings%tol > 0.01_dp*s%target) then
+            s%settings%tol = 0.01_dp*s%target
+            s%tsettings%tol = s%settings%tol
+            call add(out%reductions, 'solver tol tightened to '//fmt_real(s%settings%tol)//' = target/100 (solver '// &
+                'error below the discretisation error)')
+        end if
+        do attempt = 1, max_enlargements + 1
+            call solve_levels(s, tang, nop, top, out, stat, errmsg)
+            if (stat /= 0) return
+            out%touches_boundary = contact_touches_boundary(out%res%pn, out%model == 'strip2d' .or. &
+                s%kind == 'cylinder' .or. (s%kind == 'quadratic' .and. s%ry == 0))
+            if (.not. out%touches_boundary) exit
+            if (.not. out%grid_auto .or. attempt == max_enlargements + 1) then
+                if (out%grid_auto) then
+                    call add(out%warnings, 'contact still reaches the boundary of the potential contact area after '// &
+                        'the largest automatic enlargement: the solution is clipped')
+                else
+                    call add(out%warnings, 'CONTACT REACHES THE BOUNDARY of the potential contact area (first or '// &
+                        'last row or column): the area given in &grid is too small and the solution is clipped; '// &
+                        'enlarge xmin..ymax or use &grid auto = .true.')
+                end if
+                exit
+            end if
+            ! enlarge ×1.5 about the centre, same element size
+            out%enlargements = out%enlargements + 1
+            cx = 0.5_dp*(s%xmin + s%xmax); hx = 0.5_dp*(s%xmax - s%xmin)
+            cy = 0.5_dp*(s%ymin + s%ymax); hy = 0.5_dp*(s%ymax - s%ymin)
+            s%nx = even_up(s%nx*enlarge_factor)
+            s%xmin = cx - hx*s%nx/out%levels(1)%nx; s%xmax = cx + hx*s%nx/out%levels(1)%nx
+            if (s%ny > 1 .and. .not. (s%kind == 'cylinder')) then
+                s%ny = even_up(s%ny*enlarge_factor)
+                s%ymin = cy - hy*s%ny/out%levels(1)%ny; s%ymax = cy + hy*s%ny/out%levels(1)%ny
+            end if
+            call add(out%reductions, 'automatic area enlarged x1.5: contact reached its boundary')
+            deallocate (out%levels); allocate (out%levels(0))
+        end do
+    end subroutine solve_case_auto
+
+    !> Solve on the grid of `s` or, with a target, on a sequence of grids refined by two.
+    subroutine solve_levels(s, tang, nop, top, out, stat, errmsg)
+        type(fc_case_input), intent(inout) :: s
+        logical, intent(in) :: tang
+        type(fc_normal_operator), intent(inout) :: nop
+        type(fc_tangential_operator), intent(inout) :: top
+        type(fc_auto_outcome), intent(inout) :: out
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        type(fc_case_input) :: sl
+        real(dp), allocatable :: p0(:, :), px0(:, :), py0(:, :)
+        integer :: k, nlev, fy
+        real(dp) :: est, ratio, noise
+        logical :: monotone
+        character(len=64) :: qname
+        nlev = 1
+        if (s%target > 0) nlev = s%max_levels
+        fy = 2
+        if (s%ny == 1) fy = 1
+        out%total_seconds = 0
+        out%estimate = -1; out%target_met = .false.; out%reliable = .true.
+        noise = 10*s%settings%tol
+        sl = s
+        do k = 1, nlev
+            if (k > 1) then
+                sl%nx = 2*sl%nx; sl%ny = fy*sl%ny
+                call prolong_copy(out%res%pn, 2, fy, p0)
+                if (out%tangential .and. allocated(out%tres%px)) then
+                    call prolong_copy(out%tres%px, 2, fy, px0)
+                    call prolong_copy(out%tres%py, 2, fy, py0)
+                end if
+            end if
+            if (real(sl%nx, dp)*sl%ny > 4096.0_dp**2) then
+                call add(out%warnings, 'accuracy target: the next grid would exceed 4096^2 elements; stopped')
+                exit
+            end if
+            call solve_one(sl, tang, nop, top, out, p0, px0, py0, stat, errmsg)
+            if (stat /= 0) return
+            if (out%res%status /= FC_CONVERGED) exit
+            if (out%tangential .and. allocated(out%tres%px)) then
+                if (out%tres%status /= FC_CONVERGED) exit
+            end if
+            if (s%target > 0 .and. k >= 2) then
+                call level_estimate(out%levels, s, tang, noise, est, ratio, monotone, qname)
+                out%levels(k)%estimate = est; out%levels(k)%ratio = ratio; out%levels(k)%monotone = monotone
+                out%estimate = est; out%reliable = monotone; out%quantities = qname
+                out%target_met = est <= s%target
+                if (k >= 3 .and. out%target_met) exit
+            end if
+        end do
+        s%nx = out%levels(1)%nx; s%ny = out%levels(1)%ny
+        if (s%target > 0) then
+            if (size(out%levels) < 3) out%target_met = .false.
+            if (.not. out%reliable) call add(out%warnings, 'accuracy target: convergence is non-monotone (successive '// &
+                'differences change sign or grow); the estimate is the conservative bound max(|d_k|, |d_k-1|) without '// &
+                'extrapolation')
+            if (.not. out%target_met) call add(out%warnings, 'accuracy target '//fmt_real(s%target)// &
+                ' NOT MET: estimated error '//fmt_real(out%estimate)//' after '//fmt_int(size(out%levels))//' grids')
+        end if
+    end subroutine solve_levels
+
+    !> Solve the case on the grid of `sl` (warm start from p0, px0, py0 when allocated);
+    !! append a level record; keep the solution in `out`.
+    subroutine solve_one(sl, tang, nop, top, out, p0, px0, py0, stat, errmsg)
+        type(fc_case_input), intent(in) :: sl
+        logical, intent(in) :: tang
+        type(fc_normal_operator), intent(inout) :: nop
+        type(fc_tangential_operator), intent(inout) :: top
+        type(fc_auto_outcome), intent(inout) :: out
+        real(dp), allocatable, intent(in) :: p0(:, :), px0(:, :), py0(:, :)
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        type(fc_material) :: mat
+        type(fc_level) :: lev
+        type(fc_tangential_loading) :: load
+        integer(i8) :: t0, t1, rate
+        call system_clock(t0, rate)
+        call setup_case(sl, mat, out%grid, out%h0, stat, errmsg)
+        if (stat /= 0) return
+        out%setup_seconds = 0; out%setup_seconds_tangential = 0
+        if (needs_rebuild(nop, mat, out%grid)) then
+            call build_normal_operator(nop, mat, out%grid)
+            out%setup_seconds = nop%setup_seconds
+        end if
+        out%rounds = 0
+        if (tang) then
+            if (needs_rebuild_tangential(top, mat, out%grid)) then
+                call build_tangential_operator(top, mat, out%grid)
+                out%setup_seconds_tangential = top%setup_seconds
+            end if
+            load = tangential_loading(sl)
+            if (mat%k == 0) then
+                ! decoupled: one normal and one tangential solve, both warm-started
+                call normal(p0)
+                if (stat /= 0) return
+                out%rounds = 1
+                if (out%res%status == FC_CONVERGED) then
+                    if (allocated(px0) .and. allocated(py0)) then
+                        call solve_tangential_loading(top, out%res%pn, load, sl%tsettings, out%tres, stat, errmsg, &
+                            px_start=px0, py_start=py0)
+                    else
+                        call solve_tangential_loading(top, out%res%pn, load, sl%tsettings, out%tres, stat, errmsg)
+                    end if
+                end if
+            else if (sl%force_prescribed) then
+                call solve_normal_tangential(nop, top, out%h0, sl%settings, sl%tsettings, load, out%res, out%tres, &
+                    stat, errmsg, fn=sl%fn, rounds=out%rounds)
+            else
+                call solve_normal_tangential(nop, top, out%h0, sl%settings, sl%tsettings, load, out%res, out%tres, &
+                    stat, errmsg, approach=sl%approach, rounds=out%rounds)
+            end if
+        else
+            call normal(p0)
+        end if
+        if (stat /= 0) return
+        call system_clock(t1)
+        lev%nx = out%grid%nx; lev%ny = out%grid%ny
+        lev%fn = out%res%fn; lev%approach = out%res%approach; lev%pmax = out%res%pmax; lev%ncon = out%res%ncon
+        lev%iterations = out%res%iterations
+        lev%status = status_name(out%res%status)
+        if (tang .and. allocated(out%tres%px)) then
+            lev%fx = out%tres%fx; lev%fy = out%tres%fy; lev%xi = out%tres%xi; lev%eta = out%tres%eta
+            lev%iterations = lev%iterations + out%tres%iterations
+            lev%status = status_name(max(out%res%status, out%tres%status))
+        end if
+        lev%seconds = real(t1 - t0, dp)/rate
+        out%total_seconds = out%total_seconds + lev%seconds
+        out%levels = [out%levels, lev]
+    contains
+        subroutine normal(start_in)
+            real(dp), allocatable, intent(in) :: start_in(:, :)
+            real(dp), allocatable :: start(:, :)
+            if (.not. allocated(start_in)) then
+                if (sl%force_prescribed) then
+                    call solve_normal(nop, out%h0, sl%settings, out%res, stat, errmsg, fn=sl%fn)
+                else
+                    call solve_normal(nop, out%h0, sl%settings, out%res, stat, errmsg, approach=sl%approach)
+                end if
+                return
+            end if
+            ! no start pressure where contact is impossible (solve_normal would keep it there)
+            start = merge(start_in, 0.0_dp, out%h0 < 0.5_dp*h_no_contact)
+            if (sl%force_prescribed) then
+                call solve_normal(nop, out%h0, sl%settings, out%res, stat, errmsg, fn=sl%fn, p_start=start)
+            else
+                call solve_normal(nop, out%h0, sl%settings, out%res, stat, errmsg, approach=sl%approach, p_start=start)
+            end if
+        end subroutine normal
+    end subroutine solve_one
+
+    !> Estimate of the last level's relative error over the target quantities.
+    subroutine level_estimate(levels, s, tang, noise, est, ratio, monotone, qname)
+        type(fc_level), intent(in) :: levels(:)
+        type(fc_case_input), intent(in) :: s
+        logical, intent(in) :: tang
+        real(dp), intent(in) :: noise
+        real(dp), intent(out) :: est, ratio
+        logical, intent(out) :: monotone
+        character(len=*), intent(out) :: qname
+        real(dp), allocatable :: q(:, :)
+        real(dp) :: e, r, scale, norm_t
+        logical :: mono
+        integer :: n, k
+        n = size(levels)
+        allocate (q(n, 0))
+        ! quantity 1: the computed normal load
+        if (s%force_prescribed) then
+            q = reshape([q, levels%approach/abs(levels(n)%approach)], [n, size(q, 2) + 1]); qname = 'approach'
+        else
+            q = reshape([q, levels%fn/abs(levels(n)%fn)], [n, size(q, 2) + 1]); qname = 'fn'
+        end if
+        if (tang) then
+            ! signed projection on the final direction of the tangential quantity
+            if (s%tforce_prescribed) then
+                scale = max(hypot(levels(n)%xi, levels(n)%eta), tiny(1.0_dp))
+                q = reshape([q, (levels%xi*levels(n)%xi + levels%eta*levels(n)%eta)/scale**2], [n, size(q, 2) + 1])
+                qname = trim(qname)//' xi_eta'
+            else
+                norm_t = max(hypot(levels(n)%fx, levels(n)%fy), tiny(1.0_dp))
+                scale = max(norm_t, 0.1_dp*s%mu*levels(n)%fn, tiny(1.0_dp))
+                q = reshape([q, (levels%fx*levels(n)%fx + levels%fy*levels(n)%fy)/(norm_t*scale)], [n, size(q, 2) + 1])
+                qname = trim(qname)//' fx_fy'
+            end if
+        end if
+        if (s%target_pmax) then
+            q = reshape([q, levels%pmax/abs(levels(n)%pmax)], [n, size(q, 2) + 1]); qname = trim(qname)//' pmax'
+        end if
+        est = 0; ratio = 0; monotone = .true.
+        do k = 1, size(q, 2)
+            call richardson_estimate(q(:, k), noise, e, r, mono)
+            if (e > est) then
+                est = e; ratio = r
+            end if
+            monotone = monotone .and. mono
+        end do
+    end subroutine level_estimate
+
+    !> Relative error estimate of the last of the values `q` (already divided by the last
+    !! value's magnitude, or distances to the last value) on grids refined by two; see the
+    !! module header.  `ratio`: observed d_{k−1}/d_k (0 with two grids); `monotone`: false
+    !! when the differences change sign or grow.
+    pure subroutine richardson_estimate(q, noise, est, ratio, monotone)
+        real(dp), intent(in) :: q(:)
+        real(dp), intent(in) :: noise
+        real(dp), intent(out) :: est, ratio
+        logical, intent(out) :: monotone
+        real(dp) :: d, dprev
+        integer :: n
+        n = size(q)
+        est = -1; ratio = 0; monotone = .true.
+        if (n < 2) return
+        d = q(n) - q(n - 1)
+        if (n == 2) then
+            est = estimate_safety*abs(d)/3
+            return
+        end if
+        dprev = q(n - 1) - q(n - 2)
+        if (abs(d) <= noise .and. abs(dprev) <= noise) then
+            est = noise; ratio = 0; return
+        end if
+        if (abs(d) <= noise) then
+            ratio = abs(dprev)/max(abs(d), tiny(1.0_dp))
+            est = estimate_safety*max(noise, abs(dprev)/12); return
+        end if
+        ratio = dprev/d
+        if (ratio <= 1) then
+            monotone = .false.
+            est = max(abs(d), abs(dprev))
+        else
+            est = estimate_safety*max(abs(d)/(min(ratio, 4.0_dp) - 1), abs(dprev)/12)
+        end if
+    end subroutine richardson_estimate
+
+    !> Copy interpolation of a coarse field to a grid refined by fx × fy (each coarse
+    !! element's value on its children).
+    pure subroutine prolong_copy(pc, fx, fy, pf)
+        real(dp), intent(in) :: pc(:, :)
+        integer, intent(in) :: fx, fy
+        real(dp), allocatable, intent(out) :: pf(:, :)
+        integer :: i, j
+        allocate (pf(fx*size(pc, 1), fy*size(pc, 2)))
+        do j = 1, size(pf, 2)
+            do i = 1, size(pf, 1)
+                pf(i, j) = pc((i - 1)/fx + 1, (j - 1)/fy + 1)
+            end do
+        end do
+    end subroutine prolong_copy
+
+    !> Whether any element in contact lies in the first or last column (and, unless `line`,
+    !! the first or last row) of the grid.
+    pure logical function contact_touches_boundary(pn, line) result(touches)
+        real(dp), intent(in) :: pn(:, :)
+        logical, intent(in) :: line   !! line contact: the y edges are the ends of the body
+        integer :: nx, ny
+        nx = size(pn, 1); ny = size(pn, 2)
+        touches = any(pn(1, :) > 0) .or. any(pn(nx, :) > 0)
+        if (.not. line .and. ny > 1) touches = touches .or. any(pn(:, 1) > 0) .or. any(pn(:, ny) > 0)
+    end function contact_touches_boundary
+
+    !> Plane-strain Hertz for a cylinder of radius r [mm] under force per length pl [N/mm],
+    !! estar = G/(1−ν): half-width b = sqrt(4 r P'/(π E*)) and p0 = 2P'/(π b).
+    pure subroutine plane_strain_hertz(r, pl, estar, b, p0)
+        real(dp), intent(in) :: r, pl, estar
+        real(dp), intent(out) :: b, p0
+        b = sqrt(4*r*pl/(pi*estar))
+        p0 = 2*pl/(pi*max(b, tiny(1.0_dp)))
+    end subroutine plane_strain_hertz
+
+    !> Size the potential contact area of `s` from the Hertz estimate (sets nx, ny, xmin …
+    !! ymax).  Quadratic: elliptic Hertz semi-axes a, b; line contacts: plane-strain half
+    !! width (force per length) or the geometric overlap √(2 R δ) (approach).  Each half-axis
+    !! gets (1 + margin); n_across elements span the contact's diameter in x (and in y for
+    !! elliptic contacts).
+    subroutine auto_area(s, mat, stat, errmsg)
+        type(fc_case_input), intent(inout) :: s
+        type(fc_material), intent(in) :: mat
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        type(fc_hertz_solution) :: hz
+        real(dp) :: estar, ha, hb, p0, len_y
+        integer :: nacross
+        stat = 0; errmsg = ''
+        estar = mat%g/(1 - mat%nu)
+        nacross = s%n_across
+        if (nacross == 0) nacross = merge(8, 32, s%target > 0)
+        select case (s%kind)
+        case ('quadratic')
+            if (s%force_prescribed) then
+                hz = hertz_from_force(0.5_dp/s%rx, 0.5_dp/s%ry, estar, s%fn)
+            else
+                hz = hertz_from_approach(0.5_dp/s%rx, 0.5_dp/s%ry, estar, s%approach)
+            end if
+            if (.not. (hz%a > 0 .and. hz%b > 0)) then
+                stat = 1
+                errmsg = '&normal approach = '//fmt_real(s%approach)//': no contact, the automatic area cannot be sized'
+                return
+            end if
+            ha = (1 + s%margin)*hz%a; hb = (1 + s%margin)*hz%b
+            s%nx = even_up((1 + s%margin)*nacross)
+            s%ny = even_up((1 + s%margin)*nacross)
+            s%xmin = -ha; s%xmax = ha; s%ymin = -hb; s%ymax = hb
+        case ('cylinder', 'strip2d')
+            len_y = s%ymax - s%ymin
+            if (s%kind == 'cylinder') len_y = s%length
+            if (s%force_prescribed) then
+                call plane_strain_hertz(s%rx, s%fn/len_y, estar, ha, p0)
+            else
+                if (.not. (s%approach > 0)) then
+                    stat = 1
+                    errmsg = '&normal approach = '//fmt_real(s%approach)//': no contact, the automatic area cannot be sized'
+                    return
+                end if
+                ha = sqrt(2*s%rx*s%approach)
+            end if
+            ha = (1 + s%margin)*ha
+            s%nx = even_up((1 + s%margin)*nacross)
+            s%xmin = -ha; s%xmax = ha
+            if (s%kind == 'cylinder') then
+                s%ymin = -0.5_dp*len_y; s%ymax = 0.5_dp*len_y
+            end if
+            if (s%ny == -1) then
+                s%ny = min(512, max(2, even_up(len_y/((s%xmax - s%xmin)/s%nx))))
+            else
+                s%ny = 1
+            end if
+        case default
+            stat = 1
+            errmsg = "&grid auto: the automatic area needs kind = 'quadratic', 'cylinder' or 'strip2d'"
+        end select
+    end subroutine auto_area
+
+    !> Indentation scale of a line contact: the approach, or b²/(2R) from plane-strain Hertz.
+    real(dp) function line_indentation(s, mat) result(d)
+        type(fc_case_input), intent(in) :: s
+        type(fc_material), intent(in) :: mat
+        real(dp) :: b, p0
+        if (.not. s%force_prescribed) then
+            d = abs(s%approach)
+        else
+            call plane_strain_hertz(s%rx, s%fn/(s%ymax - s%ymin), mat%g/(1 - mat%nu), b, p0)
+            d = b**2/(2*s%rx)
+        end if
+    end function line_indentation
+
+    !> problem = 'hertz': elliptic Hertz for the approach or force, and Cattaneo–Mindlin for a
+    !! circular contact with a prescribed tangential force.
+    subroutine analytic_answer(s, out, stat, errmsg)
+        type(fc_case_input), intent(in) :: s
+        type(fc_auto_outcome), intent(inout) :: out
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        real(dp) :: estar, q
+        stat = 0; errmsg = ''
+        out%analytic = .true.
+        out%model = 'hertz_analytic'
+        estar = out%material%g/(1 - out%material%nu)
+        if (s%force_prescribed) then
+            out%hertz = hertz_from_force(0.5_dp/s%rx, 0.5_dp/s%ry, estar, s%fn)
+        else
+            out%hertz = hertz_from_approach(0.5_dp/s%rx, 0.5_dp/s%ry, estar, s%approach)
+            if (.not. (out%hertz%fn > 0)) then
+                stat = 1
+                errmsg = '&normal approach = '//fmt_real(s%approach)//": must be > 0 for problem = 'hertz' (no contact)"
+                return
+            end if
+        end if
+        call add(out%reductions, "problem = 'hertz': analytic elliptic Hertz solution, no grid")
+        if (out%material%k /= 0) call add(out%warnings, 'K = '//fmt_real(out%material%k)//' /= 0: the analytic '// &
+            'Hertz solution neglects the normal-tangential coupling of dissimilar materials')
+        if (s%mu > 0 .and. (is_given(s, 'tangential', 'fx') .or. is_given(s, 'tangential', 'fy') .or. &
+                            is_given(s, 'tangential', 'xi') .or. is_given(s, 'tangential', 'eta'))) then
+            q = hypot(s%fx, s%fy)
+            if (.not. s%tforce_prescribed) then
+                call add(out%warnings, "problem = 'hertz' with prescribed shifts: Cattaneo-Mindlin needs the "// &
+                    'tangential force (fx, fy); tangential part not computed')
+            else if (abs(s%rx - s%ry) > 1.0e-12_dp*s%rx) then
+                call add(out%warnings, "problem = 'hertz': Cattaneo-Mindlin needs a circular contact (rx = ry); "// &
+                    'tangential part not computed')
+            else if (.not. (q < s%mu*out%hertz%fn)) then
+                stat = 1
+                errmsg = '&tangential fx = '//fmt_real(s%fx)//', fy = '//fmt_real(s%fy)//': |(fx, fy)| must be < mu*fn = '// &
+                    fmt_real(s%mu*out%hertz%fn)
+                return
+            else
+                out%cattaneo = cattaneo_mindlin(out%hertz%a, out%hertz%p0, out%hertz%fn, s%mu, q, out%material%g, &
+                    out%material%nu)
+                out%has_cattaneo = .true.
+                out%fx = s%fx; out%fy = s%fy
+                call add(out%reductions, 'circular contact with a tangential force: analytic Cattaneo-Mindlin')
+            end if
+        end if
+        out%estimate = 0
+    end subroutine analytic_answer
+
+    ! ---------------------------------------------------------------- helpers ----
+
+    !> Smallest even integer ≥ x (at least 2).
+    pure integer function even_up(x)
+        real(dp), intent(in) :: x
+        even_up = max(2, 2*ceiling(0.5_dp*x - 1.0e-9_dp))
+    end function even_up
+
+    subroutine add(list, text)
+        character(len=*), allocatable, intent(inout) :: list(:)
+        character(len=*), intent(in) :: text
+        character(len=len(list)), allocatable :: tmp(:)
+        allocate (tmp(size(list) + 1))
+        tmp(1:size(list)) = list
+        tmp(size(list) + 1) = text
+        call move_alloc(tmp, list)
+    end subroutine add
+
+    function fmt_int(i) result(s)
+        integer, intent(in) :: i
+        character(len=:), allocatable :: s
+        character(len=20) :: buf
+        write (buf, '(i0)') i
+        s = trim(buf)
+    end function fmt_int
+
+    logical function needs_rebuild(nop, mat, grid)
+        type(fc_normal_operator), intent(in) :: nop
+        type(fc_material), intent(in) :: mat
+        type(fc_grid), intent(in) :: grid
+        needs_rebuild = .not. nop%a_zz%built() .or. nop%grid%nx /= grid%nx .or. nop%grid%ny /= grid%ny &
+            .or. nop%grid%dx /= grid%dx .or. nop%grid%dy /= grid%dy .or. nop%material%g /= mat%g &
+            .or. nop%material%nu /= mat%nu
+    end function needs_rebuild
+
+    logical function needs_rebuild_tangential(top, mat, grid)
+        type(fc_tangential_operator), intent(in) :: top
+        type(fc_material), intent(in) :: mat
+        type(fc_grid), intent(in) :: grid
+        needs_rebuild_tangential = .not. top%a_xx%built() .or. top%grid%nx /= grid%nx .or. top%grid%ny /= grid%ny &
+            .or. top%grid%dx /= grid%dx .or. top%grid%dy /= grid%dy .or. top%material%g /= mat%g &
+            .or. top%material%nu /= mat%nu .or. top%material%k /= mat%k
+    end function needs_rebuild_tangential
+
+end module fc_auto
