@@ -4,6 +4,8 @@
 !!   case,solver,options,nx,ny,unknowns,error,error_vs,fn_error_rel,area_error_rel,ncon,
 !!   iterations,matvecs,work_units,residual,status,setup_seconds,solve_seconds,total_seconds,peak_rss_mb
 !!
+!! `options` is quoted (it may hold commas, e.g. V(1,1)).
+!!
 !! Cases and references (`error_vs` names the reference of each row):
 !!
 !! * `hertz_test1` (thesis §2.5.1): `error` = RMS over all elements of p − p_Hertz [N/mm²]
@@ -699,7 +701,7 @@ contains
         row%setup = row%setup_extra + real(row%t_mark - t0, dp)/real(rate, dp)
         row%peak_mb = peak_rss_mb()
         write (unit, '(a,",",a,",",a,2(",",i0),",",i0,",",a,",",a,2(",",a),3(",",i0),",",a,",",a,",",a,3(",",a),",",a)') &
-            trim(row%case_name), trim(row%solver), trim(row%options), row%nx, row%ny, row%unknowns, &
+            trim(row%case_name), trim(row%solver), '"'//trim(row%options)//'"', row%nx, row%ny, row%unknowns, &
             num(row%error, '(es13.6)'), trim(row%error_vs), num(row%fn_error, '(es11.4)'), &
             num(row%area_error, '(es11.4)'), row%ncon, row%iterations, row%matvecs, num(row%work, '(f0.2)'), &
             num(row%residual, '(es10.3)'), status_name(row%status), num(row%setup, '(f0.5)'), &
