@@ -78,6 +78,7 @@ module fc_legacy
         ! --- previous state (warm start, u' and p' of transient steps) ---
         logical :: has_prev_n = .false., has_prev_t = .false.
         real(dp), allocatable :: pn_prev(:, :), px_prev(:, :), py_prev(:, :), ux_prev(:, :), uy_prev(:, :)
+        integer, allocatable :: st_prev(:, :)       !! element status of the previous state
         real(dp) :: xi_prev = 0, eta_prev = 0, fx_prev = 0, fy_prev = 0
         ! --- results of the last calculation ---
         logical :: has_result = .false., tang_solved = .false.
@@ -541,7 +542,7 @@ contains
         type(fc_tangential_loading) :: load
         integer :: stat, nx, ny, round
         character(len=msg_len) :: msg
-        logical :: tangential, coupled
+        logical :: tangential, coupled, lift_slip
         real(dp) :: cx, cy, k0, a, dn, dt
         ierr = FCL_OK
         ! --- required data ---
@@ -598,6 +599,7 @@ contains
         ! --- previous state u', p' of the step ---
         allocate (uxp(nx, ny), uyp(nx, ny), pxs(nx, ny), pys(nx, ny))
         uxp = 0; uyp = 0; pxs = 0; pys = 0
+        lift_slip = .false.
         if (tangential .and. s%has_prev_t) then
             select case (s%transient)
             case (FCL_CONTINUE)
@@ -613,6 +615,7 @@ contains
                     pxs = s%px_prev; pys = s%py_prev
                 end if
             end select
+            lift_slip = s%transient /= FCL_ROLLING .and. (s%warm_start .or. s%transient == FCL_CONTINUE)
         end if
         if (s%transient == FCL_FROM_REST .and. .not. s%warm_start) then
             pxs = 0; pys = 0
@@ -640,6 +643,7 @@ contains
             if (round > 1) then
                 px_old = tres%px; py_old = tres%py
             end if
+            if (round == 1 .and. lift_slip) call lift_slip_start(nres%pn)
             ox = uxn; oy = uyn
             if (s%tang_kind == TANG_SHIFTS) then
                 call solve_tangential(s%top, nres%pn, s%mu, s%ts, tres, stat, msg, s%xi, s%eta, s%phi, &
@@ -716,13 +720,26 @@ contains
         ! --- advance the previous state ---
         s%pn_prev = nres%pn; s%has_prev_n = .true.
         if (s%tang_solved) then
-            s%px_prev = tres%px; s%py_prev = tres%py
+            s%px_prev = tres%px; s%py_prev = tres%py; s%st_prev = tres%state
             s%ux_prev = tres%ux + uxn; s%uy_prev = tres%uy + uyn
             s%xi_prev = tres%xi; s%eta_prev = tres%eta
             s%fx_prev = tres%fx; s%fy_prev = tres%fy
             s%has_prev_t = .true.
         end if
     contains
+        !> Warm start: elements that slipped in the previous state start on the new traction
+        !! bound (slightly outside, so that TangCG starts them in slip) in their previous
+        !! direction; without this a converged start loses its subdivision to rounding.
+        subroutine lift_slip_start(pn)
+            real(dp), intent(in) :: pn(:, :)
+            real(dp), allocatable :: mag(:, :)
+            mag = hypot(pxs, pys)
+            where (s%st_prev == EL_SLIP .and. mag > 0 .and. pn > 0)
+                pxs = (1 + 1e-10_dp)*s%mu*pn*pxs/mag
+                pys = (1 + 1e-10_dp)*s%mu*pn*pys/mag
+            end where
+        end subroutine lift_slip_start
+
         subroutine normal_solve(h, p_start)
             real(dp), intent(in) :: h(:, :)
             real(dp), intent(in), optional :: p_start(:, :)
