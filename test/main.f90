@@ -9,6 +9,7 @@ program tester
     use test_driver, only: collect_driver
     use test_fmg, only: collect_fmg
     use test_mg2d, only: collect_mg2d
+    use test_auto, only: collect_auto
     use test_stability, only: collect_stability
     use test_legacy, only: collect_legacy
     implicit none
@@ -45,6 +46,9 @@ program tester
     end if
     if (want('stability')) then
         call collect_stability(tests); call run_suite('stability', tests, only, npass, nfail)
+    end if
+    if (want('auto')) then
+        call collect_auto(tests); call run_suite('auto', tests, only, npass, nfail)
     end if
     write (*, '(i0,a,i0,a)') npass, ' passed, ', nfail, ' failed'
     if (nfail > 0 .or. npass == 0) stop 1   ! non-zero exit status (no backtrace, unlike error stop)
