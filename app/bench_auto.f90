@@ -1,0 +1,148 @@
+!> fastcontact-bench-auto: what the automatic layer (issue 7) saves, and what it costs.
+!!
+!! For each model reduction the reduced and the full model are solved on the same scene; the
+!! program prints the answers, their relative difference and the wall-clock cost ratio
+!! (full / reduced).  For the accuracy target it prints the grids visited, the estimate, the
+!! true error and the cost against solving the final grid alone and against a fixed fine grid.
+!! Output: a table on stdout and CSV (`--csv FILE`, default build/bench_auto.csv).
+!! Timings are wall-clock seconds of one run (set-up included); repeat for variance.
+program bench_auto
+    use, intrinsic :: iso_fortran_env, only: int64
+    use fc_kinds, only: dp, msg_len
+    use fc_input, only: fc_case_input, fc_case_chunk, read_case_file, apply_case, validate_case
+    use fc_norm, only: fc_normal_operator
+    use fc_tangcg, only: fc_tangential_operator
+    use fc_hertz, only: fc_hertz_solution, hertz_from_approach
+    use fc_auto, only: fc_auto_outcome, solve_case_auto, plane_strain_hertz
+    implicit none
+    character(len=*), parameter :: nl = new_line('a')
+    character(len=*), parameter :: hertz_scene = &
+        '&material g1 = 82000.0, g2 = 82000.0, nu1 = 0.28, nu2 = 0.28 /'//nl// &
+        "&geometry kind = 'quadratic', rx = 300.0, ry = 163.0 /"//nl//'&normal approach = 0.1091 /'//nl
+    character(len=*), parameter :: cattaneo_scene = &
+        "&case problem = 'normal+tangential' /"//nl// &
+        '&material g1 = 200.0, g2 = 200.0, nu1 = 0.42, nu2 = 0.42 /'//nl// &
+        '&grid nx = 128, ny = 128, xmin = -1.2857, xmax = 1.2857, ymin = -1.2857, ymax = 1.2857 /'//nl// &
+        "&geometry kind = 'quadratic', rx = 50.0, ry = 50.0 /"//nl//'&normal approach = 0.02 /'//nl
+    type(fc_auto_outcome) :: red, full
+    real(dp) :: tr, tf, b, p0
+    type(fc_hertz_solution) :: hz
+    integer :: csv, i
+    character(len=256) :: csv_path, arg
+    csv_path = 'build/bench_auto.csv'
+    i = 1
+    do while (i <= command_argument_count())
+        call get_command_argument(i, arg)
+        if (arg == '--csv') then
+            call get_command_argument(i + 1, csv_path); i = i + 1
+        end if
+        i = i + 1
+    end do
+    open (newunit=csv, file=trim(csv_path), status='replace', action='write')
+    write (csv, '(a)') 'section,variant,model,grid,quantity,value,reference,rel_diff,seconds,cost_ratio'
+    write (*, '(a)') 'fastcontact-bench-auto: reduced vs full model (cost ratio = full seconds / reduced seconds)'
+
+    ! ---- 1. problem = 'hertz' vs the full model to 1e-3 (auto area)
+    call solve_text("&case problem = 'hertz' /"//nl//hertz_scene, red, tr)
+    call solve_text(hertz_scene//'&solver target = 1.0e-3 /'//nl, full, tf)
+    call row('hertz_analytic', 'analytic', red, 'fn', red%hertz%fn, full%res%fn, tr, tf)
+    call row('hertz_analytic', 'full_target_1e-3', full, 'fn', full%res%fn, red%hertz%fn, tf, tf)
+    call row('hertz_analytic', 'full_target_1e-3', full, 'pmax', full%res%pmax, red%hertz%p0, tf, tf)
+
+    ! ---- 2. line contact: cylinder as a strip vs a 3D grid of the same cylinder
+    call solve_text('&material g1 = 82000.0, g2 = 82000.0 /'//nl// &
+        "&geometry kind = 'cylinder', rx = 100.0, length = 20.0 /"//nl//'&normal fn = 2.0e4 /'//nl, red, tr)
+    call solve_text('&material g1 = 82000.0, g2 = 82000.0 /'//nl// &
+        "&geometry kind = 'cylinder', rx = 100.0, length = 20.0 /"//nl//'&normal fn = 2.0e4 /'//nl// &
+        "&solver model = 'full' /"//nl, full, tf)
+    call plane_strain_hertz(100.0_dp, 1000.0_dp, 82000.0_dp/0.72_dp, b, p0)
+    call row('line_contact', 'strip2d', red, 'pmax', red%res%pmax, p0, tr, tf)
+    call row('line_contact', 'full_3d_finite_cylinder', full, 'pmax_centre_line', &
+        maxval(full%res%pn(:, (full%grid%ny + 1)/2)), p0, tf, tf)
+    call row('line_contact', 'full_3d_finite_cylinder', full, 'pmax_ends', full%res%pmax, p0, tf, tf)
+
+    ! ---- 3. no tangential loading (zero shifts, K = 0): normal only vs normal + tangential
+    call solve_text(cattaneo_scene//'&tangential mu = 0.4, xi = 0.0, eta = 0.0, phi = 0.0 /'//nl, red, tr)
+    call solve_text(cattaneo_scene//'&tangential mu = 0.4, xi = 0.0, eta = 0.0, phi = 0.0 /'//nl// &
+        "&solver model = 'full' /"//nl, full, tf)
+    call row('no_tangential_loading', 'normal_only', red, 'fn', red%res%fn, full%res%fn, tr, tf)
+    call row('no_tangential_loading', 'full', full, 'fx', full%tres%fx, 0.0_dp, tf, tf)
+
+    ! ---- 4. K = 0: decoupled (one normal + one tangential solve) vs the coupled pipeline
+    call solve_text(cattaneo_scene//'&tangential mu = 0.4, xi = -0.0081724 /'//nl, red, tr)
+    call solve_text(cattaneo_scene//'&tangential mu = 0.4, xi = -0.0081724 /'//nl//"&solver model = 'full' /"//nl, &
+        full, tf)
+    call row('k0_decoupled', 'decoupled', red, 'fx', red%tres%fx, full%tres%fx, tr, tf)
+
+    ! ---- 5. accuracy target vs the final grid alone and a fixed 256² grid
+    hz = hertz_from_approach(1/600.0_dp, 1/326.0_dp, 82000.0_dp/0.72_dp, 0.1091_dp)
+    call solve_text(hertz_scene//'&grid nx = 16, ny = 16, xmin = -10.0, xmax = 10.0, ymin = -6.0, ymax = 6.0 /'//nl// &
+        '&solver target = 5.0e-4 /'//nl, red, tr)
+    do i = 1, size(red%levels)
+        write (*, '(a,i5,a,es12.4,a,es12.4,a,f8.4,a)') '    target 5e-4: grid ', red%levels(i)%nx, '^2  estimate ', &
+            red%levels(i)%estimate, '  true error ', abs(red%levels(i)%fn - hz%fn)/hz%fn, '  ', red%levels(i)%seconds, ' s'
+        write (csv, '(a,i0,a,es14.6,a,es14.6,a,es12.4,a,es12.4,a)') 'target_levels,level,full,', red%levels(i)%nx, &
+            ',fn,', red%levels(i)%fn, ',', hz%fn, ',', abs(red%levels(i)%fn - hz%fn)/hz%fn, ',', red%levels(i)%seconds, ','
+    end do
+    call solve_text(hertz_scene//'&grid nx = 64, ny = 64, xmin = -10.0, xmax = 10.0, ymin = -6.0, ymax = 6.0 /'//nl, &
+        full, tf)
+    call row('accuracy_target', 'target_5e-4_all_grids', red, 'fn', red%res%fn, hz%fn, tr, tf)
+    call row('accuracy_target', 'final_grid_alone', full, 'fn', full%res%fn, hz%fn, tf, tf)
+    call solve_text(hertz_scene//'&grid nx = 256, ny = 256, xmin = -10.0, xmax = 10.0, ymin = -6.0, ymax = 6.0 /'// &
+        nl, full, tf)
+    call row('accuracy_target', 'fixed_256', full, 'fn', full%res%fn, hz%fn, tf, tr)
+    close (csv)
+    write (*, '(a)') 'CSV: '//trim(csv_path)
+
+contains
+
+    !> One row: `value` vs `reference`, cost `seconds`, cost ratio `other/seconds`.
+    subroutine row(section, variant, out, quantity, value, reference, seconds, other)
+        character(len=*), intent(in) :: section, variant, quantity
+        type(fc_auto_outcome), intent(in) :: out
+        real(dp), intent(in) :: value, reference, seconds, other
+        real(dp) :: rel
+        character(len=24) :: grid
+        rel = abs(value - reference)/max(abs(reference), tiny(1.0_dp))
+        if (abs(reference) == 0) rel = abs(value)
+        write (grid, '(i0,a,i0)') out%grid%nx, 'x', out%grid%ny
+        if (out%analytic) grid = 'none'
+        write (*, '(2x,a22,1x,a26,1x,a14,1x,a10,1x,a16,es13.5,a,es10.3,a,f9.4,a,f9.1)') section, variant, out%model, grid, &
+            quantity, value, '  rel.diff ', rel, '  s ', seconds, '  ratio ', other/max(seconds, 1.0e-6_dp)
+        write (csv, '(a,es23.15,a,es23.15,a,es12.4,a,es12.4,a,es12.4)') trim(section)//','//trim(variant)//','// &
+            trim(out%model)//','//trim(grid)//','//trim(quantity)//',', value, ',', reference, ',', rel, ',', seconds, &
+            ',', other/max(seconds, 1.0e-6_dp)
+    end subroutine row
+
+    !> Read namelist text as the driver does and solve it; wall-clock seconds.
+    subroutine solve_text(text, out, seconds)
+        character(len=*), intent(in) :: text
+        type(fc_auto_outcome), intent(out) :: out
+        real(dp), intent(out) :: seconds
+        type(fc_case_chunk), allocatable :: cases(:)
+        type(fc_case_input) :: state
+        type(fc_normal_operator) :: nop
+        type(fc_tangential_operator) :: top
+        character(len=64) :: name
+        character(len=msg_len) :: msg
+        integer :: u, stat, k
+        integer(int64) :: t0, t1, rate
+        character(len=*), parameter :: path = 'build/bench_auto_case.nml'
+        open (newunit=u, file=path, status='replace', action='write')
+        write (u, '(a)') text
+        close (u)
+        call read_case_file(path, cases, stat, msg)
+        do k = 1, size(cases)
+            if (stat == 0) call apply_case(cases(k), k, state, name, stat, msg)
+        end do
+        if (stat == 0) call validate_case(state, stat, msg)
+        call system_clock(t0, rate)
+        if (stat == 0) call solve_case_auto(state, nop, top, out, stat, msg)
+        call system_clock(t1)
+        seconds = real(t1 - t0, dp)/rate
+        if (stat /= 0) write (*, '(a)') 'bench-auto: case failed: '//trim(msg)
+        call nop%destroy()
+        call top%destroy()
+    end subroutine solve_text
+
+end program bench_auto
