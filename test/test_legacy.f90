@@ -229,7 +229,8 @@ contains
     end subroutine test_forces_modern
 
     !> Warm start: a second identical call needs fewer normal and tangential iterations
-    !! (shifts and forces); operators are built once while grid and material stay; moving the
+    !! (shifts: < 1/4, measured 33 → 2 at 30×25; forces: < 1/2); operators are built once
+    !! while grid and material stay; moving the
     !! area (same spacing) keeps them; a new material or grid rebuilds them.
     subroutine test_warm_start(error)
         type(error_type), allocatable, intent(out) :: error
@@ -245,7 +246,7 @@ contains
         call fc_get_forces(h, fn, fx2, fy, mz, ierr)
         call check(error, ierr == 0, 'second call: '//last_message(h))
         call check(error, itn2 < itn1, 'shifts: normal warm start needs fewer iterations')
-        call check(error, itt2 < itt1, 'shifts: tangential warm start needs fewer iterations')
+        call check(error, 4*itt2 <= itt1, 'shifts: tangential warm start needs < 1/4 of the iterations')
         call check(error, fx2, fx1, 'same Fx', rel=1e-6_dp)
         call fc_set_forces(h, 0.6_dp*mu_cat*fn_cat, 0.0_dp, 0.0_dp, ierr)
         call fc_calculate(h, ierr)
@@ -253,7 +254,7 @@ contains
         call fc_calculate(h, ierr)
         call fc_get_iterations(h, itn2, itt2, ierr)
         call check(error, ierr == 0, 'forces: '//last_message(h))
-        call check(error, itt2 < itt1, 'forces: tangential warm start needs fewer iterations')
+        call check(error, 2*itt2 <= itt1, 'forces: tangential warm start needs < 1/2 of the iterations')
         call fc_get_rebuilds(h, nb, tb, nc, ierr)
         call check(error, nb == 1 .and. tb == 1 .and. nc == 4, 'operators built once in 4 calls')
         call fc_set_grid(h, 30, 25, -l_cat + 0.1_dp, l_cat + 0.1_dp, -l_cat, l_cat, ierr)
@@ -291,11 +292,11 @@ contains
 
     !> Load–shift–unload–reload with the normal force fixed (transient mode 1, prescribed
     !! Fx): Q/μFn = 0.25, 0.5, 0.75 (loading), 0.5, 0, −0.5, −0.75 (unloading), −0.25, 0.75
-    !! (reloading) on 48×48.  Per step: Fx to 1e−6 μFn; stick radius to one element diagonal
+    !! (reloading) on 48×48.  Per step: Fx to 1e−6 μFn; stick radius to one element size
     !! against Cattaneo–Mindlin (loading, c = a(1 − Q/μP)^{1/3}) and Mindlin–Deresiewicz
-    !! (unloading from Q*: c' of (Q* − Q)/2); the accumulated shift against the analytic
-    !! δ(Q) = δ_CM(Q), δ* − 2δ_CM((Q* − Q)/2), −δ* + 2δ_CM((Q + Q*)/2) within 4 % of δ*
-    !! (discretisation, 48²; the tangential test reaches 1 % at 120²) and against the same
+    !! (unloading from Q*: c' of (Q* − Q)/2) (measured ≤ 0.007 mm, dx = 0.054 mm); the
+    !! accumulated shift against the analytic δ(Q) = δ_CM(Q), δ* − 2δ_CM((Q* − Q)/2),
+    !! −δ* + 2δ_CM((Q + Q*)/2) within 0.5 % of δ* (measured ≤ 0.15 %) and against the same
     !! superposition of the discrete loading curve (steady solves) within 1 % of δ*; the
     !! tractions follow the superposition q* − 2q((Q* − Q)/2) to 3 % RMS; the reloaded state
     !! at Q* equals the first one at Q* to 1 %.
@@ -306,7 +307,7 @@ contains
         integer, parameter :: branch(nsteps) = [0, 0, 0, 1, 1, 1, 1, 2, 2]   ! 0 load, 1 unload, 2 reload
         real(dp) :: pn(n), px(n), py(n), px_star(n), px_ref(n), px_first(n), pxl(n), pyl(n)
         real(dp) :: fn, fx, fy, mz, xi, eta, phi, shift, qstar, dx, rstick, c_exp, d_exp, d_disc, d_star, dd_star, a
-        real(dp) :: x(n), y(n), diag
+        real(dp) :: x(n), y(n)
         integer :: h, hl, ierr, k, st(n), i, j
         type(fc_cattaneo_solution) :: cm
         character(len=24) :: label
@@ -314,7 +315,7 @@ contains
         call cattaneo_handle(h, nx, nx, 1e-9_dp)
         call fc_set_transient(h, FCL_CONTINUE, ierr)
         call cattaneo_handle(hl, nx, nx, 1e-9_dp)      ! steady solves of the loading curve
-        dx = 2*l_cat/nx; diag = hypot(dx, dx)
+        dx = 2*l_cat/nx
         do j = 1, nx
             do i = 1, nx
                 x(i + (j - 1)*nx) = -l_cat + (i - 0.5_dp)*dx
@@ -362,8 +363,8 @@ contains
                 d_disc = -(-dd_star + 2*d_disc)
                 px_ref = px_star + 2*pxl
             end select
-            call check(error, rstick, c_exp, trim(label)//' stick radius', abs=diag)
-            call check(error, shift, d_exp, trim(label)//' shift vs analytic', abs=0.04_dp*d_star)
+            call check(error, rstick, c_exp, trim(label)//' stick radius', abs=dx)
+            call check(error, shift, d_exp, trim(label)//' shift vs analytic', abs=0.005_dp*d_star)
             call check(error, shift, d_disc, trim(label)//' shift vs discrete superposition', abs=0.01_dp*d_star)
             if (branch(k) > 0) call check(error, rel_diff(px, px_ref) <= 0.03_dp, trim(label)//' tractions q* - 2q')
         end do

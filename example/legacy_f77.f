@@ -1,0 +1,26 @@
+C     Fortran-77 caller of the flat API: no module, implicit externals (symbols fc_*_),
+C     plain arrays.  scripts/build_shared.sh --examples && build/legacy_f77
+      PROGRAM F77DEMO
+      IMPLICIT NONE
+      INTEGER IH, IERR, NCON, NADH, NSLIP, NX
+      PARAMETER (NX = 20)
+      DOUBLE PRECISION FN, FX, FY, MZ, PN(NX*NX), PX(NX*NX), PY(NX*NX)
+      CHARACTER*128 MSG
+      CALL FC_INIT(IH, IERR)
+      CALL FC_SET_MATERIAL(IH, 200D0, 200D0, 0.42D0, 0.42D0, IERR)
+      CALL FC_SET_GRID(IH, NX, NX, -1.2857D0, 1.2857D0, -1.2857D0,
+     &                 1.2857D0, IERR)
+      CALL FC_SET_GAP_QUADRATIC(IH, 50D0, 50D0, IERR)
+      CALL FC_SET_NORMAL_FORCE(IH, 9.1954D0, IERR)
+      CALL FC_SET_FRICTION(IH, 0.4D0, IERR)
+      CALL FC_SET_FORCES(IH, 2.0D0, 0D0, 0D0, IERR)
+      CALL FC_CALCULATE(IH, IERR)
+      CALL FC_GET_FORCES(IH, FN, FX, FY, MZ, IERR)
+      CALL FC_GET_CONTACT_STATS(IH, NCON, NADH, NSLIP, IERR)
+      CALL FC_GET_TRACTIONS(IH, NX*NX, PN, PX, PY, IERR)
+      WRITE(*,'(A,3F10.5,3I5)') 'F77:', FN, FX, FY, NCON, NADH, NSLIP
+      CALL FC_SET_FRICTION(IH, -1D0, IERR)
+      CALL FC_GET_ERROR_MESSAGE(IH, MSG, 128, IERR)
+      WRITE(*,'(A,A)') 'F77 error: ', MSG(1:INDEX(MSG, CHAR(0))-1)
+      CALL FC_FINALIZE(IH, IERR)
+      END
