@@ -48,7 +48,7 @@ contains
             '&grid, &geometry, &normal, &tangential, &solver, &output; a later case repeats only what'//nl// &
             'changes)'//nl// &
             'and writes DIR/<name>.json and DIR/<name>.csv per case (DIR: --out, else &output dir,'//nl// &
-            "else 'out').  See doc/namelist.md."//nl//nl// &
+            "else 'out').  See doc/user_guide.md and doc/namelist.md."//nl//nl// &
             'Exit status: 0 all cases converged, 1 input error in some case, 2 some solver did not converge.'
     end function driver_usage
 
