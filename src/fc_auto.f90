@@ -16,7 +16,8 @@
 !!   pessimistic than the observed rate, never below the O(h²) prediction from the previous
 !!   difference (protects against a lucky small change), with a safety factor 2 because the
 !!   measured ratios of successive true errors scatter: 3.3–5.0 on Hertz Test I (16²–512²),
-!!   2.0–4.9 on the Cattaneo sphere (16²–64², contact radius 6–25 elements).  If r ≤ 1 (differences change sign or grow) convergence is
+!!   2.0–4.9 on the Cattaneo sphere (16²–64², contact radius 6–25 elements).
+!!   If r ≤ 1 (differences change sign or grow) convergence is
 !!   **non-monotone**: no extrapolation, est_k = max(|d_k|, |d_{k−1}|), and the outcome is
 !!   flagged unreliable.  Differences below the solver noise 10·tol count as converged.
 !!   The refinement stops at the first grid k ≥ 3 with est_k ≤ target (three grids are needed
@@ -75,6 +76,7 @@ module fc_auto
         integer :: enlargements = 0                        !! automatic enlargements of the area
         logical :: touches_boundary = .false.              !! final contact reaches the area's edge
         real(dp) :: total_seconds = 0                      !! all solves incl. set-up [s]
+        real(dp) :: tol = 0                                !! solver tolerance used (tightened for a target)
         type(fc_material) :: material                      !! combined constants
         type(fc_grid) :: grid                              !! final grid
         real(dp), allocatable :: h0(:, :)                  !! final undeformed distance
@@ -188,6 +190,7 @@ contains
             call add(out%reductions, 'solver tol tightened to '//fmt_real(s%settings%tol)//' = target/100 (solver '// &
                 'error below the discretisation error)')
         end if
+        out%tol = s%settings%tol
         do attempt = 1, max_enlargements + 1
             call solve_levels(s, tang, nop, top, out, stat, errmsg)
             if (stat /= 0) return

@@ -202,6 +202,7 @@ contains
             s%name = state%name; s%title = state%title; s%problem = state%problem; s%geometry = state%kind
             s%material = mat; s%force_prescribed = state%force_prescribed
             s%tol = state%settings%tol
+            if (auto%tol > 0) s%tol = auto%tol
             s%notes = state%notes
             s%model = auto%model; s%reductions = auto%reductions; s%warnings = auto%warnings
             s%grid_auto = auto%grid_auto; s%enlargements = auto%enlargements
