@@ -148,6 +148,9 @@ contains
         res%pn = 0
         if (present(p_start)) then
             if (all(shape(p_start) == [nx, ny])) res%pn = max(0.0_dp, p_start)
+            ! no start pressure where contact is impossible (outside a punch): it would count
+            ! toward the force and never be released by the iteration
+            where (.not. h0 < 0.5_dp*h_no_contact) res%pn = 0
         end if
         nop%a_zz%nproducts = 0; nop%precond%nproducts = 0
         call system_clock(t0, rate)

@@ -350,7 +350,7 @@ contains
     !! of the current pressure) until pressure and tractions change by less than 10·tol
     !! (relative RMS), at most 50 rounds.  `approach` or `fn` as in [[solve_normal]].
     subroutine solve_normal_tangential(nop, top, h0, nsettings, tsettings, load, nres, tres, stat, errmsg, &
-                                       approach, fn, rounds)
+                                       approach, fn, rounds, p_start, px_start, py_start)
         type(fc_normal_operator), intent(inout) :: nop
         type(fc_tangential_operator), intent(inout) :: top
         real(dp), intent(in) :: h0(:, :)
@@ -363,6 +363,7 @@ contains
         character(len=*), intent(out) :: errmsg
         real(dp), intent(in), optional :: approach, fn
         integer, intent(out), optional :: rounds   !! Panagiotopoulos rounds done (1 when K = 0)
+        real(dp), intent(in), optional :: p_start(:, :), px_start(:, :), py_start(:, :)  !! warm start
         real(dp), allocatable :: uxn(:, :), uyn(:, :), uzt(:, :), pn_old(:, :), px_old(:, :), py_old(:, :)
         type(fc_normal_result) :: nprev
         integer :: round, nx, ny, it_n, it_t, mv_n, mv_t, out_t
@@ -373,7 +374,7 @@ contains
         it_n = 0; it_t = 0; mv_n = 0; mv_t = 0; out_t = 0; cpu_n = 0; cpu_t = 0
         do round = 1, 50
             if (round == 1) then
-                call solve_normal(nop, h0 + uzt, nsettings, nres, stat, errmsg, approach=approach, fn=fn)
+                call solve_normal(nop, h0 + uzt, nsettings, nres, stat, errmsg, approach=approach, fn=fn, p_start=p_start)
             else
                 nprev = nres
                 call solve_normal(nop, h0 + uzt, nsettings, nres, stat, errmsg, approach=approach, fn=fn, &
@@ -390,7 +391,8 @@ contains
                 end if
             end if
             if (round == 1) then
-                call solve_tangential_loading(top, nres%pn, load, tsettings, tres, stat, errmsg, offset_x=uxn, offset_y=uyn)
+                call solve_tangential_loading(top, nres%pn, load, tsettings, tres, stat, errmsg, &
+                                              px_start=px_start, py_start=py_start, offset_x=uxn, offset_y=uyn)
             else
                 px_old = tres%px; py_old = tres%py
                 call solve_tangential_loading(top, nres%pn, load, tsettings, tres, stat, errmsg, &

@@ -237,6 +237,10 @@ contains
             call check(error, minval(res%gap) >= -1e-6_dp*par%sigma, trim(label)//' gap >= 0')
             call check(error, sum(res%pn*abs(res%gap), mask=res%gap < 1) <= 1e-5_dp*sum(res%pn)*par%sigma, &
                 trim(label)//' complementarity')
+            ! warm start with pressure everywhere (also outside the punch): the same solution
+            call solve_normal(nop, h0, set, res_norm, stat, msg, approach=approach(k), p_start=0*h0 + 1.0e3_dp)
+            call check(error, res_norm%status == FC_CONVERGED, trim(label)//' warm start converged')
+            call check(error, res_norm%fn, res%fn, trim(label)//' warm start from p > 0 everywhere: same force', rel=1e-6_dp)
             set%solver = 'norm'
             call solve_normal(nop, h0, set, res_norm, stat, msg, approach=approach(k))
             call check(error, res_norm%status == FC_CONVERGED, trim(label)//' norm converged')
