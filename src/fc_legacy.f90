@@ -24,6 +24,7 @@
 !! growing the registry never copies an operator (FFTW plans stay with their buffers).
 module fc_legacy
     use, intrinsic :: iso_c_binding, only: c_int, c_double, c_char, c_null_char
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
     use fc_kinds
     use fc_geometry
     use fc_influence
@@ -167,7 +168,7 @@ contains
 
     logical function finite(x)
         real(dp), intent(in) :: x
-        finite = x == x .and. abs(x) <= huge(x)
+        finite = ieee_is_finite(x)
     end function finite
 
     ! =====================================================================================
@@ -320,7 +321,7 @@ contains
                 //inum(s%grid%n())//' elements'); return
         end if
         do k = 1, n
-            if (h0(k) /= h0(k)) then
+            if (ieee_is_nan(h0(k))) then
                 call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_gap_array: h0('//inum(k)//') is NaN'); return
             end if
         end do

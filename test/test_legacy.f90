@@ -8,6 +8,7 @@ module test_legacy
     use fc_tangcg
     use fc_hertz
     use fc_legacy
+    use fc_driver, only: run_driver
     use fc_testing
     implicit none
     private
@@ -28,6 +29,8 @@ contains
             new_unittest('hertz_equals_modern_api', test_hertz), &
             new_unittest('cattaneo_equals_modern_api', test_cattaneo), &
             new_unittest('forces_equal_modern_api', test_forces_modern), &
+            new_unittest('dissimilar_equals_modern_api', test_dissimilar), &
+            new_unittest('driver_equals_flat_api', test_driver_equal), &
             new_unittest('warm_start_and_reuse', test_warm_start), &
             new_unittest('rebuild_each_call_same_result', test_no_reuse), &
             new_unittest('hysteresis_load_unload_reload', test_hysteresis), &
@@ -227,6 +230,127 @@ contains
         call fc_finalize(h, ierr)
         call nop%destroy(); call top%destroy()
     end subroutine test_forces_modern
+
+    !> Dissimilar bodies (G1 = 80000, ν1 = 0.28 on G2 = 200, ν2 = 0.42; K ≠ 0): the flat API's
+    !! Panagiotopoulos rounds = solve_normal_tangential (32², Fn = 10, μ = 0.3, tol 1e−9) to 1e−8.
+    subroutine test_dissimilar(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_grid) :: grid
+        type(fc_material) :: mat
+        type(fc_normal_operator) :: nop
+        type(fc_tangential_operator) :: top
+        type(fc_normal_settings) :: ns
+        type(fc_tangential_settings) :: ts
+        type(fc_tangential_loading) :: load
+        type(fc_normal_result) :: nr
+        type(fc_tangential_result) :: tr
+        integer, parameter :: n = 32*32
+        real(dp) :: pn(n), px(n), py(n), fn, fx, fy, mz
+        integer :: h, ierr, stat
+        character(len=msg_len) :: msg
+        mat%g1 = 80000; mat%g2 = 200; mat%nu1 = 0.28_dp; mat%nu2 = 0.42_dp
+        call combine_material(mat, stat, msg)
+        call make_grid(grid, 32, 32, -1.3_dp, 1.3_dp, -1.3_dp, 1.3_dp, stat, msg)
+        call build_normal_operator(nop, mat, grid)
+        call build_tangential_operator(top, mat, grid)
+        load%mu = 0.3_dp
+        ns%tol = 1e-9_dp; ts%tol = 1e-9_dp
+        call solve_normal_tangential(nop, top, quadratic_gap(grid, 50.0_dp, 50.0_dp), ns, ts, load, nr, tr, stat, msg, &
+                                     fn=10.0_dp)
+        call fc_init(h, ierr)
+        call fc_set_material(h, 80000.0_dp, 200.0_dp, 0.28_dp, 0.42_dp, ierr)
+        call fc_set_grid(h, 32, 32, -1.3_dp, 1.3_dp, -1.3_dp, 1.3_dp, ierr)
+        call fc_set_gap_quadratic(h, 50.0_dp, 50.0_dp, ierr)
+        call fc_set_normal_force(h, 10.0_dp, ierr)
+        call fc_set_friction(h, 0.3_dp, ierr)
+        call fc_set_shifts(h, 0.0_dp, 0.0_dp, 0.0_dp, ierr)
+        call fc_set_solver(h, 1, 1, 1e-9_dp, 1000, 3, 1, ierr)
+        call fc_calculate(h, ierr)
+        call check(error, ierr == 0, 'calculate: '//last_message(h))
+        call fc_get_forces(h, fn, fx, fy, mz, ierr)
+        call fc_get_tractions(h, n, pn, px, py, ierr)
+        call check(error, rel_diff(pn, reshape(nr%pn, [n])) <= 1e-8_dp, 'pn')
+        call check(error, rel_diff([px, py], [reshape(tr%px, [n]), reshape(tr%py, [n])]) <= 1e-8_dp, 'px, py')
+        call check(error, maxval(abs(px)) > 1e-3_dp*maxval(pn), 'pressing induces tangential tractions')
+        call check(error, fn, 10.0_dp, 'Fn', rel=1e-9_dp)
+        call fc_finalize(h, ierr)
+        call nop%destroy(); call top%destroy()
+    end subroutine test_dissimilar
+
+    !> The batch driver (in-process run_driver, namelist case 4 of Table 4.1 at 30×25,
+    !! tol 1e−10) and the flat API give the same JSON summary: Fn, Fx, Fy, Mz, approach,
+    !! pmax to 1e−10 relative (the JSON carries 16 digits) and equal element counts.
+    subroutine test_driver_equal(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: nl = new_line('a')
+        character(len=:), allocatable :: dir, json
+        character(len=256) :: args(3)
+        real(dp) :: fn, fx, fy, mz, appr, pmax
+        integer :: h, ierr, u, code, ncon, nadh, nslip, t0, rate, ios
+        character(len=1000) :: line
+        call system_clock(t0, rate)
+        dir = '/tmp/fc_test_legacy_'//inum(t0)
+        call execute_command_line("mkdir -p '"//dir//"'")
+        open (newunit=u, file=dir//'/c.nml', status='replace', action='write')
+        write (u, '(a)') "&case name = 'c4', problem = 'normal+tangential' /"//nl// &
+            '&material g1 = 200.0, g2 = 200.0, nu1 = 0.42, nu2 = 0.42 /'//nl// &
+            '&grid nx = 30, ny = 25, xmin = -1.2857, xmax = 1.2857, ymin = -1.2857, ymax = 1.2857 /'//nl// &
+            "&geometry kind = 'quadratic', rx = 50.0, ry = 50.0 /"//nl//'&normal fn = 9.1954 /'//nl// &
+            '&tangential mu = 0.4, xi = 0.0021, eta = 0.0010, phi = 0.003 /'//nl// &
+            "&solver normal = 'bccg', tangential = 'tangcg', inner_k = 3, tol = 1.0e-10, maxit = 1000 /"
+        close (u)
+        args(1) = dir//'/c.nml'; args(2) = '--out'; args(3) = dir
+        open (newunit=u, file=dir//'/report.txt', status='replace', action='write')
+        call run_driver(args, code, report_unit=u, error_unit=u)
+        close (u)
+        call check(error, code == 0, 'driver exit code 0')
+        json = ''
+        open (newunit=u, file=dir//'/c4.json', status='old', action='read', iostat=ios)
+        call check(error, ios == 0, 'c4.json written')
+        if (allocated(error)) return
+        do
+            read (u, '(a)', iostat=ios) line
+            if (ios /= 0) exit
+            json = json//trim(line)//nl
+        end do
+        close (u)
+        call execute_command_line("rm -rf '"//dir//"'")
+        call cattaneo_handle(h, 30, 25, 1e-10_dp)
+        call fc_set_shifts(h, case_xi(4), case_eta(4), case_phi(4), ierr)
+        call fc_calculate(h, ierr)
+        call fc_get_forces(h, fn, fx, fy, mz, ierr)
+        call fc_get_approach(h, appr, ierr)
+        call fc_get_pmax(h, pmax, ierr)
+        call fc_get_contact_stats(h, ncon, nadh, nslip, ierr)
+        call check(error, ierr == 0, 'flat API: '//last_message(h))
+        call check(error, fn, json_real('fn'), 'Fn', rel=1e-10_dp)
+        call check(error, fx, json_real('fx'), 'Fx', rel=1e-10_dp)
+        call check(error, fy, json_real('fy'), 'Fy', rel=1e-10_dp)
+        call check(error, mz, json_real('mz'), 'Mz', rel=1e-10_dp)
+        call check(error, appr, json_real('approach'), 'approach', rel=1e-10_dp)
+        call check(error, pmax, json_real('pmax'), 'pmax', rel=1e-10_dp)
+        call check(error, ncon == nint(json_real('ncon')) .and. nadh == nint(json_real('nadh')) .and. &
+            nslip == nint(json_real('nslip')), 'ncon, nadh, nslip')
+        call fc_finalize(h, ierr)
+    contains
+        real(dp) function json_real(key)
+            character(len=*), intent(in) :: key
+            integer :: k, e, ios2
+            json_real = huge(1.0_dp)
+            k = index(json, '"'//key//'": ')
+            if (k == 0) return
+            k = k + len(key) + 4
+            e = k + scan(json(k:), ','//nl) - 2
+            read (json(k:e), *, iostat=ios2) json_real
+        end function json_real
+        function inum(i) result(s)
+            integer, intent(in) :: i
+            character(len=:), allocatable :: s
+            character(len=16) :: b
+            write (b, '(i0)') i
+            s = trim(b)
+        end function inum
+    end subroutine test_driver_equal
 
     !> Warm start: a second identical call needs fewer normal and tangential iterations
     !! (shifts: < 1/4, measured 33 → 2 at 30×25; forces: < 1/2); operators are built once
