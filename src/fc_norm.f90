@@ -196,9 +196,12 @@ contains
         allowed = h0 < 0.5_dp*h_no_contact
         p = res%pn
         delta = delta_in
-        if (force_mode .and. sum(p) <= 0) then
-            ! start from a uniform pressure on the elements that can touch
-            where (allowed) p = 1
+        if (force_mode) then
+            ! start from a uniform pressure on the elements that can touch, or from the given
+            ! start scaled to the prescribed force (the iteration keeps Σp fixed)
+            if (sum(p) <= 0) then
+                where (allowed) p = 1
+            end if
             p = p*fn/(area*sum(p))
         end if
         call nop%a_zz%apply(p, u)

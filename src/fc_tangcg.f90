@@ -242,7 +242,7 @@ contains
     !! from the previous tractions.  |(Fx, Fy)| must be below μ·Fn (full slip has no unique
     !! shift).  Force tolerance: tol·μ·Fn.
     subroutine solve_tangential_loading(top, pn, load, settings, res, stat, errmsg, ux_prev, uy_prev, &
-                                        px_start, py_start, offset_x, offset_y)
+                                        px_start, py_start, offset_x, offset_y, xi_start, eta_start)
         type(fc_tangential_operator), intent(inout) :: top
         real(dp), intent(in) :: pn(:, :)
         type(fc_tangential_loading), intent(in) :: load
@@ -252,8 +252,10 @@ contains
         character(len=*), intent(out) :: errmsg
         real(dp), intent(in), optional :: ux_prev(:, :), uy_prev(:, :), px_start(:, :), py_start(:, :)
         real(dp), intent(in), optional :: offset_x(:, :), offset_y(:, :)
+        real(dp), intent(in), optional :: xi_start, eta_start  !! first guess of the shift (force mode)
         real(dp), allocatable :: zx(:, :), zy(:, :), ox(:, :), oy(:, :), qx(:, :), qy(:, :)
         type(fc_tangential_result) :: trial
+        type(fc_tangential_settings) :: inner
         real(dp) :: fn, flimit, k0, a, jac(2, 2), x(2), r(2), xn(2), rn(2), dx(2), dr(2), step, ftol, det
         real(dp) :: total_cpu
         integer :: outer, total_it, total_mv, nx, ny, halvings
@@ -287,14 +289,20 @@ contains
         jac = 0; jac(1, 1) = -k0; jac(2, 2) = -k0       ! dF/d(ξ,η): traction opposes the shift
         ftol = settings%tol*flimit
         x = [-load%fx/k0, -load%fy/k0]
+        if (present(xi_start)) x(1) = xi_start
+        if (present(eta_start)) x(2) = eta_start
         total_it = 0; total_mv = 0; total_cpu = 0
         converged = .false.
+        ! inner solves far from the force need less accuracy: tolerance tied to the force error
+        inner = settings
+        inner%tol = max(settings%tol, min(1.0e-3_dp, 0.1_dp*hypot(load%fx, load%fy)/flimit))
         call evaluate(x, r, res)
         if (stat /= 0) return
         do outer = 1, 60
-            if (norm2(r) <= ftol) then
+            if (norm2(r) <= ftol .and. inner%tol <= settings%tol) then
                 converged = .true.; exit
             end if
+            inner%tol = max(settings%tol, min(inner%tol, 0.01_dp*norm2(r)/flimit))
             det = jac(1, 1)*jac(2, 2) - jac(1, 2)*jac(2, 1)
             if (det == 0) exit
             dx = -[jac(2, 2)*r(1) - jac(1, 2)*r(2), -jac(2, 1)*r(1) + jac(1, 1)*r(2)]/det
@@ -326,7 +334,7 @@ contains
             real(dp), intent(in) :: shift(2)
             real(dp), intent(out) :: resid(2)
             type(fc_tangential_result), intent(inout) :: out
-            call solve_tangential(top, pn, load%mu, settings, out, stat, errmsg, shift(1), shift(2), load%phi, &
+            call solve_tangential(top, pn, load%mu, inner, out, stat, errmsg, shift(1), shift(2), load%phi, &
                                   zx, zy, qx, qy, ox, oy)
             if (stat /= 0) return
             total_it = total_it + out%iterations
@@ -474,7 +482,8 @@ contains
         ! initial subdivision (step 0): adhesion everywhere in contact; a warm start whose
         ! traction reaches the bound starts in slip
         adh = contact; slp = .false.
-        where (contact .and. g > 0 .and. px**2 + py**2 >= g**2)
+        ! (a converged start has its slip tractions on the bound up to rounding: 1e−8 slack)
+        where (contact .and. g > 0 .and. px**2 + py**2 >= (1 - 1.0e-8_dp)*g**2)
             slp = .true.; adh = .false.
         end where
         where (slp)

@@ -195,6 +195,9 @@ contains
             call check(error, res%fn, 82004.0_dp, solvers(k)//' force', rel=1e-10_dp)
             call check(error, res%approach, test1_approach, solvers(k)//' approach', rel=0.005_dp)
             call check(error, minval(res%pn) >= 0, solvers(k)//' p >= 0')
+            ! warm start from a solution of another load: the force is still the prescribed one
+            call solve_normal(nop, h0, set, res, stat, msg, fn=82004.0_dp, p_start=0.5_dp*res%pn)
+            call check(error, res%fn, 82004.0_dp, solvers(k)//' force after a warm start', rel=1e-10_dp)
         end do
         call nop%destroy()
     end subroutine test_force
