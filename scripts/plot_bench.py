@@ -5,8 +5,9 @@ Reads doc/bench_suite.csv (written by `fpm run --profile release fastcontact-ben
 and writes into doc/:
 
 * bench_accuracy_<family>.png  — error against CPU time (set-up + solve), one line per solver
-  and options, one point per grid; families: hertz, rough (case 3, and all three cases in
-  the CSV), cattaneo (case 5 and Cattaneo–Mindlin), mp1;
+  and options, one point per grid (grid sizes written next to the first line's points);
+  families: hertz, rough (case 3 and case 1: contact-area error; rough_p: case 3 pressure
+  difference), cattaneo (case 5), mindlin (Cattaneo–Mindlin), mp1;
 * bench_cost.png — solve time against unknowns on log–log axes, one panel per family, with
   the least-squares exponent t ~ n^e of each line in the legend (also printed to stdout);
 * bench_exponents.csv — the fitted exponents (family, solver, options, exponent, grids).
@@ -29,13 +30,16 @@ from collections import defaultdict
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 VENV = os.path.join(ROOT, ".venv-plots")
 
-# (family key, title, case names in the CSV, error label, note)
+# (family key, title, case names in the CSV, error label[, CSV column of the error; default
+# `error`, taken as an absolute value])
 FAMILIES = [
     ("hertz", "Hertz Test I", ["hertz_test1"],
      "RMS error of p vs analytic Hertz [N/mm²]"),
     ("rough", "Rough punch, case 3 (δ = 0.25, ≈28 % contact)", ["rough_case3"],
-     "‖p − p_ref‖/‖p_ref‖ (block-averaged finest BCCG)"),
+     "|contact area − ref| / ref (finest-grid BCCG)", "area_error_rel"),
     ("rough1", "Rough punch, case 1 (δ = −0.11, ≈5 % contact)", ["rough_case1"],
+     "|contact area − ref| / ref (finest-grid BCCG)", "area_error_rel"),
+    ("rough_p", "Rough punch, case 3: pressure difference", ["rough_case3"],
      "‖p − p_ref‖/‖p_ref‖ (block-averaged finest BCCG)"),
     ("cattaneo", "Cattaneo case 5 (60 % slip)", ["cattaneo_case5"],
      "‖p_t − p_t,ref‖/‖p_t,ref‖ (block-averaged finest TangCG)"),
@@ -71,7 +75,7 @@ def read_rows(path):
     with open(path, newline="") as f:
         rows = list(csv.DictReader(f))
     for r in rows:
-        for k in ("error", "setup_seconds", "solve_seconds", "total_seconds", "work_units", "peak_rss_mb"):
+        for k in ("error", "fn_error_rel", "area_error_rel", "setup_seconds", "solve_seconds", "total_seconds", "work_units", "peak_rss_mb"):
             r[k] = float(r[k])
         for k in ("nx", "ny", "unknowns", "iterations"):
             r[k] = int(r[k])
@@ -118,7 +122,9 @@ def main():
 
     markers = "osD^v<>ph*"
     written = []
-    for key, title, cases, ylabel in FAMILIES:
+    for fam in FAMILIES:
+        key, title, cases, ylabel = fam[:4]
+        column = fam[4] if len(fam) > 4 else "error"
         sel = [r for r in rows if r["case"] in cases]
         if not sel:
             continue
@@ -129,17 +135,19 @@ def main():
         for i, (lab, rs) in enumerate(sorted(lines.items())):
             rs.sort(key=lambda r: r["unknowns"])
             t = [max(r["total_seconds"], floor) for r in rs]
-            e = [r["error"] for r in rs]
+            e = [max(abs(r[column]), 1e-12) for r in rs]
             ax.loglog(t, e, marker=markers[i % len(markers)], label=lab)
             for r, ti, ei in zip(rs, t, e):
                 if r["status"] != "converged":
                     ax.plot([ti], [ei], "x", color="red", markersize=10)
             # grid size next to the last point
-            ax.annotate("%dx%d" % (rs[-1]["nx"], rs[-1]["ny"]), (t[-1], e[-1]), fontsize=7,
-                        textcoords="offset points", xytext=(3, 3))
+            if i == 0:
+                for r, ti, ei in zip(rs, t, e):
+                    ax.annotate("%dx%d" % (r["nx"], r["ny"]), (ti, ei), fontsize=7,
+                                textcoords="offset points", xytext=(3, 3))
         ax.set_xlabel("CPU time, set-up + solve [s] (wall clock, 1 thread)")
         ax.set_ylabel(ylabel, fontsize=9)
-        ax.set_title("%s: accuracy against time (a point per grid)" % title, fontsize=10)
+        ax.set_title("%s\naccuracy against time (a point per grid)" % title, fontsize=10)
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=8)
         fig.tight_layout()
