@@ -4,6 +4,7 @@
 !!   case,solver,cycle,nx,ny,unknowns,iterations,work_units,products,error_vs_hertz,
 !!   residual,status,seconds,factor
 !!
+!! cycle           quoted (it contains a comma): "V(1,1)", "V(1,0)", "V(0,1)"; "" when not MG
 !! case            hertz (Test I, §2.5.1), rough1..rough3 (punch cases, §2.5.2), mp1..mp3 (§3.5)
 !! solver          fmg-gs (FMG, damped GS, thesis §2.4), fmg-fft-rsm (FMG with the FFT+RSM
 !!                 smoother, beyond the thesis), bccg, norm (fc_norm), mg-fft-rsm (MG with the
@@ -42,7 +43,7 @@ program fastcontact_bench_mg
     real(dp), parameter :: tol = 1.0e-6_dp
     integer, parameter :: nus(2, 3) = reshape([1, 1, 1, 0, 0, 1], [2, 3])
     character(len=*), parameter :: fmt_row = &
-        '(a,",",a,",",a,",",i0,",",i0,",",i0,",",i0,",",f0.1,",",f0.1,",",a,",",es10.3,",",a,",",f0.4,",",a)'
+        '(a,",",a,",""",a,""",",i0,",",i0,",",i0,",",i0,",",f0.1,",",f0.1,",",a,",",es9.3,",",a,",",f0.4,",",a)'
     character(len=512) :: out_file, arg
     character(len=64) :: val
     integer :: nmax, nlarge, kmax, iarg, nargs, ios, unit, n, k, icase, c, mp, nmin_large
