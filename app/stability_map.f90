@@ -30,7 +30,9 @@ program fastcontact_stability
     character(len=512) :: csv_file, md_file, arg
     integer :: csv, iarg, ios, nrows, nunexpected
     character(len=24), allocatable :: r_method(:)
-    character(len=44), allocatable :: r_scenario(:)
+    character(len=60), allocatable :: r_scenario(:)
+    character(len=16), allocatable :: r_grid(:)
+    character(len=120), allocatable :: r_msg(:)
     character(len=16), allocatable :: r_outcome(:)
     character(len=32), allocatable :: r_expected(:)
     integer, allocatable :: r_iter(:)
@@ -56,7 +58,7 @@ program fastcontact_stability
     open (newunit=csv, file=trim(csv_file), status='replace', action='write', iostat=ios)
     if (ios /= 0) error stop 'fastcontact-stability: cannot open the CSV file'
     write (csv, '(a)') 'method,scenario,grid,outcome,iterations,residual,expected,as_expected,message'
-    allocate (r_method(0), r_scenario(0), r_outcome(0), r_expected(0), r_iter(0), r_ok(0))
+    allocate (r_method(0), r_scenario(0), r_grid(0), r_msg(0), r_outcome(0), r_expected(0), r_iter(0), r_ok(0))
     nrows = 0; nunexpected = 0
 
     call normal_scenarios()
@@ -80,9 +82,9 @@ contains
         do s = 1, 2
             m = solvers(s)
             set = fc_normal_settings(); set%solver = solvers(s)
-            call hertz(m, 'hertz 32x32', 32, set, 82000.0_dp, 0.28_dp, 0.1091_dp, 'converged')
-            call hertz(m, 'hertz 256x256', 256, set, 82000.0_dp, 0.28_dp, 0.1091_dp, 'converged')
-            if (s == 1) call hertz(m, 'hertz 1024x1024', 1024, set, 82000.0_dp, 0.28_dp, 0.1091_dp, 'converged')
+            call hertz(m, 'hertz', 32, set, 82000.0_dp, 0.28_dp, 0.1091_dp, 'converged')
+            call hertz(m, 'hertz', 256, set, 82000.0_dp, 0.28_dp, 0.1091_dp, 'converged')
+            if (s == 1) call hertz(m, 'hertz', 1024, set, 82000.0_dp, 0.28_dp, 0.1091_dp, 'converged')
             call hertz(m, 'near-incompressible nu=0.49999', 128, set, 82000.0_dp, 0.49999_dp, 0.1091_dp, 'converged')
             call hertz(m, 'rubber G=0.3 nu=0.49', 128, set, 0.3_dp, 0.49_dp, 0.1091_dp, 'converged')
             call hertz(m, 'contact touches the area boundary', 128, set, 82000.0_dp, 0.28_dp, 0.3_dp, 'converged')
@@ -97,19 +99,19 @@ contains
             set = fc_normal_settings(); set%solver = solvers(s); set%tol = 0
             call hertz(m, 'tol = 0 (invalid setting)', 32, set, 82000.0_dp, 0.28_dp, 0.1091_dp, 'error')
             set = fc_normal_settings(); set%solver = solvers(s)
-            call rough(m, 'rough case 1 (5 % contact) 128x128', 128, set, 1, 'converged')
-            call rough(m, 'rough case 3 (28 % contact) 256x256', 256, set, 3, 'converged')
+            call rough(m, 'rough case 1 (5 % contact)', 128, set, 1, 'converged')
+            call rough(m, 'rough case 3 (28 % contact)', 256, set, 3, 'converged')
         end do
         set = fc_normal_settings(); set%solver = 'bccg'; set%precondition = .false.
-        call hertz('bccg no-precondition', 'hertz 256x256', 256, set, 82000.0_dp, 0.28_dp, 0.1091_dp, 'converged')
-        call rough('bccg no-precondition', 'rough case 3 (28 % contact) 256x256', 256, set, 3, 'converged')
+        call hertz('bccg no-precondition', 'hertz', 256, set, 82000.0_dp, 0.28_dp, 0.1091_dp, 'converged')
+        call rough('bccg no-precondition', 'rough case 3 (28 % contact)', 256, set, 3, 'converged')
         set = fc_normal_settings(); set%solver = 'bccg'; set%deflation = .true.
-        call hertz('bccg deflation', 'hertz 256x256', 256, set, 82000.0_dp, 0.28_dp, 0.1091_dp, 'converged')
+        call hertz('bccg deflation', 'hertz', 256, set, 82000.0_dp, 0.28_dp, 0.1091_dp, 'converged')
         ! thesis Table 2.8: truncated CG converges up to 128² (14 active-set iterations), DIV at 256²
         set = fc_normal_settings(); set%solver = 'norm'; set%inner_maxit = 4; set%tol = 1.0e-6_dp
-        call rough('norm inner_maxit=4', 'rough case 3 (28 % contact) 128x128', 128, set, 3, 'converged')
-        call rough('norm inner_maxit=4', 'rough case 3 (28 % contact) 256x256', 256, set, 3, 'not_converged|diverged')
-        call hertz('norm inner_maxit=4', 'hertz 256x256', 256, set, 82000.0_dp, 0.28_dp, 0.1091_dp, &
+        call rough('norm inner_maxit=4', 'rough case 3 (28 % contact)', 128, set, 3, 'converged')
+        call rough('norm inner_maxit=4', 'rough case 3 (28 % contact)', 256, set, 3, 'not_converged|diverged')
+        call hertz('norm inner_maxit=4', 'hertz', 256, set, 82000.0_dp, 0.28_dp, 0.1091_dp, &
             'converged|not_converged|diverged')
     end subroutine normal_scenarios
 
@@ -197,8 +199,8 @@ contains
         type(fc_fmg_settings) :: set
         character(len=*), parameter :: m = 'fmg V(1,1) gs'
         set = fc_fmg_settings()
-        call fmg_hertz(m, 'hertz 32x32', 32, set, 82000.0_dp, 0.28_dp, 0.1091_dp, 'converged')
-        call fmg_hertz(m, 'hertz 128x128', 128, set, 82000.0_dp, 0.28_dp, 0.1091_dp, 'converged')
+        call fmg_hertz(m, 'hertz', 32, set, 82000.0_dp, 0.28_dp, 0.1091_dp, 'converged')
+        call fmg_hertz(m, 'hertz', 128, set, 82000.0_dp, 0.28_dp, 0.1091_dp, 'converged')
         call fmg_hertz(m, 'near-incompressible nu=0.49999', 64, set, 82000.0_dp, 0.49999_dp, 0.1091_dp, 'converged')
         call fmg_hertz(m, 'rubber G=0.3 nu=0.49', 64, set, 0.3_dp, 0.49_dp, 0.1091_dp, 'converged')
         call fmg_hertz(m, 'contact touches the area boundary', 64, set, 82000.0_dp, 0.28_dp, 0.3_dp, 'converged')
@@ -206,26 +208,26 @@ contains
         set%maxit = 1
         call fmg_hertz(m, 'maxit too small (1)', 128, set, 82000.0_dp, 0.28_dp, 0.1091_dp, 'not_converged')
         set = fc_fmg_settings(); set%omega = 1.2_dp
-        call fmg_hertz('fmg V(1,1) gs omega=1.2', 'hertz 64x64 (omega > 1)', 64, set, 82000.0_dp, 0.28_dp, 0.1091_dp, &
+        call fmg_hertz('fmg V(1,1) gs omega=1.2', 'hertz (omega > 1)', 64, set, 82000.0_dp, 0.28_dp, 0.1091_dp, &
             'converged|not_converged')
         set%omega = 1.9_dp
-        call fmg_hertz('fmg V(1,1) gs omega=1.9', 'hertz 64x64 (omega > 1)', 64, set, 82000.0_dp, 0.28_dp, 0.1091_dp, &
+        call fmg_hertz('fmg V(1,1) gs omega=1.9', 'hertz (omega > 1)', 64, set, 82000.0_dp, 0.28_dp, 0.1091_dp, &
             'converged|not_converged')
         set%omega = 2.5_dp
-        call fmg_hertz('fmg V(1,1) gs omega=2.5', 'hertz 64x64 (omega invalid)', 64, set, 82000.0_dp, 0.28_dp, &
+        call fmg_hertz('fmg V(1,1) gs omega=2.5', 'hertz (omega invalid)', 64, set, 82000.0_dp, 0.28_dp, &
             0.1091_dp, 'error')
         set = fc_fmg_settings(); set%smoother = 'jacobi'
-        call fmg_hertz('fmg V(1,1) jacobi', 'hertz 64x64 (Jacobi, thesis Fig. 2.6)', 64, set, 82000.0_dp, 0.28_dp, &
+        call fmg_hertz('fmg V(1,1) jacobi', 'hertz (Jacobi, thesis Fig. 2.6)', 64, set, 82000.0_dp, 0.28_dp, &
             0.1091_dp, 'not_converged|diverged')
         set = fc_fmg_settings(); set%nested = .false.
-        call fmg_hertz('mg+active set V(1,1) gs', 'hertz 128x128 (no nested iteration)', 128, set, 82000.0_dp, &
+        call fmg_hertz('mg+active set V(1,1) gs', 'hertz (no nested iteration)', 128, set, 82000.0_dp, &
             0.28_dp, 0.1091_dp, 'converged')
         set = fc_fmg_settings(); set%smoother = 'fft-rsm'
-        call fmg_hertz('fmg V(1,1) fft-rsm', 'hertz 256x256', 256, set, 82000.0_dp, 0.28_dp, 0.1091_dp, 'converged')
-        call fmg_rough('fmg V(1,1) fft-rsm', 'rough case 1 (5 % contact) 128x128', 128, set, 1, 'converged')
+        call fmg_hertz('fmg V(1,1) fft-rsm', 'hertz', 256, set, 82000.0_dp, 0.28_dp, 0.1091_dp, 'converged')
+        call fmg_rough('fmg V(1,1) fft-rsm', 'rough case 1 (5 % contact)', 128, set, 1, 'converged')
         set = fc_fmg_settings()
-        call fmg_rough(m, 'rough case 1 (5 % contact) 128x128', 128, set, 1, 'converged')
-        call fmg_rough(m, 'rough case 3 (28 % contact) 128x128', 128, set, 3, 'converged')
+        call fmg_rough(m, 'rough case 1 (5 % contact)', 128, set, 1, 'converged')
+        call fmg_rough(m, 'rough case 3 (28 % contact)', 128, set, 3, 'converged')
     end subroutine fmg_scenarios
 
     subroutine fmg_hertz(method, scenario, n, set, g, nu, approach, expected)
@@ -294,7 +296,7 @@ contains
                     200.0_dp, 0.42_dp, load, 'converged')
             end do
             if (s < 3) then
-                call cattaneo(label(s), 'cattaneo case 3, 240x200', 240, 200, ts, 200.0_dp, 0.42_dp, &
+                call cattaneo(label(s), 'cattaneo case 3, slip 19 %', 240, 200, ts, 200.0_dp, 0.42_dp, &
                     shift_load(xi(3), eta(3), phi(3)), 'converged')
             end if
             call cattaneo(label(s), 'case 3, near-incompressible nu=0.49999', 60, 50, ts, 200.0_dp, 0.49999_dp, &
@@ -379,7 +381,7 @@ contains
         character(len=32), parameter :: expect(3) = [character(len=32) :: 'diverged', 'converged', 'converged']
         character(len=32) :: ex
         integer :: s, which, e, nu2
-        character(len=40) :: scen
+        character(len=48) :: scen
         character(len=24) :: meth
         do s = 1, 3
             nu2 = merge(0, 1, s == 2)
@@ -476,12 +478,14 @@ contains
             trim(outcome), max(iterations, 0), min(residual, 1.0e99_dp), expected, merge('yes', 'no ', ok), &
             '"'//trim(clean)//'"'
         flush (csv)
-        write (*, '(a24,1x,a44,1x,a11,1x,a14,1x,i6,1x,a3,1x,a)') method, scenario, grid, outcome, max(iterations, 0), &
+        write (*, '(a24,1x,a50,1x,a11,1x,a14,1x,i6,1x,a3,1x,a)') method, scenario, grid, outcome, max(iterations, 0), &
             merge('ok ', 'NO ', ok), trim(clean(1:70))
         nrows = nrows + 1
         if (.not. ok) nunexpected = nunexpected + 1
         r_method = [r_method, method]
-        r_scenario = [character(len=44) :: r_scenario, scenario//' '//grid]
+        r_scenario = [character(len=60) :: r_scenario, scenario]
+        r_grid = [character(len=16) :: r_grid, grid]
+        r_msg = [character(len=120) :: r_msg, clean]
         r_outcome = [r_outcome, outcome]
         r_expected = [character(len=32) :: r_expected, expected]
         r_iter = [r_iter, max(iterations, 0)]
@@ -506,13 +510,14 @@ contains
             'NaN); **expected** is the thesis'' or the physics'' prediction; iterations are the solver''s own count ' // &
             '(BCCG/NORM CG steps, FMG/MG cycles, TangCG inner iterations, ConvexGS sweeps).'
         write (u, '(a)') ''
-        write (u, '(a)') '| method | scenario | outcome | iterations | expected | as expected |'
-        write (u, '(a)') '|---|---|---|---:|---|---|'
+        write (u, '(a)') '| method | scenario | grid | outcome | iterations | expected | as expected | message |'
+        write (u, '(a)') '|---|---|---|---|---:|---|---|---|'
         do i = 1, size(r_method)
             cell = r_outcome(i)
             if (.not. r_ok(i)) cell = '**'//trim(cell)//'**'
-            write (u, '(a,i0,a)') '| '//trim(r_method(i))//' | '//trim(r_scenario(i))//' | '//trim(cell)//' | ', &
-                r_iter(i), ' | '//trim(slashes(r_expected(i)))//' | '//merge('yes   ', '**no**', r_ok(i))//' |'
+            write (u, '(a,i0,a)') '| '//trim(r_method(i))//' | '//trim(r_scenario(i))//' | '//trim(r_grid(i))//' | '// &
+                trim(cell)//' | ', r_iter(i), ' | '//trim(slashes(r_expected(i)))//' | '// &
+                trim(merge('yes   ', '**no**', r_ok(i)))//' | '//trim(r_msg(i))//' |'
         end do
         write (u, '(a)') ''
         write (u, '(i0,a,i0,a)') size(r_method), ' scenarios, ', count(.not. r_ok), ' not as expected.'

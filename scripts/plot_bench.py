@@ -75,8 +75,13 @@ def read_rows(path):
     with open(path, newline="") as f:
         rows = list(csv.DictReader(f))
     for r in rows:
-        for k in ("error", "fn_error_rel", "area_error_rel", "setup_seconds", "solve_seconds", "total_seconds", "work_units", "peak_rss_mb"):
+        for k in ("error", "fn_error_rel", "area_error_rel", "setup_seconds", "solve_seconds", "total_seconds",
+                  "work_units", "peak_rss_mb"):
             r[k] = float(r[k])
+        # process CPU time when the CSV has it (robust when other jobs share the cores)
+        for k in ("setup", "solve", "total"):
+            if r.get(k + "_cpu_seconds"):
+                r[k + "_seconds"] = float(r[k + "_cpu_seconds"])
         for k in ("nx", "ny", "unknowns", "iterations"):
             r[k] = int(r[k])
     return rows
@@ -145,7 +150,7 @@ def main():
                 for r, ti, ei in zip(rs, t, e):
                     ax.annotate("%dx%d" % (r["nx"], r["ny"]), (ti, ei), fontsize=7,
                                 textcoords="offset points", xytext=(3, 3))
-        ax.set_xlabel("CPU time, set-up + solve [s] (wall clock, 1 thread)")
+        ax.set_xlabel("CPU time, set-up + solve [s] (process CPU time, 1 thread)")
         ax.set_ylabel(ylabel, fontsize=9)
         ax.set_title("%s\naccuracy against time (a point per grid)" % title, fontsize=10)
         ax.grid(True, which="both", alpha=0.3)
@@ -179,7 +184,7 @@ def main():
                       label="%s  (e = %.2f)" % (lab, e) if e == e else lab)
         ax.set_title(title, fontsize=10)
         ax.set_xlabel("unknowns")
-        ax.set_ylabel("solve time [s]")
+        ax.set_ylabel("solve CPU time [s]")
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=7)
     for ax in list(axes.flat)[len(fams):]:
