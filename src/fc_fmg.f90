@@ -113,7 +113,7 @@ module fc_fmg
         logical, allocatable :: area_changed(:)       !! contact set modified after that cycle ("(C)")
         real(dp), allocatable :: p_history(:, :, :)   !! pressures: initial (0) and after each cycle
         integer :: ncon_initial = 0                   !! elements in the initial target contact set
-        real(dp) :: convergence_factor = 0            !! (‖d_m‖/‖d_0‖)^(1/m) on the target grid
+        real(dp) :: convergence_factor = 0            !! (2.18) residual: (r_m/r_1)^(1/(m−1)) on the target grid
     end type fc_fmg_stats
 
     !> One grid level: grid, influence operator, undeformed distance.
@@ -538,8 +538,9 @@ contains
         end subroutine finish
     end subroutine fmg_approach
 
-    !> Prescribed total force: secant iteration on δ around FMG (F(δ) is increasing).
-    !! Each FMG solve is warm in nothing but δ; costs add up in work units.
+    !> Prescribed total force: secant iteration on δ around FMG (F(δ) is increasing), the
+    !! second guess from Hertz scaling.  Every FMG solve starts afresh; `iterations` and the
+    !! work units add up over the solves, `outer_iterations` counts the solves.
     subroutine fmg_force(hier, settings, fn, res, stats, stat, errmsg)
         type(fc_fmg_hierarchy), intent(inout) :: hier
         type(fc_fmg_settings), intent(in) :: settings
@@ -559,10 +560,15 @@ contains
             scale = max(maxval(top%h0, mask=top%allowed) - hmin, 1.0e-6_dp)
         end associate
         work = 0; nsolve = 0; iters = 0
-        ! first two guesses: just touching + 1 % of the profile range, and 5 %
+        ! first guess: 1 % of the profile range past first touch; second: Hertz scaling
+        ! (δ − h_min) ∝ F^(2/3); then secant steps
         d0 = hmin + 0.01_dp*scale
         call one(d0, f0); if (stat /= 0) return
-        d1 = hmin + 0.05_dp*scale
+        if (f0 > 0) then
+            d1 = hmin + (d0 - hmin)*(fn/f0)**(2.0_dp/3.0_dp)
+        else
+            d1 = hmin + 0.05_dp*scale
+        end if
         call one(d1, f1); if (stat /= 0) return
         do it = 1, 60
             if (abs(f1 - fn) <= 0.1_dp*settings%tol*fn .or. res%status /= FC_CONVERGED) exit
