@@ -3,6 +3,8 @@
 !!
 !!   method,scenario,grid,outcome,iterations,residual,expected,as_expected,message
 !!
+!! (method, scenario and message are quoted: they may hold commas.)
+!!
 !! `outcome` is what the package REPORTED: `converged`, `not_converged` (maxit or stagnation),
 !! `diverged`, or `error` (the call returned stat /= 0 with a message: invalid input, no
 !! contact, …).  `expected` is what the thesis or the physics predicts; `as_expected` compares
@@ -473,7 +475,7 @@ contains
             if (clean(i:i) == ',' .or. clean(i:i) == '"') clean(i:i) = ';'
             if (clean(i:i) == '|') clean(i:i) = '/'
         end do
-        write (csv, '(a,",",a,",",a,",",a,",",i0,",",es10.3,",",a,",",a,",",a)') trim(method), '"'//trim(scenario)//'"', &
+        write (csv, '(a,",",a,",",a,",",a,",",i0,",",es10.3,",",a,",",a,",",a)') '"'//trim(method)//'"', '"'//trim(scenario)//'"', &
             grid, &
             trim(outcome), max(iterations, 0), min(residual, 1.0e99_dp), expected, merge('yes', 'no ', ok), &
             '"'//trim(clean)//'"'
