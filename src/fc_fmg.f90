@@ -629,9 +629,10 @@ contains
         integer :: k, kk
         real(dp), allocatable :: rhist(:), phist(:, :, :)
         logical, allocatable :: chist(:)
+        allocate (h(size(p, 1), size(p, 2)), u(size(p, 1), size(p, 2)), rhs(size(p, 1), size(p, 2)))
+        allocate (con_new(size(p, 1), size(p, 2)))
         associate (lv => hier%lev(l))
             h = lv%h0 - delta
-            allocate (u(size(p, 1), size(p, 2)), rhs(size(p, 1), size(p, 2)), con_new(size(p, 1), size(p, 2)))
             allocate (rhist(maxit), chist(maxit))
             if (present(stats) .and. settings%keep_history) then
                 allocate (phist(size(p, 1), size(p, 2), 0:maxit))
@@ -717,9 +718,9 @@ contains
         if (stat /= 0) then
             status = FC_ERROR; return
         end if
+        allocate (h(size(p, 1), size(p, 2)), rhs(size(p, 1), size(p, 2)), u(size(p, 1), size(p, 2)))
         associate (lv => hier%lev(hier%nlev))
             h = lv%h0 - delta
-            allocate (rhs(size(h, 1), size(h, 2)), u(size(h, 1), size(h, 2)))
             where (con)
                 rhs = -h
             elsewhere
