@@ -158,6 +158,8 @@ module fc_fmg
         end subroutine dgeev
     end interface
 
+    integer, parameter :: max_coarsest_cells = 4096   !! dense LAPACK solve on the coarsest grid
+
     public :: solve_normal_fmg, build_fmg_hierarchy, fmg_solve_lcp, mg_solve_fixed
     public :: fmg_cycle_from_name, smoother_eigenvalues
 
@@ -254,6 +256,13 @@ contains
             nlev = nlev + 1
             sx(nlev) = nx; sy(nlev) = ny; fxs(nlev) = 1; fys(nlev) = 1
         end do
+        if (nx*ny > max_coarsest_cells) then
+            stat = 1
+            write (errmsg, '(a,i0,a,i0,a,i0,a,i0,a,i0,a)') 'fmg: grid ', grid%nx, 'x', grid%ny, ' coarsens only to ', &
+                nx, 'x', ny, ' (more than ', max_coarsest_cells, ' cells for the direct coarsest solve); '// &
+                'use nx, ny with more factors of 2'
+            return
+        end if
         hier%nlev = nlev
         hier%material = mat
         allocate (hier%lev(nlev))

@@ -27,6 +27,7 @@ contains
             new_unittest('fmg_rough_flat_work_tables25_27', test_rough), &
             new_unittest('fmg_without_surface_averages_h', test_no_surface), &
             new_unittest('fmg_prescribed_force', test_force), &
+            new_unittest('fmg_grids_not_powers_of_two', test_odd_grids), &
             new_unittest('jacobi_eigenvalue_fig26', test_jacobi_eigen), &
             new_unittest('jacobi_smoother_failure_reported', test_jacobi_fmg), &
             new_unittest('norm_truncated_cg_table28', test_truncated_norm), &
@@ -344,6 +345,42 @@ contains
         call check(error, minval(res%pn) >= 0, 'p >= 0')
         call check(error, res%outer_iterations >= 2, 'several FMG solves counted')
     end subroutine test_force
+
+    !> Grids that are not powers of two: 30×25 (no coarsening: exact active set) and 48×40
+    !! (coarsest 6×5) agree with BCCG (1e−4); 250×250 only coarsens to 125×125, too large for
+    !! the dense coarsest solve, and is refused with a message.
+    subroutine test_odd_grids(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_material) :: mat
+        type(fc_grid) :: grid
+        type(fc_fmg_settings) :: set
+        type(fc_normal_result) :: res, rb
+        type(fc_fmg_stats) :: st
+        type(fc_normal_operator) :: nop
+        type(fc_normal_settings) :: nset
+        real(dp), allocatable :: h0(:, :)
+        integer :: stat, k
+        integer, parameter :: sz(2, 2) = reshape([30, 25, 48, 40], [2, 2])
+        character(len=200) :: msg
+        mat%g1 = 82000; mat%g2 = 82000; mat%nu1 = 0.28_dp; mat%nu2 = 0.28_dp
+        call combine_material(mat, stat, msg)
+        nset%tol = 1e-10_dp
+        do k = 1, 2
+            call make_grid(grid, sz(1, k), sz(2, k), -10.0_dp, 10.0_dp, -6.0_dp, 6.0_dp, stat, msg)
+            h0 = quadratic_gap(grid, 300.0_dp, 163.0_dp)
+            call solve_normal_fmg(mat, grid, h0, set, res, stat, msg, approach=test1_approach, stats=st)
+            call check(error, stat == 0 .and. res%status == FC_CONVERGED, 'odd grid converged: '//trim(msg))
+            call build_normal_operator(nop, mat, grid)
+            call solve_normal(nop, h0, nset, rb, stat, msg, approach=test1_approach)
+            call check(error, rel_diff(pack(res%pn, .true.), pack(rb%pn, .true.)), 0.0_dp, 'odd grid FMG = BCCG', abs=1e-4_dp)
+            call nop%destroy()
+        end do
+        call check(error, st%levels == 4 .and. st%nx(1) == 6 .and. st%ny(1) == 5, '48x40 coarsens to 6x5')
+        call make_grid(grid, 250, 250, -10.0_dp, 10.0_dp, -6.0_dp, 6.0_dp, stat, msg)
+        h0 = quadratic_gap(grid, 300.0_dp, 163.0_dp)
+        call solve_normal_fmg(mat, grid, h0, set, res, stat, msg, approach=test1_approach)
+        call check(error, stat /= 0 .and. index(msg, '125x125') > 0, '250x250 refused: '//trim(msg))
+    end subroutine test_odd_grids
 
     !> Fig. 2.6 (32×1 grid on [−2.56,2.56]×[−500,500], A^zz, steel): the undamped Jacobi
     !! iteration matrix has one eigenvalue far below −1 (we get ≈ −19.8, the next is −1.4;
