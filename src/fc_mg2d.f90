@@ -209,6 +209,12 @@ contains
         do while (mod(n, 2) == 0 .and. n/2 >= max(1, settings%coarsest) .and. nlev < nlev_max)
             n = n/2; nlev = nlev + 1
         end do
+        if (nlev_max > 1 .and. n > 4096) then
+            stat = 1
+            write (errmsg, '(a,i0,a,i0,a)') 'strip2d: n = ', nf, ' coarsens only to ', n, &
+                ' cells (> 4096 for the direct coarsest solve); use n with more factors of 2'
+            return
+        end if
         allocate (sizes(nlev))
         sizes(nlev) = nf
         do l = nlev - 1, 1, -1

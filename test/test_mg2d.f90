@@ -308,6 +308,13 @@ contains
         call solve_strip_mg(prob, set, res, stat, msg)
         call check(error, stat /= 0 .and. index(msg, 'cycle') > 0, 'V(0,0): '//trim(msg))
         set%nu1 = 1; set%nu2 = 1
+        call strip_model_problem(1, 64, prob, stat, msg)
+        deallocate (prob%rhs, prob%contact)
+        prob%grid%nx = 5001; prob%grid%dx = 8.0_dp/5001
+        allocate (prob%rhs(5001), prob%contact(5001))
+        prob%rhs = 1; prob%contact = .true.
+        call solve_strip_mg(prob, set, res, stat, msg)
+        call check(error, stat /= 0 .and. index(msg, 'coarsens') > 0, 'n = 5001 refused: '//trim(msg))
         prob%contact = .false.
         call solve_strip_mg(prob, set, res, stat, msg)
         call check(error, stat /= 0 .and. index(msg, 'contact') > 0, 'no contact: '//trim(msg))
