@@ -7,7 +7,7 @@
 !! cycle           quoted (it contains a comma): "V(1,1)", "V(1,0)", "V(0,1)"; "" when not MG
 !! case            hertz (Test I, §2.5.1), rough1..rough3 (punch cases, §2.5.2), mp1..mp3 (§3.5)
 !! solver          fmg-gs (FMG, damped GS, thesis §2.4), fmg-fft-rsm (FMG with the FFT+RSM
-!!                 smoother, beyond the thesis), bccg, norm (fc_norm), mg-fft-rsm (MG with the
+!!                 smoother, beyond the thesis; V(1,1) and V(2,2)), bccg, norm (fc_norm), mg-fft-rsm (MG with the
 !!                 FFT+RSM smoother, §3.4.2), fft-rsm (one-grid FFT+RSM solver, §3.5.3)
 !! iterations      FMG: active-set iterations (V-cycles) on the target grid; MG: V-cycles;
 !!                 BCCG: CG iterations; NORM: active-set iterations
@@ -41,7 +41,7 @@ program fastcontact_bench_mg
     real(dp), parameter :: hertz_approach = 0.1091_dp
     real(dp), parameter :: rough_approach(3) = [-0.11_dp, 0.01_dp, 0.25_dp]
     real(dp), parameter :: tol = 1.0e-6_dp
-    integer, parameter :: nus(2, 3) = reshape([1, 1, 1, 0, 0, 1], [2, 3])
+    integer, parameter :: nus(2, 4) = reshape([1, 1, 1, 0, 0, 1, 2, 2], [2, 4])
     character(len=*), parameter :: fmt_row = &
         '(a,",",a,",""",a,""",",i0,",",i0,",",i0,",",i0,",",f0.1,",",f0.1,",",a,",",es9.3,",",a,",",f0.4,",",a)'
     character(len=512) :: out_file, arg
@@ -102,6 +102,7 @@ program fastcontact_bench_mg
     do while (n <= nlarge)
         do icase = 0, 3
             call run_normal(icase, n, 'fmg-fft-rsm', 1)
+            call run_normal(icase, n, 'fmg-fft-rsm', 4)
             if (n > nmax) call run_normal(icase, n, 'bccg', 1)
         end do
         n = 2*n
