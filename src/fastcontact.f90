@@ -25,6 +25,8 @@ module fastcontact
     use fc_norm
     use fc_hertz
     use fc_tangcg
+    use fc_fmg
+    use fc_mg2d
     implicit none
     private
 
@@ -38,6 +40,12 @@ module fastcontact
     public :: fc_tangential_settings, fc_tangential_loading, fc_tangential_operator, fc_tangential_result
     public :: build_tangential_operator, solve_tangential, solve_tangential_loading, solve_normal_tangential
     public :: coupling_displacements, EL_EXTERIOR, EL_ADHESION, EL_SLIP
+    ! multigrid (thesis ch. 2 and 3)
+    public :: fc_surface, fc_quadratic_surface, fc_punch_rough_surface, fc_wavy_surface
+    public :: fc_fmg_settings, fc_fmg_stats, fc_fmg_hierarchy
+    public :: solve_normal_fmg, build_fmg_hierarchy, fmg_solve_lcp, fmg_cycle_from_name
+    public :: fc_strip_problem, fc_mg2d_settings, fc_mg2d_result
+    public :: strip_model_problem, solve_strip_mg, solve_strip_fft_rsm
 
     !> One normal contact problem and its reusable operator.
     type, public :: fc_problem
