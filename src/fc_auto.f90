@@ -40,6 +40,8 @@ module fc_auto
         build_tangential_operator, solve_normal_tangential, solve_tangential_loading
     use fc_hertz, only: fc_hertz_solution, fc_cattaneo_solution, hertz_from_approach, hertz_from_force, &
         cattaneo_mindlin
+    use fc_fmg, only: fc_fmg_stats, fc_surface, fc_quadratic_surface, fc_punch_rough_surface, fc_wavy_surface, &
+        solve_normal_fmg
     use fc_input, only: fc_case_input, setup_case, is_tangential, tangential_loading, fmt_real, grid_is_auto, &
         is_line_contact, is_given
     implicit none
@@ -90,6 +92,8 @@ module fc_auto
         logical :: has_cattaneo = .false.                  !! Cattaneo–Mindlin part present
         type(fc_cattaneo_solution) :: cattaneo             !! analytic Cattaneo–Mindlin
         real(dp) :: fx = 0, fy = 0                         !! analytic tangential forces [N]
+        real(dp) :: work_units = -1                        !! FMG: thesis work units of the final solve (−1: n/a)
+        real(dp) :: convergence_factor = -1                !! FMG: target-grid convergence factor (−1: n/a)
     end type fc_auto_outcome
 
     real(dp), parameter, public :: enlarge_factor = 1.5_dp   !! growth of a clipped automatic area
@@ -298,12 +302,23 @@ contains
         type(fc_material) :: mat
         type(fc_level) :: lev
         type(fc_tangential_loading) :: load
+        type(fc_fmg_stats) :: st
         integer(i8) :: t0, t1, rate
+        logical :: use_fmg
         call system_clock(t0, rate)
         call setup_case(sl, mat, out%grid, out%h0, stat, errmsg)
         if (stat /= 0) return
         out%setup_seconds = 0; out%setup_seconds_tangential = 0
-        if (needs_rebuild(nop, mat, out%grid)) then
+        use_fmg = sl%settings%solver == 'fmg'
+        if (use_fmg .and. tang .and. mat%k /= 0) then
+            stat = 1
+            errmsg = "&solver normal = 'fmg': not available for dissimilar materials (K = "//fmt_real(mat%k)// &
+                " /= 0): the Panagiotopoulos loop alternates normal and tangential solves; use normal = 'bccg'"
+            return
+        end if
+        if (use_fmg) then
+            ! FMG builds its own hierarchy; the BCCG operator is not needed
+        else if (needs_rebuild(nop, mat, out%grid)) then
             call build_normal_operator(nop, mat, out%grid)
             out%setup_seconds = nop%setup_seconds
         end if
@@ -314,8 +329,8 @@ contains
                 out%setup_seconds_tangential = top%setup_seconds
             end if
             load = tangential_loading(sl)
-            if (mat%k == 0 .and. sl%model == 'auto') then
-                ! decoupled: one normal and one tangential solve, both warm-started
+            if (mat%k == 0 .and. (sl%model == 'auto' .or. use_fmg)) then
+                ! decoupled: one normal and one tangential solve, both warm-started (FMG: cold)
                 call normal(p0)
                 if (stat /= 0) return
                 out%rounds = 1
@@ -355,6 +370,10 @@ contains
         subroutine normal(start_in)
             real(dp), allocatable, intent(in) :: start_in(:, :)
             real(dp), allocatable :: start(:, :)
+            if (use_fmg) then
+                call fmg_normal()   ! FMG starts from its own nested iteration
+                return
+            end if
             if (.not. allocated(start_in)) then
                 if (sl%force_prescribed) then
                     call solve_normal(nop, out%h0, sl%settings, out%res, stat, errmsg, fn=sl%fn)
@@ -371,6 +390,49 @@ contains
                 call solve_normal(nop, out%h0, sl%settings, out%res, stat, errmsg, approach=sl%approach, p_start=start)
             end if
         end subroutine normal
+
+        !> Normal stage by FMG; the geometry gives h0 on the coarse levels (tables: averaged).
+        subroutine fmg_normal()
+            type(fc_quadratic_surface) :: quad
+            type(fc_punch_rough_surface) :: punch
+            type(fc_wavy_surface) :: wavy
+            select case (sl%kind)
+            case ('quadratic', 'strip2d', 'cylinder')
+                quad%rx = sl%rx; quad%ry = 0
+                if (sl%kind == 'quadratic') quad%ry = sl%ry
+                call fmg_run(quad)
+            case ('punch_rough')
+                punch%diameter = sl%diameter; punch%rough = sl%rough
+                call fmg_run(punch)
+            case ('wavy')
+                wavy%amplitude = sl%amplitude; wavy%wavelength_x = sl%wavelength_x; wavy%wavelength_y = sl%wavelength_y
+                call fmg_run(wavy)
+            case default
+                call fmg_run()
+            end select
+            if (stat /= 0) then
+                if (index(errmsg, 'fmg: grid') == 1) then
+                    errmsg = '&grid nx = '//fmt_int(out%grid%nx)//', ny = '//fmt_int(out%grid%ny)// &
+                        " with &solver normal = 'fmg': "//trim(errmsg(6:))//"; or use normal = 'bccg'"
+                else if (index(errmsg, 'fmg: ') == 1) then
+                    errmsg = "&solver normal = 'fmg': "//trim(errmsg(6:))
+                end if
+                return
+            end if
+            out%work_units = st%work_units
+            out%convergence_factor = st%convergence_factor
+        end subroutine fmg_normal
+
+        subroutine fmg_run(surface)
+            class(fc_surface), intent(in), optional :: surface
+            if (sl%force_prescribed) then
+                call solve_normal_fmg(mat, out%grid, out%h0, sl%fmg, out%res, stat, errmsg, fn=sl%fn, surface=surface, &
+                    stats=st)
+            else
+                call solve_normal_fmg(mat, out%grid, out%h0, sl%fmg, out%res, stat, errmsg, approach=sl%approach, &
+                    surface=surface, stats=st)
+            end if
+        end subroutine fmg_run
     end subroutine solve_one
 
     !> Estimate of the last level's relative error over the target quantities.

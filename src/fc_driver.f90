@@ -7,8 +7,11 @@
 !! naming group, key and value, no outputs (stale files of that name are removed), and the
 !! driver continues with the next case.
 !!
-!! Problems: 'normal' ([[solve_normal]]) and 'normal+tangential' / 'tangential' (the same:
-!! [[solve_normal_tangential]], normal then tangential, Panagiotopoulos rounds when K ≠ 0).
+!! Problems: 'normal' ([[solve_normal]], or FMG with `&solver normal = 'fmg'`) and
+!! 'normal+tangential' / 'tangential' (the same: [[solve_normal_tangential]], normal then
+!! tangential, Panagiotopoulos rounds when K ≠ 0; FMG only when K = 0), through [[fc_auto]].
+!! 'strip_mp1' … 'strip_mp3': the 2D no-slip model problems of thesis §3.2.5 solved by
+!! [[fc_mg2d]] (`&solver strip`), see [[solve_strip_case]].
 !! The normal and tangential operators are kept across cases and rebuilt only when the grid
 !! or the material changes.
 !!
@@ -16,15 +19,17 @@
 !! case file was bad); 2 no input error but a solver did not converge or diverged.
 module fc_driver
     use, intrinsic :: iso_fortran_env, only: output_unit, int64, error_unit_default => error_unit
-    use fc_kinds, only: dp, msg_len, FC_CONVERGED, status_name
+    use fc_kinds, only: dp, msg_len, FC_CONVERGED, FC_DIVERGED, FC_ERROR, status_name
     use fc_geometry, only: fc_grid
     use fc_influence, only: fc_material
     use fc_norm, only: fc_normal_operator, fc_normal_result, build_normal_operator, solve_normal
     use fc_tangcg, only: fc_tangential_operator, fc_tangential_result, build_tangential_operator, &
         solve_normal_tangential, EL_EXTERIOR, EL_ADHESION
+    use fc_mg2d, only: fc_strip_problem, fc_mg2d_settings, fc_mg2d_result, strip_model_problem, solve_strip_mg, &
+        solve_strip_fft_rsm
     use fc_hertz, only: hertz_from_approach, hertz_from_force
     use fc_input, only: fc_case_chunk, fc_case_input, read_case_file, apply_case, validate_case, setup_case, fmt_real, &
-        is_tangential, tangential_loading
+        is_tangential, tangential_loading, strip_model_index, is_given
     use fc_output, only: fc_case_summary, write_case_json, write_case_csv, write_case_report
     use fc_auto, only: fc_auto_outcome, solve_case_auto
     implicit none
@@ -188,6 +193,11 @@ contains
                 errmsg = "&output dir = '"//dir//"': cannot create the directory"
                 call case_error(clean=.false.); return
             end if
+            ! ---- strip model problems: their own solvers and outputs
+            if (strip_model_index(state) > 0) then
+                call run_strip_case(dir, t0, rate, case_status)
+                return
+            end if
             ! ---- solve: model choice, potential area, accuracy target (fc_auto); operators reused
             call system_clock(t1)
             call solve_case_auto(state, nop, top, auto, stat, errmsg)
@@ -242,6 +252,10 @@ contains
             s%ncon = res%ncon; s%nadh = res%ncon; s%nslip = 0
             s%iterations = res%iterations; s%outer_iterations = res%outer_iterations; s%matvecs = res%matvecs
             s%iterations_normal = res%iterations; s%outer_iterations_normal = res%outer_iterations
+            if (state%settings%solver == 'fmg') then
+                s%work_units = auto%work_units; s%convergence_factor = auto%convergence_factor
+                s%cycle = state%cycle
+            end if
             s%matvecs_normal = res%matvecs; s%residual_normal = res%residual
             s%residual = res%residual
             s%cpu_seconds_normal = s%setup_seconds + res%cpu_seconds
@@ -292,7 +306,52 @@ contains
                 write (err, '(a,i0,a)') 'fastcontact: case ', k, " '"//trim(state%name)//"': solver "// &
                     trim(status_name(final_status))//': '//trim(s%message)
             end if
+
         end subroutine run_one_case
+
+        !> Solve a strip model problem case and write its outputs (sets case_status).
+        subroutine run_strip_case(dir, t0, rate, case_status)
+            character(len=*), intent(in) :: dir
+            integer(int64), intent(in) :: t0, rate
+            integer, intent(out) :: case_status
+            type(fc_case_summary) :: s
+            integer(int64) :: t2
+            integer :: final_status
+            type(fc_grid) :: sgrid
+            real(dp), allocatable :: px(:, :), zero(:, :)
+            integer, allocatable :: el(:, :)
+            case_status = 1
+            call solve_strip_case(state, s, sgrid, px, el, final_status, stat, errmsg)
+            if (stat /= 0) then
+                call case_error(); return
+            end if
+            allocate (zero(sgrid%nx, 1))
+            zero = 0
+            if (state%table .and. final_status /= FC_DIVERGED) then
+                call write_case_csv(dir//'/'//trim(state%name)//'.csv', sgrid, zero, zero, stat, errmsg, el, px, &
+                    zero, zero, zero)
+                if (stat /= 0) then
+                    call case_error(); return
+                end if
+            else
+                call remove_file(dir//'/'//trim(state%name)//'.csv')
+            end if
+            call system_clock(t2)
+            s%cpu_seconds = real(t2 - t0, dp)/rate
+            call write_case_json(dir//'/'//trim(state%name)//'.json', s, stat, errmsg)
+            if (stat /= 0) then
+                call remove_file(dir//'/'//trim(state%name)//'.csv')
+                call case_error(); return
+            end if
+            call write_case_report(rep, s, zero, el)
+            if (final_status == FC_CONVERGED) then
+                case_status = 0
+            else
+                case_status = 2
+                write (err, '(a,i0,a)') 'fastcontact: case ', k, " '"//trim(state%name)//"': solver "// &
+                    trim(status_name(final_status))//': '//trim(s%message)
+            end if
+        end subroutine run_strip_case
 
         !> Report an input error of the current case and remove stale outputs.
         subroutine case_error(clean)
@@ -324,6 +383,77 @@ contains
             end if
         end function output_dir
     end subroutine run_driver
+
+    !> Solve a strip model problem case (problem = 'strip_mp1' … 'strip_mp3', thesis §3.2.5):
+    !! the no-slip tangential problem A^xx p = u on an nx×1 grid of [−4,4]×[−50,50] mm with
+    !! `&solver strip` = 'mg-fft-rsm' / 'mg-fft-sd' (multigrid V-cycles `cycle` with the FFT+RSM
+    !! / FFT+SD smoother) or 'fft-rsm' (one-grid FFT+RSM).  Returns the summary, the grid, the
+    !! traction px per element and the element states (A on the contact strips, E elsewhere).
+    !! tol is 1e−8 (thesis) unless `&solver tol` was given.
+    subroutine solve_strip_case(state, s, grid, px, el, final_status, stat, errmsg)
+        type(fc_case_input), intent(in) :: state
+        type(fc_case_summary), intent(inout) :: s
+        type(fc_grid), intent(out) :: grid
+        real(dp), allocatable, intent(out) :: px(:, :)
+        integer, allocatable, intent(out) :: el(:, :)
+        integer, intent(out) :: final_status
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        type(fc_strip_problem) :: prob
+        type(fc_mg2d_settings) :: t
+        type(fc_mg2d_result) :: r
+        integer :: n
+        final_status = FC_ERROR
+        call strip_model_problem(strip_model_index(state), state%nx, prob, stat, errmsg)
+        if (stat /= 0) then
+            errmsg = '&grid nx = '//fmt_int(state%nx)//": problem = '"//trim(state%problem)//"': "//trim(errmsg); return
+        end if
+        t%tol = 1.0e-8_dp
+        if (is_given(state, 'solver', 'tol')) t%tol = state%settings%tol
+        t%maxit = state%settings%maxit
+        t%nu1 = state%fmg%nu1; t%nu2 = state%fmg%nu2
+        select case (state%strip)
+        case ('mg-fft-rsm', 'mg-fft-sd')
+            t%smoother = state%strip(4:)
+            call solve_strip_mg(prob, t, r, stat, errmsg)
+        case ('fft-rsm')
+            call solve_strip_fft_rsm(prob, t, r, stat, errmsg)
+        case default
+            stat = 1; errmsg = 'unknown strip solver'
+        end select
+        if (stat /= 0) then
+            errmsg = "&solver strip = '"//trim(state%strip)//"': "//trim(errmsg); return
+        end if
+        grid = prob%grid
+        n = grid%nx
+        px = reshape(r%p, [n, 1])
+        el = reshape(merge(EL_ADHESION, EL_EXTERIOR, prob%contact), [n, 1])
+        final_status = r%status
+        s%name = state%name; s%title = state%title; s%problem = state%problem; s%geometry = 'strip2d'
+        s%material = prob%material; s%grid = grid; s%model = 'strip2d'
+        allocate (s%reductions(0), s%warnings(0))
+        s%notes = state%notes
+        s%status = status_name(r%status); s%message = r%message
+        s%solver = state%strip
+        s%solver_normal = 'none'; s%status_normal = 'not_run'
+        s%fx = sum(r%p)*grid%dx*grid%dy
+        s%ncon = count(prob%contact); s%nadh = s%ncon; s%nslip = 0
+        s%iterations = r%iterations; s%outer_iterations = r%iterations
+        s%matvecs = nint(r%work_units); s%residual = r%residual; s%tol = t%tol
+        s%work_units = r%work_units; s%convergence_factor = r%factor
+        s%cycle = ''
+        if (state%strip /= 'fft-rsm') s%cycle = state%cycle
+        s%cpu_seconds_tangential = r%cpu_seconds
+        stat = 0; errmsg = ''
+    end subroutine solve_strip_case
+
+    function fmt_int(i) result(text)
+        integer, intent(in) :: i
+        character(len=:), allocatable :: text
+        character(len=20) :: buf
+        write (buf, '(i0)') i
+        text = trim(buf)
+    end function fmt_int
 
     !> Summary of an analytic (problem = 'hertz') case: no grid, Hertz values as results.
     subroutine analytic_summary(s, auto, state)

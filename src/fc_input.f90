@@ -31,7 +31,14 @@
 !!   precondition_tangential, deflation` (normal = 'bccg', tangential = 'tangcg', tol = 1e-5,
 !!   maxit = 1000, inner_maxit = 0, inner_k = 3, precondition = .true. for both stages,
 !!   precondition_tangential overrides it for TangCG, deflation: library default); tol and
-!!   maxit apply to both stages; cycle, omega, beta accepted and noted as ignored.
+!!   maxit apply to both stages.  normal = 'fmg' (FMG + active set, thesis §2.4) uses
+!!   cycle = 'V(1,1)' ('V(n1,n2)'), omega = 0.8 ∈ (0, 2), beta = 0.003 ≥ 0 and
+!!   smoother = 'gs' ('gs', 'jacobi', 'fft-rsm'); strip = 'mg-fft-rsm' ('mg-fft-sd', 'fft-rsm')
+!!   selects the solver of the strip model problems (cycle applies to the multigrid ones).
+!! * `&case problem = 'strip_mp1' | 'strip_mp2' | 'strip_mp3'` — the 2D no-slip model problems
+!!   MP1–MP3 of thesis §3.2.5 (A^xx p = u on an nx×1 grid of [−4,4]×[−50,50] mm) with
+!!   `&geometry kind = 'strip2d'` and `&grid nx` (power of 2, ≥ 4); the model problem fixes
+!!   material, area and loading; tol defaults to 1e-8 (thesis) unless given.
 !! * `&output dir, table` — dir = 'out' (the command line `--out` wins), table = .true.
 !!
 !! Every value persists from case to case except `name`.  A case with an input error does
@@ -43,6 +50,7 @@ module fc_input
         read_gap_table, h_no_contact
     use fc_influence, only: fc_material, combine_material, rigid_modulus
     use fc_norm, only: fc_normal_settings
+    use fc_fmg, only: fc_fmg_settings, fmg_cycle_from_name
     use fc_tangcg, only: fc_tangential_settings, fc_tangential_loading
     implicit none
     private
@@ -118,8 +126,12 @@ module fc_input
         character(len=32) :: tangential = 'tangcg' !! &solver tangential as given (checked, then copied)
         integer :: inner_k = 3                     !! TangCG inner iterations K
         logical :: precondition_tangential = .true.  !! TangCG diagonal preconditioner
-        character(len=16) :: cycle = 'V(1,1)'      !! not used yet
-        real(dp) :: omega = 0.8_dp, beta = 0.003_dp  !! not used yet
+        character(len=16) :: cycle = 'V(1,1)'      !! multigrid cycle 'V(n1,n2)' (fmg and strip MG)
+        real(dp) :: omega = 0.8_dp                 !! fmg: damping of the Gauss–Seidel smoother, (0, 2)
+        real(dp) :: beta = 0.003_dp                !! fmg: initial-area parameter of eq. (2.17), ≥ 0
+        character(len=8) :: smoother = 'gs'        !! fmg smoother: 'gs', 'jacobi', 'fft-rsm'
+        character(len=16) :: strip = 'mg-fft-rsm'  !! strip model problems: 'mg-fft-rsm', 'mg-fft-sd', 'fft-rsm'
+        type(fc_fmg_settings) :: fmg               !! FMG settings (filled by validate_case)
         real(dp) :: target = 0                     !! accuracy target (relative error of the forces; 0: off)
         logical :: target_pmax = .false.           !! the target also applies to pmax
         integer :: max_levels = 5                  !! most grids visited by the accuracy target
@@ -135,7 +147,7 @@ module fc_input
     character(len=*), parameter :: known_groups = 'case material grid geometry normal tangential solver output'
 
     public :: read_case_file, split_cases, apply_case, validate_case, setup_case, is_given, fmt_real
-    public :: is_tangential, tangential_loading, namelist_keys, grid_is_auto, is_line_contact
+    public :: is_tangential, tangential_loading, namelist_keys, grid_is_auto, is_line_contact, strip_model_index
 
 contains
 
@@ -502,17 +514,10 @@ contains
                     ! precondition sets both stages unless precondition_tangential is given too
                     if (any(g%items%key == 'precondition') .and. .not. any(g%items%key == 'precondition_tangential')) &
                         s%precondition_tangential = s%settings%precondition
-                    do k = 1, size(g%items)
-                        select case (g%items(k)%key)
-                        case ('cycle', 'omega', 'beta')
-                            s%notes = s%notes//'&solver '//trim(g%items(k)%key)//' = '//trim(g%items(k)%value)// &
-                                ' accepted but not used yet (multigrid). '
-                        end select
-                    end do
                 end if
             end associate
         end do
-        if (tangential_group .and. .not. is_tangential(s) .and. s%problem /= 'hertz') &
+        if (tangential_group .and. .not. is_tangential(s) .and. s%problem /= 'hertz' .and. strip_model_index(s) == 0) &
             s%notes = s%notes//"&tangential ignored for problem = 'normal'. "
         if (len_trim(s%name) == 0) s%name = name
         name = s%name
@@ -711,17 +716,20 @@ contains
         character(len=32) :: normal
         character(len=32) :: tangential
         character(len=16) :: cycle
+        character(len=8) :: smoother
+        character(len=16) :: strip
         real(dp) :: tol, omega, beta, target
         integer :: maxit, inner_maxit, inner_k, max_levels
         logical :: precondition, precondition_tangential, deflation, target_pmax
         character(len=16) :: model
         namelist /solver/ normal, tangential, tol, maxit, inner_maxit, precondition, precondition_tangential, &
-            deflation, inner_k, cycle, omega, beta, target, target_pmax, max_levels, model
+            deflation, inner_k, cycle, omega, beta, target, target_pmax, max_levels, model, smoother, strip
         normal = s%normal_solver; tangential = s%tangential; tol = s%settings%tol; maxit = s%settings%maxit
         inner_maxit = s%settings%inner_maxit; precondition = s%settings%precondition
         precondition_tangential = s%precondition_tangential
         deflation = s%settings%deflation; inner_k = s%inner_k; cycle = s%cycle; omega = s%omega; beta = s%beta
         target = s%target; target_pmax = s%target_pmax; max_levels = s%max_levels; model = s%model
+        smoother = s%smoother; strip = s%strip
         read (text, nml=solver, iostat=ios, iomsg=iomsg)
         if (ios /= 0) return
         s%normal_solver = lower(normal); s%tangential = lower(tangential); s%settings%tol = tol
@@ -729,6 +737,7 @@ contains
         s%precondition_tangential = precondition_tangential
         s%settings%deflation = deflation; s%inner_k = inner_k; s%cycle = cycle; s%omega = omega; s%beta = beta
         s%target = target; s%target_pmax = target_pmax; s%max_levels = max_levels; s%model = lower(model)
+        s%smoother = lower(smoother); s%strip = lower(strip)
     end subroutine read_solver_group
 
     subroutine read_output_group(text, s, ios, iomsg)
@@ -759,7 +768,7 @@ contains
         case ('tangential'); keys = 'mu xi eta phi fx fy'
         case ('solver')
             keys = 'normal tangential tol maxit inner_maxit inner_k precondition precondition_tangential deflation '// &
-                'cycle omega beta target target_pmax max_levels model'
+                'cycle omega beta smoother strip target target_pmax max_levels model'
         case ('output');     keys = 'dir table'
         case default;        keys = ''
         end select
@@ -880,12 +889,16 @@ contains
             return
         end if
         select case (s%problem)
-        case ('normal', 'tangential', 'normal+tangential', 'hertz')
+        case ('normal', 'tangential', 'normal+tangential', 'hertz', 'strip_mp1', 'strip_mp2', 'strip_mp3')
         case default
             errmsg = "&case problem = '"//trim(s%problem)//"': unknown problem; use 'normal', 'normal+tangential', "// &
-                "'tangential' or 'hertz'"
+                "'tangential', 'hertz' or 'strip_mp1', 'strip_mp2', 'strip_mp3'"
             return
         end select
+        if (strip_model_index(s) > 0) then
+            call validate_strip(s, stat, errmsg)
+            return
+        end if
         ! &material
         if (.not. is_given(s, 'material', 'g1')) then
             errmsg = '&material g1: missing required value (shear modulus of body 1; >= 1e29 for rigid)'; return
@@ -1106,12 +1119,10 @@ contains
         end if
         ! &solver
         select case (s%normal_solver)
-        case ('bccg', 'norm')
+        case ('bccg', 'norm', 'fmg')
             s%settings%solver = trim(s%normal_solver)
-        case ('fmg')
-            errmsg = "&solver normal = 'fmg': not yet supported (use 'bccg' or 'norm')"; return
         case default
-            errmsg = "&solver normal = '"//trim(s%normal_solver)//"': unknown solver; use 'bccg' or 'norm'"; return
+            errmsg = "&solver normal = '"//trim(s%normal_solver)//"': unknown solver; use 'bccg', 'norm' or 'fmg'"; return
         end select
         if (.not. (s%settings%tol > 0)) then
             errmsg = '&solver tol = '//fmt_real(s%settings%tol)//': must be > 0'; return
@@ -1122,6 +1133,14 @@ contains
         if (s%settings%inner_maxit < 0) then
             errmsg = '&solver inner_maxit = '//fmt_int(s%settings%inner_maxit)//': must be >= 0 (0: no limit)'; return
         end if
+        call validate_multigrid(s, errmsg)
+        if (len_trim(errmsg) > 0) return
+        s%fmg%tol = s%settings%tol
+        s%fmg%maxit = s%settings%maxit
+        if (s%normal_solver /= 'fmg' .and. (is_given(s, 'solver', 'cycle') .or. is_given(s, 'solver', 'omega') .or. &
+            is_given(s, 'solver', 'beta') .or. is_given(s, 'solver', 'smoother'))) &
+            s%notes = s%notes//"&solver cycle, omega, beta, smoother: used only by normal = 'fmg' (not by '"// &
+            trim(s%normal_solver)//"'). "
         select case (s%tangential)
         case ('tangcg', 'convexgs')
             s%tsettings%solver = trim(s%tangential)
@@ -1150,6 +1169,105 @@ contains
             key = keys(k)
         end function grid_keys
     end subroutine validate_case
+
+    !> Check the multigrid keys of `&solver` (cycle, omega, beta, smoother, strip) whenever
+    !! given and copy them into `s%fmg`; errmsg ≠ '' on a bad value.
+    subroutine validate_multigrid(s, errmsg)
+        type(fc_case_input), intent(inout) :: s
+        character(len=*), intent(out) :: errmsg
+        integer :: stat
+        character(len=msg_len) :: msg
+        errmsg = ''
+        call fmg_cycle_from_name(s%cycle, s%fmg%nu1, s%fmg%nu2, stat, msg)
+        if (stat /= 0) then
+            errmsg = "&solver cycle = '"//trim(s%cycle)//"': not 'V(n1,n2)' with n1, n2 >= 0 and n1 + n2 > 0 "// &
+                "(e.g. 'V(1,1)', 'V(1,0)', 'V(0,1)')"
+            return
+        end if
+        if (.not. (s%omega > 0 .and. s%omega < 2)) then
+            errmsg = '&solver omega = '//fmt_real(s%omega)//': must lie in (0, 2) (damping of the FMG smoother)'; return
+        end if
+        if (.not. (s%beta >= 0 .and. ieee_is_finite(s%beta))) then
+            errmsg = '&solver beta = '//fmt_real(s%beta)//': must be >= 0 (FMG initial contact area e <= beta*max(u))'
+            return
+        end if
+        select case (s%smoother)
+        case ('gs', 'jacobi', 'fft-rsm')
+        case default
+            errmsg = "&solver smoother = '"//trim(s%smoother)//"': unknown FMG smoother; use 'gs', 'jacobi' or 'fft-rsm'"
+            return
+        end select
+        select case (s%strip)
+        case ('mg-fft-rsm', 'mg-fft-sd', 'fft-rsm')
+        case default
+            errmsg = "&solver strip = '"//trim(s%strip)//"': unknown strip solver; use 'mg-fft-rsm', 'mg-fft-sd' "// &
+                "or 'fft-rsm'"
+            return
+        end select
+        s%fmg%omega = s%omega
+        s%fmg%beta = s%beta
+        s%fmg%smoother = trim(s%smoother)
+    end subroutine validate_multigrid
+
+    !> Model problem number of a strip case: 1, 2, 3 for problem = 'strip_mp1' … 'strip_mp3',
+    !! else 0.
+    pure integer function strip_model_index(s) result(which)
+        type(fc_case_input), intent(in) :: s
+        select case (s%problem)
+        case ('strip_mp1'); which = 1
+        case ('strip_mp2'); which = 2
+        case ('strip_mp3'); which = 3
+        case default; which = 0
+        end select
+    end function strip_model_index
+
+    !> Validation of a strip model problem case (problem = 'strip_mp1' … 'strip_mp3'):
+    !! kind = 'strip2d', nx a power of 2 ≥ 4, ny = 1, the solver keys.  Material, potential
+    !! area and loading come from the model problem (thesis §3.2.5).
+    subroutine validate_strip(s, stat, errmsg)
+        type(fc_case_input), intent(inout) :: s
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        stat = 1; errmsg = ''
+        if (.not. is_given(s, 'geometry', 'kind')) then
+            errmsg = "&geometry kind: missing required value for problem = '"//trim(s%problem)//"' (use 'strip2d')"
+            return
+        end if
+        if (s%kind /= 'strip2d') then
+            errmsg = "&geometry kind = '"//trim(s%kind)//"': problem = '"//trim(s%problem)//"' needs kind = 'strip2d'"
+            return
+        end if
+        if (.not. is_given(s, 'grid', 'nx')) then
+            errmsg = "&grid nx: missing required value for problem = '"//trim(s%problem)//"' (a power of 2, >= 4)"
+            return
+        end if
+        if (s%nx < 4 .or. iand(s%nx, s%nx - 1) /= 0 .or. int(s%nx, i8) > max_grid_elements) then
+            errmsg = '&grid nx = '//fmt_int(s%nx)//": must be a power of 2 in [4, 4096^2] for problem = '"// &
+                trim(s%problem)//"'"
+            return
+        end if
+        if (is_given(s, 'grid', 'ny') .and. s%ny /= 1) then
+            errmsg = '&grid ny = '//fmt_int(s%ny)//": must be 1 for &geometry kind = 'strip2d'"; return
+        end if
+        s%ny = 1
+        ! tol: 1e-8 (thesis) unless given; applied by the driver, the inherited state keeps its tol
+        if (.not. (s%settings%tol > 0)) then
+            errmsg = '&solver tol = '//fmt_real(s%settings%tol)//': must be > 0'; return
+        end if
+        if (s%settings%maxit < 1) then
+            errmsg = '&solver maxit = '//fmt_int(s%settings%maxit)//': must be >= 1'; return
+        end if
+        call validate_multigrid(s, errmsg)
+        if (len_trim(errmsg) > 0) return
+        if (len_trim(s%dir) == 0) then
+            errmsg = "&output dir = '': must not be empty"; return
+        end if
+        s%notes = s%notes//'model problem MP'//s%problem(9:9)//' (thesis 3.2.5) fixes the material, the potential '// &
+            'area [-4,4]x[-50,50] mm and the loading; &material, &grid xmin..ymax, &normal, &tangential are not used. '
+        if (s%strip == 'fft-rsm' .and. is_given(s, 'solver', 'cycle')) &
+            s%notes = s%notes//"&solver cycle: not used by the one-grid solver strip = 'fft-rsm'. "
+        stat = 0
+    end subroutine validate_strip
 
     !> Build material, grid and undeformed distance h0 (without approach) of a validated
     !! case, and check that contact is possible.

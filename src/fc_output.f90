@@ -72,6 +72,10 @@ module fc_output
         logical :: analytic = .false.                !! analytic answer, no grid
         logical :: has_cattaneo = .false.            !! analytic Cattaneo–Mindlin present
         type(fc_cattaneo_solution) :: cattaneo       !! analytic Cattaneo–Mindlin
+        ! ---- multigrid (issue 4)
+        real(dp) :: work_units = -1                  !! FMG / strip solvers: work units (−1: not a multigrid solve)
+        real(dp) :: convergence_factor = -1          !! FMG / strip solvers: convergence factor (−1: n/a)
+        character(len=16) :: cycle = ''              !! multigrid cycle used ('' for one-grid solvers)
     end type fc_case_summary
 
     integer, parameter, public :: map_max_cols = 100  !! widest contact map
@@ -129,6 +133,11 @@ contains
         call kv_int('outer_iterations_normal', s%outer_iterations_normal)
         call kv_int('matvecs_normal', s%matvecs_normal)
         call kv_real('residual_normal', s%residual_normal)
+        if (s%work_units >= 0) then
+            call kv_real('work_units', s%work_units)
+            call kv_real('convergence_factor', s%convergence_factor)
+            call kv_str('cycle', s%cycle)
+        end if
         if (s%tangential) then
             call kv_str('solver_tangential', s%solver_tangential)
             call kv_str('status_tangential', s%status_tangential)
@@ -453,6 +462,15 @@ contains
             write (unit, '(a,a,a,i0,a,i0,a,i0,a,es10.3,a,es10.3)') ' solver       ', trim(s%solver), ':  iterations ', &
                 s%iterations, ' (outer ', s%outer_iterations, ')   matvecs ', s%matvecs, '   residual ', s%residual, &
                 '   tol ', s%tol
+        end if
+        if (s%work_units >= 0) then
+            if (len_trim(s%cycle) > 0) then
+                write (unit, '(a,f10.2,a,f8.5,a)') '              work units ', s%work_units, '   convergence factor ', &
+                    s%convergence_factor, '   cycle '//trim(s%cycle)
+            else
+                write (unit, '(a,f10.2,a,f8.5)') '              work units ', s%work_units, '   convergence factor ', &
+                    s%convergence_factor
+            end if
         end if
         if (s%status == 'converged') then
             write (unit, '(a)') ' status       converged'
