@@ -67,9 +67,11 @@ module fc_norm
         real(dp) :: cpu_seconds = 0         !! solve time (excludes operator set-up)
         character(len=msg_len) :: message = ''
         real(dp), allocatable :: history(:) !! residual per iteration
+        logical :: touches_boundary = .false. !! contact reaches the edge of the potential area:
+                                              !! the area may clip the true contact (enlarge it)
     end type fc_normal_result
 
-    public :: build_normal_operator, solve_normal
+    public :: build_normal_operator, solve_normal, contact_on_edge
 
 contains
 
@@ -170,6 +172,9 @@ contains
         res%fn = sum(res%pn)*nop%grid%area()
         res%pmax = maxval(res%pn)
         res%ncon = count(res%pn > 0)
+        res%touches_boundary = contact_on_edge(res%pn)
+        if (res%touches_boundary .and. res%status == FC_CONVERGED) &
+            res%message = 'converged; contact reaches the edge of the potential contact area (enlarge it)'
     contains
         real(dp) function fn_or_zero()
             fn_or_zero = 0
@@ -325,6 +330,16 @@ contains
         where (.not. allowed) res%gap = h_no_contact
         allocate (res%history(max(0, min(it, settings%maxit))), source=hist(1:max(0, min(it, settings%maxit))))
     end subroutine run_bccg
+
+    !> True when a pressure is positive in the first or last column (x) or, for grids with
+    !! more than one row, in the first or last row (y).
+    pure logical function contact_on_edge(p) result(edge)
+        real(dp), intent(in) :: p(:, :)
+        integer :: nx, ny
+        nx = size(p, 1); ny = size(p, 2)
+        edge = any(p(1, :) > 0) .or. any(p(nx, :) > 0)
+        if (ny > 1) edge = edge .or. any(p(:, 1) > 0) .or. any(p(:, ny) > 0)
+    end function contact_on_edge
 
     !> u ← u − A·min(p, 0) for the few elements where p < 0, using A's coefficients
     !! directly (one kernel column per element).

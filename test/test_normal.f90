@@ -149,6 +149,11 @@ contains
             end do
         end do
         call check(error, nbad == 0, 'contact set differs from the ellipse beyond boundary cells')
+        call check(error, .not. res%touches_boundary, 'Test I contact stays inside the potential area')
+        ! a deeper approach pushes the contact to the edge of [−10,10]×[−6,6]: flagged
+        call solve_normal(nop, h0, set, res, stat, msg, approach=0.3_dp)
+        call check(error, res%touches_boundary .and. index(res%message, 'edge') > 0, &
+            'contact reaching the edge is flagged: '//trim(res%message))
         call nop%destroy()
     end subroutine test_contact_area
 
