@@ -56,7 +56,20 @@ contains
             new_unittest('force_above_limit_approach', test_force_limit_approach), &
             new_unittest('strip2d_needs_ny_1', test_strip2d_ny), &
             new_unittest('missing_table_file', test_missing_table), &
-            new_unittest('bad_command_line', test_bad_command_line) &
+            new_unittest('bad_command_line', test_bad_command_line), &
+            new_unittest('fmg_hertz_matches_bccg', test_fmg_hertz), &
+            new_unittest('fmg_each_cycle', test_fmg_cycles), &
+            new_unittest('fmg_bad_cycle', test_fmg_bad_cycle), &
+            new_unittest('fmg_omega_not_positive', test_fmg_bad_omega), &
+            new_unittest('fmg_bad_smoother', test_fmg_bad_smoother), &
+            new_unittest('fmg_coarsest_too_large', test_fmg_coarsest), &
+            new_unittest('fmg_dissimilar_rejected', test_fmg_dissimilar), &
+            new_unittest('fmg_tangential_k0', test_fmg_tangential), &
+            new_unittest('strip_mp1_three_solvers', test_strip_mp1), &
+            new_unittest('strip_mp3_contact_strips', test_strip_mp3), &
+            new_unittest('strip_unknown_solver', test_strip_unknown_solver), &
+            new_unittest('strip_nx_not_power_of_2', test_strip_bad_nx), &
+            new_unittest('strip_needs_strip2d', test_strip_needs_kind) &
             ]
     end subroutine collect_driver
 
@@ -632,5 +645,194 @@ contains
         call check(error, code == 0, '--help must exit 0')
         close (u)
     end subroutine test_bad_command_line
+
+    ! ---------------------------------------------------------------- multigrid (issue 4) ----
+
+    !> Hertz Test I on 32² (the base case's area at 32²) with tolerance 1e-8.
+    function hertz32(name) result(text)
+        character(len=*), intent(in) :: name
+        character(len=:), allocatable :: text
+        text = replace(base_case(name), 'nx = 16, ny = 16', 'nx = 32, ny = 32')//'&solver tol = 1e-8 /'//nl
+    end function hertz32
+
+    !> FMG V(1,1) and BCCG agree in fn to 1e-4 (relative) on Hertz 32², approach and force.
+    subroutine test_fmg_hertz(error)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: code
+        character(len=:), allocatable :: errors, dir, jb, jf, jff
+        real(dp) :: fb, ff
+        call run_text(hertz32('b')//"&case name = 'f' /"//nl//"&solver normal = 'fmg' /"//nl// &
+            "&case name = 'ff' /"//nl//'&normal fn = 82000.0 /'//nl, code, errors, dir)
+        call check(error, code == 0, 'exit code 0 expected, errors: '//errors)
+        if (allocated(error)) return
+        jb = read_all(dir//'/b.json'); jf = read_all(dir//'/f.json'); jff = read_all(dir//'/ff.json')
+        call check(error, index(jf, '"status": "converged"') > 0 .and. index(jf, '"solver": "fmg"') > 0, &
+            'fmg case must converge with solver fmg: '//jf)
+        call check(error, index(jf, '"cycle": "V(1,1)"') > 0, 'default cycle V(1,1) expected in the JSON')
+        fb = json_num(jb, 'fn'); ff = json_num(jf, 'fn')
+        call check(error, abs(ff - fb) <= 1.0e-4_dp*fb, 'fmg and bccg fn differ: '//jf)
+        call check(error, json_num(jf, 'iterations') >= 1 .and. json_num(jf, 'iterations') <= 20, &
+            'fmg V(1,1) target-grid cycles not in [1, 20]')
+        call check(error, json_num(jf, 'work_units') > 0 .and. json_num(jf, 'work_units') < 200, &
+            'fmg work units not in (0, 200)')
+        call check(error, index(jff, '"status": "converged"') > 0 .and. abs(json_num(jff, 'fn') - 82000) < 1.0e-3_dp, &
+            'fmg with prescribed fn must meet it: '//jff)
+        call check(error, exists(dir//'/f.csv'), 'fmg CSV missing')
+        call cleanup(dir)
+    end subroutine test_fmg_hertz
+
+    !> Every cycle name converges on Hertz 32².
+    subroutine test_fmg_cycles(error)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: code, k
+        character(len=:), allocatable :: errors, dir, j
+        character(len=6), parameter :: cycles(3) = ['V(1,1)', 'V(1,0)', 'V(0,1)']
+        character(len=2), parameter :: names(3) = ['11', '10', '01']
+        character(len=:), allocatable :: text
+        text = hertz32('b')
+        do k = 1, 3
+            text = text//"&case name = 'c"//names(k)//"' /"//nl//"&solver normal = 'fmg', cycle = '"//cycles(k)//"' /"//nl
+        end do
+        call run_text(text, code, errors, dir)
+        call check(error, code == 0, 'exit code 0 expected, errors: '//errors)
+        if (allocated(error)) return
+        do k = 1, 3
+            j = read_all(dir//'/c'//names(k)//'.json')
+            call check(error, index(j, '"status": "converged"') > 0, cycles(k)//' must converge: '//j)
+            call check(error, index(j, '"cycle": "'//cycles(k)//'"') > 0, cycles(k)//' not reported: '//j)
+            call check(error, abs(json_num(j, 'fn') - json_num(read_all(dir//'/b.json'), 'fn')) < &
+                1.0e-4_dp*json_num(j, 'fn'), cycles(k)//': fn differs from bccg')
+            if (allocated(error)) return
+        end do
+        call cleanup(dir)
+    end subroutine test_fmg_cycles
+
+    subroutine test_fmg_bad_cycle(error)
+        type(error_type), allocatable, intent(out) :: error
+        call expect_bad(error, base_case('bad')//"&solver normal = 'fmg', cycle = 'W(2,1)' /"//nl, &
+            [character(len=16) :: '&solver', 'cycle', 'W(2,1)'])
+    end subroutine test_fmg_bad_cycle
+
+    subroutine test_fmg_bad_omega(error)
+        type(error_type), allocatable, intent(out) :: error
+        call expect_bad(error, base_case('bad')//"&solver normal = 'fmg', omega = -0.5 /"//nl, &
+            [character(len=16) :: '&solver', 'omega', '-0.5'])
+        if (allocated(error)) return
+        call expect_bad(error, base_case('bad')//"&solver normal = 'fmg', omega = 0.0 /"//nl, &
+            [character(len=16) :: '&solver', 'omega', '0.0'])
+    end subroutine test_fmg_bad_omega
+
+    subroutine test_fmg_bad_smoother(error)
+        type(error_type), allocatable, intent(out) :: error
+        call expect_bad(error, base_case('bad')//"&solver normal = 'fmg', smoother = 'sor' /"//nl, &
+            [character(len=16) :: '&solver', 'smoother', 'sor'])
+    end subroutine test_fmg_bad_smoother
+
+    !> 250² coarsens only to 125² (> 4096 cells for the direct coarsest solve): a case error.
+    subroutine test_fmg_coarsest(error)
+        type(error_type), allocatable, intent(out) :: error
+        call expect_bad(error, replace(base_case('bad'), 'nx = 16, ny = 16', 'nx = 250, ny = 250')// &
+            "&solver normal = 'fmg' /"//nl, [character(len=16) :: '&grid', 'nx = 250', 'ny = 250', &
+            '&solver normal', 'fmg'])
+    end subroutine test_fmg_coarsest
+
+    !> K ≠ 0 needs the Panagiotopoulos loop on the BCCG path: FMG is rejected.
+    subroutine test_fmg_dissimilar(error)
+        type(error_type), allocatable, intent(out) :: error
+        call expect_bad(error, replace(replace(cattaneo_case('bad'), 'g2 = 200.0', 'g2 = 400.0'), 'nu2 = 0.42', &
+            'nu2 = 0.3')//"&solver normal = 'fmg' /"//nl, [character(len=16) :: '&solver normal', 'fmg', 'K ='])
+    end subroutine test_fmg_dissimilar
+
+    !> K = 0: FMG for the normal stage, then TangCG; same forces as BCCG + TangCG.
+    subroutine test_fmg_tangential(error)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: code
+        character(len=:), allocatable :: errors, dir, jb, jf
+        call run_text(replace(cattaneo_case('b'), 'nx = 30, ny = 25', 'nx = 32, ny = 32')//'&solver tol = 1e-8 /'//nl// &
+            "&case name = 'f' /"//nl// &
+            "&solver normal = 'fmg' /"//nl, code, errors, dir)
+        call check(error, code == 0, 'exit code 0 expected, errors: '//errors)
+        if (allocated(error)) return
+        jb = read_all(dir//'/b.json'); jf = read_all(dir//'/f.json')
+        call check(error, index(jf, '"solver": "fmg+tangcg"') > 0, 'solver fmg+tangcg expected: '//jf)
+        call check(error, abs(json_num(jf, 'fn') - json_num(jb, 'fn')) <= 1.0e-4_dp*abs(json_num(jb, 'fn')), 'fn differs')
+        call check(error, abs(json_num(jf, 'fx') - json_num(jb, 'fx')) <= 1.0e-4_dp*abs(json_num(jb, 'fx')) + 1.0e-9_dp, &
+            'fx differs: '//jf)
+        call cleanup(dir)
+    end subroutine test_fmg_tangential
+
+    !> A strip model problem case.
+    function strip_case(name, which, nx, solver) result(text)
+        character(len=*), intent(in) :: name, which, nx, solver
+        character(len=:), allocatable :: text
+        text = "&case name = '"//name//"', problem = 'strip_mp"//which//"' /"//nl// &
+            "&geometry kind = 'strip2d' /"//nl//'&grid nx = '//nx//' /'//nl//"&solver strip = '"//solver//"' /"//nl
+    end function strip_case
+
+    !> MP1 at 2^10 with the three strip solvers: converged, counts near doc/multigrid.md
+    !! (MG FFT+RSM V(1,1): 5 cycles at 2^10; FFT+SD V(1,0): 6 at 2^14; one-grid FFT+RSM: 28
+    !! at 2^16, fewer on smaller grids), same traction.
+    subroutine test_strip_mp1(error)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: code
+        character(len=:), allocatable :: errors, dir, j1, j2, j3, csv
+        real(dp) :: it
+        call run_text(strip_case('rsm', '1', '1024', 'mg-fft-rsm')//strip_case('sd', '1', '1024', 'mg-fft-sd')// &
+            "&solver cycle = 'V(1,0)' /"//nl//strip_case('one', '1', '1024', 'fft-rsm'), code, errors, dir)
+        call check(error, code == 0, 'exit code 0 expected, errors: '//errors)
+        if (allocated(error)) return
+        j1 = read_all(dir//'/rsm.json'); j2 = read_all(dir//'/sd.json'); j3 = read_all(dir//'/one.json')
+        call check(error, index(j1, '"status": "converged"') > 0 .and. index(j2, '"status": "converged"') > 0 .and. &
+            index(j3, '"status": "converged"') > 0, 'all three must converge')
+        it = json_num(j1, 'iterations')
+        call check(error, it >= 4 .and. it <= 7, 'MG FFT+RSM V(1,1) cycles not in [4, 7]: '//j1)
+        it = json_num(j2, 'iterations')
+        call check(error, it >= 4 .and. it <= 9, 'MG FFT+SD V(1,0) cycles not in [4, 9]: '//j2)
+        it = json_num(j3, 'iterations')
+        call check(error, it >= 20 .and. it <= 32, 'FFT+RSM iterations not in [20, 32]: '//j3)
+        call check(error, json_num(j1, 'residual') <= 1.0e-8_dp .and. json_num(j1, 'tol') == 1.0e-8_dp, &
+            'tol 1e-8 by default for strip problems')
+        call check(error, json_num(j1, 'convergence_factor') < 0.2_dp .and. json_num(j1, 'work_units') > 0, &
+            'factor and work units expected')
+        call check(error, abs(json_num(j1, 'fx') - json_num(j3, 'fx')) <= 1.0e-6_dp*abs(json_num(j1, 'fx')), &
+            'MG and one-grid solutions differ in fx')
+        csv = read_all(dir//'/rsm.csv')
+        call check(error, count_lines(csv) == 1 + 1024, 'CSV must have 1 + 1024 lines')
+        call check(error, index(csv, ',A,') > 0 .and. index(csv, ',E,') == 0, 'MP1: every element A')
+        call cleanup(dir)
+    end subroutine test_strip_mp1
+
+    !> MP3: elements outside the strips [−4,−2] ∪ [0,4] are exterior with zero traction.
+    subroutine test_strip_mp3(error)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: code
+        character(len=:), allocatable :: errors, dir, j
+        call run_text(strip_case('mp3', '3', '256', 'mg-fft-rsm'), code, errors, dir)
+        call check(error, code == 0, 'exit code 0 expected, errors: '//errors)
+        if (allocated(error)) return
+        j = read_all(dir//'/mp3.json')
+        call check(error, json_num(j, 'ncon') == 192, 'MP3 at 256: 192 elements on the strips: '//j)
+        call check(error, index(read_all(dir//'/mp3.csv'), ',E,0.000000000000000E+000,0.000000000000000E+000,') > 0, &
+            'exterior rows with zero traction expected')
+        call cleanup(dir)
+    end subroutine test_strip_mp3
+
+    subroutine test_strip_unknown_solver(error)
+        type(error_type), allocatable, intent(out) :: error
+        call expect_bad(error, strip_case('bad', '1', '64', 'fft-magic'), [character(len=16) :: '&solver', 'strip', &
+            'fft-magic'])
+    end subroutine test_strip_unknown_solver
+
+    subroutine test_strip_bad_nx(error)
+        type(error_type), allocatable, intent(out) :: error
+        call expect_bad(error, strip_case('bad', '2', '1000', 'mg-fft-rsm'), [character(len=16) :: '&grid', 'nx', '1000', &
+            'power of 2'])
+    end subroutine test_strip_bad_nx
+
+    subroutine test_strip_needs_kind(error)
+        type(error_type), allocatable, intent(out) :: error
+        call expect_bad(error, replace(strip_case('bad', '1', '64', 'fft-rsm'), "'strip2d'", "'quadratic'"), &
+            [character(len=16) :: '&geometry', 'kind', 'quadratic', 'strip2d'])
+    end subroutine test_strip_needs_kind
 
 end module test_driver
