@@ -479,8 +479,13 @@ contains
             if (s%status /= 'error') write (unit, '(a)') '              *** NOT CONVERGED: the results of this case are '// &
                 'not a solution to the requested tolerance ***'
         end if
-        write (unit, '(a,f10.4,a,f10.4,a,f10.4,a)') ' cpu time     ', s%cpu_seconds, ' s  (normal ', s%cpu_seconds_normal, &
-            ' s, of which operator set-up ', s%setup_seconds, ' s)'
+        if (s%solver_normal == 'none') then
+            write (unit, '(a,f10.4,a,f10.4,a)') ' cpu time     ', s%cpu_seconds, ' s  (solver incl. set-up ', &
+                s%cpu_seconds_tangential, ' s)'
+        else
+            write (unit, '(a,f10.4,a,f10.4,a,f10.4,a)') ' cpu time     ', s%cpu_seconds, ' s  (normal ', &
+                s%cpu_seconds_normal, ' s, of which operator set-up ', s%setup_seconds, ' s)'
+        end if
         if (s%tangential) write (unit, '(a,f10.4,a,f10.4,a)') '              tangential ', s%cpu_seconds_tangential, &
             ' s, of which operator set-up ', s%setup_seconds_tangential, ' s'
         if (allocated(s%notes)) then
