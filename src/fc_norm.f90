@@ -23,6 +23,7 @@
 !! Residual (both solvers): ‖g‖₂/‖h_F‖₂, g the gap on the free set — thesis (2.18) with
 !! the norm taken over the free set.
 module fc_norm
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
     use fc_kinds
     use fc_geometry, only: fc_grid, h_no_contact
     use fc_influence
@@ -236,7 +237,7 @@ contains
             res%residual = rnorm/hnorm
             hist(it) = res%residual
             res%iterations = it - 1
-            if (res%residual /= res%residual .or. res%residual > 1.0e8_dp) then
+            if (ieee_is_nan(res%residual) .or. res%residual > 1.0e8_dp) then
                 res%status = FC_DIVERGED
                 res%message = 'BCCG diverged (residual not finite or > 1e8)'
                 exit
@@ -458,7 +459,7 @@ contains
             hnorm = sqrt(sum(h**2, mask=con))
             res%residual = rnorm/max(hnorm, tiny(1.0_dp))
             hist(outer) = res%residual
-            if (res%residual /= res%residual .or. res%residual > 1.0e8_dp) then
+            if (ieee_is_nan(res%residual) .or. res%residual > 1.0e8_dp) then
                 res%status = FC_DIVERGED
                 res%message = 'NORM diverged (residual not finite or > 1e8)'
                 exit

@@ -22,6 +22,7 @@
 !! Stopping criterion (thesis eq. 4.49): ‖p^k − p^{k−1}‖_rms/‖p^k‖_rms < tol, with an
 !! unchanged subdivision.
 module fc_tangcg
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
     use fc_kinds
     use fc_geometry, only: fc_grid
     use fc_influence
@@ -584,7 +585,7 @@ contains
                 px = g*px/tnorm; py = g*py/tnorm
             end where
             change = traction_change(px, py, pox, poy)
-            if (change /= change .or. change > 1.0e12_dp) then
+            if (ieee_is_nan(change) .or. change > 1.0e12_dp) then
                 res%status = FC_DIVERGED
                 res%message = 'TangCG diverged (traction change not finite)'
                 exit
@@ -699,7 +700,7 @@ contains
             change = traction_change(px, py, pox, poy)
             hist(sweep) = change
             res%iterations = sweep
-            if (change /= change) then
+            if (ieee_is_nan(change)) then
                 res%status = FC_DIVERGED
                 res%message = 'ConvexGS diverged (traction change not finite)'
                 exit
