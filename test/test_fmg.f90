@@ -173,9 +173,13 @@ contains
         call check(error, st%levels == 6 .and. st%nx(1) == 4, 'levels 4x4 ... 128x128')
     end subroutine test_fmg_hertz
 
-    !> Table 2.2: MG + active set (no nested iteration) from C⁰ = {h ≤ 0}.  Thesis 32²:
-    !! 9 (35), 15 (39), 15 (39); 64²: 9 (36), 16 (43), 16 (43).  Band ±2 iterations,
-    !! ±25 % work; FMG (Table 2.3) needs fewer target-grid iterations than MG + active set.
+    !> Table 2.2: MG + active set (no nested iteration) from C⁰ = {h ≤ 0}.  Thesis V(1,1),
+    !! V(1,0), V(0,1): 32² 9 (35), 15 (39), 15 (39); 64² 9 (36), 16 (43), 16 (43); 128²
+    !! 10 (40), 18 (48), 16 (43).  Ours (step 4.b tests e with the pressures after 4.a):
+    !! 9 (35), 15 (39), 15 (39); 10 (40), 16 (43), 16 (43); 10 (40), 18 (48), 15 (40).
+    !! Band ±1 iteration, ±15 % work; FMG (Table 2.3) needs no more target-grid iterations
+    !! than MG + active set and gives the same pressures.  (256², release build only, see
+    !! doc/multigrid.md: thesis 12, 21, 20; ours 12, 21, 19.)
     subroutine test_mg_active_set(error)
         type(error_type), allocatable, intent(out) :: error
         type(fc_material) :: mat
@@ -187,10 +191,11 @@ contains
         real(dp), allocatable :: h0(:, :)
         integer :: stat, k, c, n
         integer, parameter :: nus(2, 3) = reshape([1, 1, 1, 0, 0, 1], [2, 3])
-        integer, parameter :: it_thesis(3, 2) = reshape([9, 15, 15, 9, 16, 16], [3, 2])
-        real(dp), parameter :: wu_thesis(3, 2) = reshape([35.0_dp, 39.0_dp, 39.0_dp, 36.0_dp, 43.0_dp, 43.0_dp], [3, 2])
+        integer, parameter :: it_thesis(3, 3) = reshape([9, 15, 15, 9, 16, 16, 10, 18, 16], [3, 3])
+        real(dp), parameter :: wu_thesis(3, 3) = reshape([35.0_dp, 39.0_dp, 39.0_dp, 36.0_dp, 43.0_dp, 43.0_dp, &
+            40.0_dp, 48.0_dp, 43.0_dp], [3, 3])
         character(len=200) :: msg
-        do k = 1, 2
+        do k = 1, 3
             n = 16*2**k
             call hertz_setup(n, mat, grid, h0, surf)
             do c = 1, 3
@@ -198,14 +203,17 @@ contains
                 set%nested = .false.
                 call solve_normal_fmg(mat, grid, h0, set, res, stat, msg, approach=test1_approach, surface=surf, stats=st)
                 call check(error, res%status == FC_CONVERGED, trim(label('MG+AS', n, nus(1, c), nus(2, c)))//' converged')
-                call check(error, abs(res%iterations - it_thesis(c, k)) <= 2, trim(label('MG+AS iterations', n, &
-                    nus(1, c), nus(2, c)))//' within ±2 of Table 2.2')
+                call check(error, abs(res%iterations - it_thesis(c, k)) <= 1, trim(label('MG+AS iterations', n, &
+                    nus(1, c), nus(2, c)))//' within ±1 of Table 2.2')
                 call check(error, st%work_units, wu_thesis(c, k), trim(label('MG+AS work', n, nus(1, c), nus(2, c))), &
-                    rel=0.25_dp)
+                    rel=0.15_dp)
                 set%nested = .true.
                 call solve_normal_fmg(mat, grid, h0, set, rf, stat, msg, approach=test1_approach, surface=surf)
                 call check(error, rf%iterations <= res%iterations, trim(label('FMG <= MG+AS', n, nus(1, c), nus(2, c))))
-                call check(error, rel_diff(pack(rf%pn, .true.), pack(res%pn, .true.)), 0.0_dp, 'FMG = MG+AS', abs=1e-4_dp)
+                ! both stop at (2.18) ≤ 1e−6 on the defect; the pressures then differ by up to
+                ! ~tol·cond(A_CC), which grows with n (measured 1.2e−4 for V(0,1) at 128²)
+                call check(error, rel_diff(pack(rf%pn, .true.), pack(res%pn, .true.)), 0.0_dp, 'FMG = MG+AS', &
+                    abs=merge(2e-4_dp, 1e-4_dp, n >= 128))
             end do
         end do
     end subroutine test_mg_active_set
