@@ -1124,12 +1124,8 @@ contains
         case default
             errmsg = "&solver normal = '"//trim(s%normal_solver)//"': unknown solver; use 'bccg', 'norm' or 'fmg'"; return
         end select
-        if (.not. (s%settings%tol > 0)) then
-            errmsg = '&solver tol = '//fmt_real(s%settings%tol)//': must be > 0'; return
-        end if
-        if (s%settings%maxit < 1) then
-            errmsg = '&solver maxit = '//fmt_int(s%settings%maxit)//': must be >= 1'; return
-        end if
+        call validate_iteration_keys(s, errmsg)
+        if (len_trim(errmsg) > 0) return
         if (s%settings%inner_maxit < 0) then
             errmsg = '&solver inner_maxit = '//fmt_int(s%settings%inner_maxit)//': must be >= 0 (0: no limit)'; return
         end if
@@ -1172,6 +1168,18 @@ contains
 
     !> Check the multigrid keys of `&solver` (cycle, omega, beta, smoother, strip) whenever
     !! given and copy them into `s%fmg`; errmsg ≠ '' on a bad value.
+    !> &solver tol > 0 and maxit >= 1 (shared by every problem kind).
+    subroutine validate_iteration_keys(s, errmsg)
+        type(fc_case_input), intent(in) :: s
+        character(len=*), intent(out) :: errmsg
+        errmsg = ''
+        if (.not. (s%settings%tol > 0)) then
+            errmsg = '&solver tol = '//fmt_real(s%settings%tol)//': must be > 0'
+        else if (s%settings%maxit < 1) then
+            errmsg = '&solver maxit = '//fmt_int(s%settings%maxit)//': must be >= 1'
+        end if
+    end subroutine validate_iteration_keys
+
     subroutine validate_multigrid(s, errmsg)
         type(fc_case_input), intent(inout) :: s
         character(len=*), intent(out) :: errmsg
@@ -1251,12 +1259,8 @@ contains
         end if
         s%ny = 1
         ! tol: 1e-8 (thesis) unless given; applied by the driver, the inherited state keeps its tol
-        if (.not. (s%settings%tol > 0)) then
-            errmsg = '&solver tol = '//fmt_real(s%settings%tol)//': must be > 0'; return
-        end if
-        if (s%settings%maxit < 1) then
-            errmsg = '&solver maxit = '//fmt_int(s%settings%maxit)//': must be >= 1'; return
-        end if
+        call validate_iteration_keys(s, errmsg)
+        if (len_trim(errmsg) > 0) return
         call validate_multigrid(s, errmsg)
         if (len_trim(errmsg) > 0) return
         if (len_trim(s%dir) == 0) then

@@ -607,7 +607,7 @@ contains
             if (check_now) then
                 inner = 0
                 res%outer_iterations = res%outer_iterations + 1
-                ! 11.1: adhesion elements above the bound go to slip
+                ! thesis step 11.1: adhesion elements above the bound go to slip
                 nmoved = count(adh .and. px**2 + py**2 > g**2)
                 if (nmoved > 0) then
                     where (adh .and. px**2 + py**2 > g**2)
@@ -619,14 +619,14 @@ contains
                     sx = wx + ux; sy = wy + uy
                     changed = .true.
                 end if
-                ! 11.2: slip elements whose traction does not oppose the slip go to adhesion
+                ! thesis step 11.2: slip elements whose traction does not oppose the slip go to adhesion
                 if (any(slp .and. px*sx + py*sy > 0)) then
                     where (slp .and. px*sx + py*sy > 0)
                         adh = .true.; slp = .false.
                     end where
                     changed = .true.
                 end if
-                ! 11.3: convergence
+                ! thesis step 11.3: convergence
                 if (.not. changed .and. change < settings%tol) then
                     converged = .true.
                     exit
