@@ -91,10 +91,94 @@ program bench_auto
     call solve_text(hertz_scene//'&grid nx = 256, ny = 256, xmin = -10.0, xmax = 10.0, ymin = -6.0, ymax = 6.0 /'// &
         nl, full, tf)
     call row('accuracy_target', 'fixed_256', full, 'fn', full%res%fn, hz%fn, tf, tr)
+
+    ! ---- 6. target sweep: which grid the estimator picks for each target, against the truth.
+    ! One run per scene refines as far as max_levels (the estimates do not depend on the
+    ! target), so the decision for any target T is the first grid k >= 2 with estimate <= T.
+    write (*, '(a)') '  target sweep (chosen grid vs the coarsest grid whose TRUE error meets T):'
+    call solve_text(hertz_scene//'&grid nx = 16, ny = 16, xmin = -10.0, xmax = 10.0, ymin = -6.0, ymax = 6.0 /'//nl// &
+        '&solver target = 1.0e-9, max_levels = 6 /'//nl, red, tr)
+    call sweep('hertz_16', red, [hz%fn], [0.0_dp])
+    call solve_text(hertz_scene//'&solver target = 1.0e-9, max_levels = 6 /'//nl, red, tr)
+    call sweep('hertz_auto_area', red, [hz%fn], [0.0_dp])
+    call solve_text("&case problem = 'normal+tangential' /"//nl// &
+        '&material g1 = 200.0, g2 = 200.0, nu1 = 0.42, nu2 = 0.42 /'//nl// &
+        '&grid nx = 16, ny = 16, xmin = -1.2857, xmax = 1.2857, ymin = -1.2857, ymax = 1.2857 /'//nl// &
+        "&geometry kind = 'quadratic', rx = 50.0, ry = 50.0 /"//nl//'&normal approach = 0.02 /'//nl// &
+        '&tangential mu = 0.4, xi = -0.0081724 /'//nl//'&solver target = 1.0e-9, max_levels = 6 /'//nl, red, tr)
+    ! Fn: analytic Hertz; Fx: the 512² value (its own error is ~3e-6, Richardson on 256²/512²)
+    call sweep('cattaneo_16', red, [hertz_fn_cattaneo(), red%levels(size(red%levels))%fx], [0.0_dp, 1.0_dp])
+    call solve_text('&material g1 = 1.0e30, g2 = 40000.0, nu1 = 0.28, nu2 = 0.28 /'//nl// &
+        '&grid nx = 16, ny = 16, xmin = -6.0, xmax = 6.0, ymin = -5.0, ymax = 5.0 /'//nl// &
+        "&geometry kind = 'punch_rough', diameter = 8.97 /"//nl//'&normal approach = 0.01 /'//nl// &
+        '&solver target = 1.0e-9, max_levels = 7 /'//nl, red, tr)
+    ! reference: the 1024² value; the sweep uses the grids up to 512²
+    call sweep('rough_punch_16', red, [red%levels(size(red%levels))%fn], [0.0_dp])
     close (csv)
     write (*, '(a)') 'CSV: '//trim(csv_path)
 
 contains
+
+    !> Target sweep over the levels of `out`: refs(1) is the reference Fn; with two entries
+    !! refs(2) is the reference Fx (relative to |Fx|).  `use_last(q) = 1` excludes the last
+    !! level (it is the reference itself).
+    subroutine sweep(scene, out, refs, use_last)
+        character(len=*), intent(in) :: scene
+        type(fc_auto_outcome), intent(in) :: out
+        real(dp), intent(in) :: refs(:), use_last(:)
+        real(dp), parameter :: targets(7) = [1.0e-2_dp, 5.0e-3_dp, 2.0e-3_dp, 1.0e-3_dp, 5.0e-4_dp, 2.0e-4_dp, 1.0e-4_dp]
+        real(dp), allocatable :: true_err(:), cum(:)
+        integer :: n, k, t, chosen, oracle
+        logical :: minimal, bound
+        character(len=8) :: cgrid, ogrid
+        n = size(out%levels)
+        if (any(use_last > 0) .or. scene(1:5) == 'rough') n = n - 1
+        allocate (true_err(n), cum(n))
+        do k = 1, n
+            true_err(k) = abs(out%levels(k)%fn - refs(1))/abs(refs(1))
+            if (size(refs) > 1) true_err(k) = max(true_err(k), abs(out%levels(k)%fx - refs(2))/abs(refs(2)))
+            cum(k) = sum(out%levels(1:k)%seconds)
+        end do
+        do t = 1, size(targets)
+            chosen = 0
+            do k = 2, n
+                if (out%levels(k)%estimate >= 0 .and. out%levels(k)%estimate <= targets(t)) then
+                    chosen = k; exit
+                end if
+            end do
+            oracle = 0
+            do k = 1, n
+                if (true_err(k) <= targets(t)) then
+                    oracle = k; exit
+                end if
+            end do
+            cgrid = 'none'; ogrid = 'none'
+            if (chosen > 0) write (cgrid, '(i0)') out%levels(chosen)%nx
+            if (oracle > 0) write (ogrid, '(i0)') out%levels(oracle)%nx
+            if (chosen == 0) then
+                write (*, '(4x,a16,a,es8.1,a,a)') scene, ' T ', targets(t), '  not reached in the levels run; oracle ', &
+                    trim(ogrid)
+                cycle
+            end if
+            minimal = chosen == oracle
+            bound = true_err(chosen) <= out%levels(chosen)%estimate
+            write (*, '(4x,a16,a,es8.1,a,a5,a,es9.2,a,es9.2,a,l1,a,l1,a,a5,a,f6.1)') scene, ' T ', targets(t), &
+                '  chosen ', cgrid, '  est ', out%levels(chosen)%estimate, '  true ', true_err(chosen), &
+                '  bound ', bound, '  minimal ', minimal, '  oracle ', ogrid, '  cost/oracle ', &
+                cum(chosen)/max(out%levels(max(oracle, 1))%seconds, 1.0e-6_dp)
+            write (csv, '(a,es9.2,a,es12.4,a,es12.4,a,es12.4,a,es12.4,a,es12.4)') 'target_sweep,'//trim(scene)//',T=', targets(t), &
+                ',chosen='//trim(cgrid)//'|oracle='//trim(ogrid)//',estimate,', out%levels(chosen)%estimate, ',', &
+                true_err(chosen), ',', true_err(chosen)/targets(t), ',', cum(chosen), ',', &
+                cum(chosen)/max(out%levels(max(oracle, 1))%seconds, 1.0e-6_dp)
+        end do
+    end subroutine sweep
+
+    !> Hertz Fn of the Cattaneo sphere (R = 50, G = 200, nu = 0.42 both bodies, approach 0.02).
+    real(dp) function hertz_fn_cattaneo() result(fn)
+        type(fc_hertz_solution) :: h
+        h = hertz_from_approach(1/100.0_dp, 1/100.0_dp, 200.0_dp/(1 - 0.42_dp), 0.02_dp)
+        fn = h%fn
+    end function hertz_fn_cattaneo
 
     !> One row: `value` vs `reference`, cost `seconds`, cost ratio `other/seconds`.
     subroutine row(section, variant, out, quantity, value, reference, seconds, other)

@@ -46,6 +46,7 @@ contains
             new_unittest('hertz_target_fixed_grid', test_hertz_target_fixed), &
             new_unittest('hertz_target_with_pmax', test_hertz_target_pmax), &
             new_unittest('cattaneo_target', test_cattaneo_target), &
+            new_unittest('loose_target_given_grid_suffices', test_loose_target), &
             new_unittest('rough_punch_target_non_monotone', test_punch_target), &
             new_unittest('target_not_met_reported', test_target_not_met), &
             new_unittest('auto_area_covers_contact', test_auto_area), &
@@ -164,8 +165,8 @@ contains
         call check(error, err_coarse > 1.0e-3_dp, 'one level coarser must miss the target: '//num(err_coarse))
     end subroutine test_hertz_target_auto
 
-    !> Hertz Test I on its fixed area from 16²: target 5e-4 on fn stops at 64² (true error
-    !! 1.5e-4); 32² has 5.5e-4 and misses.  The level records keep the grids and costs.
+    !> Hertz Test I on its fixed area from 16² (probe 8²): target 5e-4 on fn stops at 64² (true
+    !! error 1.5e-4); 32² has 5.5e-4 and misses.  The level records keep the grids and costs.
     subroutine test_hertz_target_fixed(error)
         type(error_type), allocatable, intent(out) :: error
         type(fc_auto_outcome) :: out
@@ -178,7 +179,7 @@ contains
         hz = test_i_hertz()
         n = size(out%levels)
         call check(error, .not. out%grid_auto .and. out%target_met, 'fixed grid, target met')
-        call check(error, out%levels(1)%nx == 16 .and. out%levels(n)%nx == 16*2**(n - 1), 'grids 16, 32, ... by two')
+        call check(error, out%levels(1)%nx == 8 .and. out%levels(n)%nx == 8*2**(n - 1), 'probe 8, then 16, 32, ... by two')
         call check(error, all(out%levels%seconds >= 0) .and. out%total_seconds > 0, 'cost recorded')
         if (allocated(error)) return
         err = abs(out%res%fn - hz%fn)/hz%fn
@@ -239,6 +240,31 @@ contains
         q = 0.875_dp*0.4_dp*hz%fn
         call check(error, abs(out%tres%fx - q)/q < 1.5e-3_dp, 'Fx within 1.5e-3 of Cattaneo-Mindlin 0.875 mu Fn')
     end subroutine test_cattaneo_target
+
+    !> Cattaneo from 16², target 1e-2: the probe grid 8² lets the given grid itself be the
+    !! answer (two-grid estimate, flagged as such); true errors of 16² (fn vs analytic Hertz,
+    !! Fx vs a 64² solve) lie within the estimate and the target, and 8² misses the target.
+    subroutine test_loose_target(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_auto_outcome) :: out, ref
+        type(fc_hertz_solution) :: hz
+        real(dp) :: efn, efx, e_probe
+        call solve_text(cattaneo_scene//'&solver target = 1.0e-2 /'//nl, out, error)
+        if (allocated(error)) return
+        call solve_text(cattaneo_scene//'&grid nx = 64, ny = 64 /'//nl//'&solver tol = 1.0e-8 /'//nl, ref, error)
+        if (allocated(error)) return
+        call check(error, size(out%levels) == 2 .and. out%target_met, 'two grids (probe 8², given 16²), target met')
+        if (allocated(error)) return
+        call check(error, out%levels(1)%nx == 8 .and. out%grid%nx == 16, 'the answer is on the given 16² grid')
+        call check(error, has_line(out%warnings, 'two grids'), 'two-grid estimate flagged')
+        hz = hertz_from_approach(0.01_dp, 0.01_dp, 200.0_dp/0.58_dp, 0.02_dp)
+        efn = abs(out%res%fn - hz%fn)/hz%fn
+        efx = abs(out%tres%fx - ref%tres%fx)/abs(ref%tres%fx)
+        call check(error, max(efn, efx) <= out%estimate .and. out%estimate <= 1.0e-2_dp, 'true errors fn '//num(efn)// &
+            ', Fx '//num(efx)//' <= estimate '//num(out%estimate)//' <= target')
+        e_probe = max(abs(out%levels(1)%fn - hz%fn)/hz%fn, abs(out%levels(1)%fx - ref%tres%fx)/abs(ref%tres%fx))
+        call check(error, e_probe > 1.0e-2_dp, 'one level coarser (8²) misses the target: '//num(e_probe))
+    end subroutine test_loose_target
 
     !> Rough punch (delta = 0.01) from 16², target 1e-2: convergence of fn is non-monotone
     !! (punch-rim staircase); the outcome is flagged unreliable, the bound holds against a
