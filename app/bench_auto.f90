@@ -24,7 +24,8 @@ program bench_auto
         '&material g1 = 200.0, g2 = 200.0, nu1 = 0.42, nu2 = 0.42 /'//nl// &
         '&grid nx = 128, ny = 128, xmin = -1.2857, xmax = 1.2857, ymin = -1.2857, ymax = 1.2857 /'//nl// &
         "&geometry kind = 'quadratic', rx = 50.0, ry = 50.0 /"//nl//'&normal approach = 0.02 /'//nl
-    type(fc_auto_outcome) :: red, full
+    type(fc_auto_outcome) :: red, full, seq
+    character(len=:), allocatable :: scene
     real(dp) :: tr, tf, b, p0
     type(fc_hertz_solution) :: hz
     integer :: csv, i
@@ -92,86 +93,113 @@ program bench_auto
         nl, full, tf)
     call row('accuracy_target', 'fixed_256', full, 'fn', full%res%fn, hz%fn, tf, tr)
 
-    ! ---- 6. target sweep: which grid the estimator picks for each target, against the truth.
-    ! One run per scene refines as far as max_levels (the estimates do not depend on the
-    ! target), so the decision for any target T is the first grid k >= 2 with estimate <= T.
+    ! ---- 6. target sweep: the grid the algorithm chooses for each target (one full run per
+    ! target: the solver tolerance, hence the noise floor of the estimate, follows the target)
+    ! against the truth from one reference sequence refined to the finest grid.
     write (*, '(a)') '  target sweep (chosen grid vs the coarsest grid whose TRUE error meets T):'
-    call solve_text(hertz_scene//'&grid nx = 16, ny = 16, xmin = -10.0, xmax = 10.0, ymin = -6.0, ymax = 6.0 /'//nl// &
-        '&solver target = 1.0e-9, max_levels = 6 /'//nl, red, tr)
-    call sweep('hertz_16', red, [hz%fn], [0.0_dp])
-    call solve_text(hertz_scene//'&solver target = 1.0e-9, max_levels = 6 /'//nl, red, tr)
-    call sweep('hertz_auto_area', red, [hz%fn], [0.0_dp])
-    call solve_text("&case problem = 'normal+tangential' /"//nl// &
+    scene = hertz_scene//'&grid nx = 16, ny = 16, xmin = -10.0, xmax = 10.0, ymin = -6.0, ymax = 6.0 /'//nl
+    call solve_text(scene//'&solver target = 1.0e-9, max_levels = 6 /'//nl, seq, tr)
+    call sweep('hertz_16', scene, seq, hz%fn, 0.0_dp, .false.)
+    call solve_text(hertz_scene//'&solver target = 1.0e-9, max_levels = 6 /'//nl, seq, tr)
+    call sweep('hertz_auto_area', hertz_scene, seq, hz%fn, 0.0_dp, .false.)
+    scene = "&case problem = 'normal+tangential' /"//nl// &
         '&material g1 = 200.0, g2 = 200.0, nu1 = 0.42, nu2 = 0.42 /'//nl// &
         '&grid nx = 16, ny = 16, xmin = -1.2857, xmax = 1.2857, ymin = -1.2857, ymax = 1.2857 /'//nl// &
         "&geometry kind = 'quadratic', rx = 50.0, ry = 50.0 /"//nl//'&normal approach = 0.02 /'//nl// &
-        '&tangential mu = 0.4, xi = -0.0081724 /'//nl//'&solver target = 1.0e-9, max_levels = 6 /'//nl, red, tr)
+        '&tangential mu = 0.4, xi = -0.0081724 /'//nl
+    call solve_text(scene//'&solver target = 1.0e-9, max_levels = 6 /'//nl, seq, tr)
     ! Fn: analytic Hertz; Fx: the 512² value (its own error is ~3e-6, Richardson on 256²/512²)
-    call sweep('cattaneo_16', red, [hertz_fn_cattaneo(), red%levels(size(red%levels))%fx], [0.0_dp, 1.0_dp])
-    call solve_text('&material g1 = 1.0e30, g2 = 40000.0, nu1 = 0.28, nu2 = 0.28 /'//nl// &
+    call sweep('cattaneo_16', scene, seq, hertz_fn_cattaneo(), seq%levels(size(seq%levels))%fx, .true.)
+    scene = '&material g1 = 1.0e30, g2 = 40000.0, nu1 = 0.28, nu2 = 0.28 /'//nl// &
         '&grid nx = 16, ny = 16, xmin = -6.0, xmax = 6.0, ymin = -5.0, ymax = 5.0 /'//nl// &
-        "&geometry kind = 'punch_rough', diameter = 8.97 /"//nl//'&normal approach = 0.01 /'//nl// &
-        '&solver target = 1.0e-9, max_levels = 7 /'//nl, red, tr)
-    ! reference: the 1024² value; the sweep uses the grids up to 512²
-    call sweep('rough_punch_16', red, [red%levels(size(red%levels))%fn], [0.0_dp])
+        "&geometry kind = 'punch_rough', diameter = 8.97 /"//nl//'&normal approach = 0.01 /'//nl
+    call solve_text(scene//'&solver target = 1.0e-9, max_levels = 7 /'//nl, seq, tr)
+    ! reference: the 1024² value
+    call sweep('rough_punch_16', scene, seq, seq%levels(size(seq%levels))%fn, 0.0_dp, .false.)
     close (csv)
     write (*, '(a)') 'CSV: '//trim(csv_path)
 
 contains
 
-    !> Target sweep over the levels of `out`: refs(1) is the reference Fn; with two entries
-    !! refs(2) is the reference Fx (relative to |Fx|).  `use_last(q) = 1` excludes the last
-    !! level (it is the reference itself).
-    subroutine sweep(scene, out, refs, use_last)
-        character(len=*), intent(in) :: scene
-        type(fc_auto_outcome), intent(in) :: out
-        real(dp), intent(in) :: refs(:), use_last(:)
+    !> Target sweep: for each target solve `scene` with it and compare the chosen grid with
+    !! the reference sequence `seq` (the true error of each of its grids against `ref_fn` and,
+    !! with `with_fx`, `ref_fx`).  "minimal": the grid one level coarser than the chosen one
+    !! misses the target (the issue's criterion); "oracle": the coarsest grid of `seq` that
+    !! meets it.  Cost ratio: seconds of all grids visited / seconds of the oracle grid alone.
+    subroutine sweep(scene_name, scene_text, seq, ref_fn, ref_fx, with_fx)
+        character(len=*), intent(in) :: scene_name, scene_text
+        type(fc_auto_outcome), intent(in) :: seq
+        real(dp), intent(in) :: ref_fn, ref_fx
+        logical, intent(in) :: with_fx
         real(dp), parameter :: targets(7) = [1.0e-2_dp, 5.0e-3_dp, 2.0e-3_dp, 1.0e-3_dp, 5.0e-4_dp, 2.0e-4_dp, 1.0e-4_dp]
-        real(dp), allocatable :: true_err(:), cum(:)
-        integer :: n, k, t, chosen, oracle
+        type(fc_auto_outcome) :: out, alone
+        character(len=400) :: gbuf
+        real(dp), allocatable :: true_seq(:)
+        real(dp) :: true_err, coarser_err, secs, ratio
+        integer :: k, t, n, oracle, kc
         logical :: minimal, bound
         character(len=8) :: cgrid, ogrid
-        n = size(out%levels)
-        if (any(use_last > 0) .or. scene(1:5) == 'rough') n = n - 1
-        allocate (true_err(n), cum(n))
+        character(len=16) :: tbuf
+        n = size(seq%levels)
+        allocate (true_seq(n))
         do k = 1, n
-            true_err(k) = abs(out%levels(k)%fn - refs(1))/abs(refs(1))
-            if (size(refs) > 1) true_err(k) = max(true_err(k), abs(out%levels(k)%fx - refs(2))/abs(refs(2)))
-            cum(k) = sum(out%levels(1:k)%seconds)
+            true_seq(k) = rel_err(seq%levels(k)%fn, seq%levels(k)%fx, ref_fn, ref_fx, with_fx)
         end do
         do t = 1, size(targets)
-            chosen = 0
-            do k = 2, n
-                if (out%levels(k)%estimate >= 0 .and. out%levels(k)%estimate <= targets(t)) then
-                    chosen = k; exit
-                end if
-            end do
+            write (tbuf, '(es10.3)') targets(t)
+            call solve_text(scene_text//'&solver target = '//trim(adjustl(tbuf))//' /'//nl, out, secs)
             oracle = 0
             do k = 1, n
-                if (true_err(k) <= targets(t)) then
+                if (true_seq(k) <= targets(t)) then
                     oracle = k; exit
                 end if
             end do
-            cgrid = 'none'; ogrid = 'none'
-            if (chosen > 0) write (cgrid, '(i0)') out%levels(chosen)%nx
-            if (oracle > 0) write (ogrid, '(i0)') out%levels(oracle)%nx
-            if (chosen == 0) then
-                write (*, '(4x,a16,a,es8.1,a,a)') scene, ' T ', targets(t), '  not reached in the levels run; oracle ', &
-                    trim(ogrid)
+            ogrid = 'none'
+            if (oracle > 0) write (ogrid, '(i0)') seq%levels(oracle)%nx
+            if (.not. out%target_met) then
+                write (*, '(4x,a16,a,es8.1,a,es9.2,a,i0,a,a)') scene_name, ' T ', targets(t), '  NOT MET: estimate ', &
+                    out%estimate, ' after ', size(out%levels), ' grids; oracle ', trim(ogrid)
+                write (csv, '(a,es9.2,a,es12.4,a,es12.4)') 'target_sweep,'//scene_name//',T=', targets(t), &
+                    ',chosen=none|oracle='//trim(ogrid)//',estimate,', out%estimate, ',,,', secs
                 cycle
             end if
-            minimal = chosen == oracle
-            bound = true_err(chosen) <= out%levels(chosen)%estimate
-            write (*, '(4x,a16,a,es8.1,a,a5,a,es9.2,a,es9.2,a,l1,a,l1,a,a5,a,f6.1)') scene, ' T ', targets(t), &
-                '  chosen ', cgrid, '  est ', out%levels(chosen)%estimate, '  true ', true_err(chosen), &
-                '  bound ', bound, '  minimal ', minimal, '  oracle ', ogrid, '  cost/oracle ', &
-                cum(chosen)/max(out%levels(max(oracle, 1))%seconds, 1.0e-6_dp)
-            write (csv, '(a,es9.2,a,es12.4,a,es12.4,a,es12.4,a,es12.4,a,es12.4)') 'target_sweep,'//trim(scene)//',T=', targets(t), &
-                ',chosen='//trim(cgrid)//'|oracle='//trim(ogrid)//',estimate,', out%levels(chosen)%estimate, ',', &
-                true_err(chosen), ',', true_err(chosen)/targets(t), ',', cum(chosen), ',', &
-                cum(chosen)/max(out%levels(max(oracle, 1))%seconds, 1.0e-6_dp)
+            write (cgrid, '(i0)') out%grid%nx
+            true_err = rel_err(out%res%fn, out%tres%fx, ref_fn, ref_fx, with_fx)
+            ! the reference sequence holds the same grids (same start, refined by two)
+            kc = 0
+            do k = 1, n
+                if (seq%levels(k)%nx == out%grid%nx) kc = k - 1
+            end do
+            coarser_err = huge(1.0_dp)
+            if (kc >= 1) coarser_err = true_seq(kc)
+            minimal = coarser_err > targets(t)
+            bound = true_err <= out%estimate
+            ! the coarsest sufficient grid solved alone, same area and solver tolerance
+            ratio = -1
+            if (oracle > 0) then
+                write (gbuf, '(a,i0,a,i0,4(a,es22.14),a,es10.3,a)') '&grid auto = .false., nx = ', &
+                    seq%levels(oracle)%nx, ', ny = ', seq%levels(oracle)%ny, ', xmin = ', out%grid%xmin, &
+                    ', xmax = ', out%grid%xmax, ', ymin = ', out%grid%ymin, ', ymax = ', out%grid%ymax, &
+                    ' /'//nl//'&solver tol = ', out%tol, ' /'
+                call solve_text(scene_text//trim(gbuf)//nl, alone, secs)
+                ratio = out%total_seconds/max(alone%total_seconds, 1.0e-6_dp)
+            end if
+            write (*, '(4x,a16,a,es8.1,a,a5,a,es9.2,a,es9.2,a,l1,a,l1,a,a5,a,f6.1)') scene_name, ' T ', targets(t), &
+                '  chosen ', cgrid, '  est ', out%estimate, '  true ', true_err, '  bound ', bound, '  minimal ', &
+                minimal, '  oracle ', ogrid, '  cost/oracle ', ratio
+            write (csv, '(a,es9.2,a,es12.4,a,es12.4,a,es12.4,a,es12.4,a,es12.4)') 'target_sweep,'//scene_name//',T=', &
+                targets(t), ',chosen='//trim(cgrid)//'|oracle='//trim(ogrid)//',estimate,', out%estimate, ',', true_err, &
+                ',', coarser_err, ',', out%total_seconds, ',', ratio
         end do
     end subroutine sweep
+
+    !> Relative error of Fn (and of Fx with `with_fx`) against the references.
+    pure real(dp) function rel_err(fn, fx, ref_fn, ref_fx, with_fx) result(e)
+        real(dp), intent(in) :: fn, fx, ref_fn, ref_fx
+        logical, intent(in) :: with_fx
+        e = abs(fn - ref_fn)/abs(ref_fn)
+        if (with_fx) e = max(e, abs(fx - ref_fx)/abs(ref_fx))
+    end function rel_err
 
     !> Hertz Fn of the Cattaneo sphere (R = 50, G = 200, nu = 0.42 both bodies, approach 0.02).
     real(dp) function hertz_fn_cattaneo() result(fn)
