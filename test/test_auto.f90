@@ -98,6 +98,12 @@ contains
         call top%destroy()
     end subroutine solve_text
 
+    !> Analytic Hertz of the Cattaneo sphere (R = 50, G = 200, nu = 0.42 both bodies, approach 0.02).
+    function cattaneo_hertz() result(hz)
+        type(fc_hertz_solution) :: hz
+        hz = hertz_from_approach(0.01_dp, 0.01_dp, 200.0_dp/0.58_dp, 0.02_dp)
+    end function cattaneo_hertz
+
     !> Analytic Hertz of Test I.
     function test_i_hertz() result(hz)
         type(fc_hertz_solution) :: hz
@@ -231,7 +237,7 @@ contains
         call solve_text(cattaneo_scene//'&grid nx = '//trim(buf)//', ny = '//trim(buf)//' /'//nl// &
             '&solver tol = 1.0e-8 /'//nl, ref, error)
         if (allocated(error)) return
-        hz = hertz_from_approach(0.01_dp, 0.01_dp, 200.0_dp/0.58_dp, 0.02_dp)
+        hz = cattaneo_hertz()
         efn = abs(out%res%fn - hz%fn)/hz%fn
         efn_coarse = abs(out%levels(n - 1)%fn - hz%fn)/hz%fn
         efx = abs(out%tres%fx - ref%tres%fx)/abs(ref%tres%fx)
@@ -259,7 +265,7 @@ contains
         if (allocated(error)) return
         call check(error, out%levels(1)%nx == 8 .and. out%grid%nx == 16, 'the answer is on the given 16² grid')
         call check(error, has_line(out%warnings, 'two grids'), 'two-grid estimate flagged')
-        hz = hertz_from_approach(0.01_dp, 0.01_dp, 200.0_dp/0.58_dp, 0.02_dp)
+        hz = cattaneo_hertz()
         efn = abs(out%res%fn - hz%fn)/hz%fn
         efx = abs(out%tres%fx - ref%tres%fx)/abs(ref%tres%fx)
         call check(error, max(efn, efx) <= out%estimate .and. out%estimate <= 1.0e-2_dp, 'true errors fn '//num(efn)// &
@@ -282,7 +288,7 @@ contains
         integer :: t
         character(len=16) :: tb
         hz = test_i_hertz()
-        hc = hertz_from_approach(0.01_dp, 0.01_dp, 200.0_dp/0.58_dp, 0.02_dp)
+        hc = cattaneo_hertz()
         call solve_text(cattaneo_scene//'&grid nx = 256, ny = 256 /'//nl//'&solver tol = 1.0e-8 /'//nl, ref, error)
         if (allocated(error)) return
         do t = 1, size(targets)
