@@ -233,7 +233,7 @@ contains
             write (u, '(a)') '  "levels": ['
             do k = 1, size(s%levels)
                 associate (l => s%levels(k))
-                    write (buf, '(i0,a,i0)') l%nx, ', "ny": ', l%ny
+                    write (buf, '(i0,a,i0,a,i0)') l%nx, ', "ny": ', l%ny, ', "ncon": ', l%ncon
                     write (u, '(a)') '    {"nx": '//trim(buf)//', "fn": '//json_real(l%fn)//', "approach": '// &
                         json_real(l%approach)//', "fx": '//json_real(l%fx)//', "fy": '//json_real(l%fy)//', "xi": '// &
                         json_real(l%xi)//', "eta": '//json_real(l%eta)//', "pmax": '//json_real(l%pmax)// &
