@@ -16,7 +16,8 @@ program bench_auto
     use fc_norm, only: fc_normal_operator
     use fc_tangcg, only: fc_tangential_operator
     use fc_hertz, only: fc_hertz_solution, hertz_from_approach, hertz_from_force
-    use fc_auto, only: fc_auto_outcome, fc_level, solve_case_auto, plane_strain_hertz, level_estimate
+    use fc_auto, only: fc_auto_outcome, fc_level, solve_case_auto, plane_strain_hertz, level_estimate, &
+        estimate_safety, estimate_safety_h2
     implicit none
     character(len=*), parameter :: nl = new_line('a')
     character(len=*), parameter :: hertz_scene = &
@@ -28,9 +29,16 @@ program bench_auto
         '&grid nx = 128, ny = 128, xmin = -1.2857, xmax = 1.2857, ymin = -1.2857, ymax = 1.2857 /'//nl// &
         "&geometry kind = 'quadratic', rx = 50.0, ry = 50.0 /"//nl//'&normal approach = 0.02 /'//nl
     type(fc_auto_outcome) :: red, full, seq
-    integer :: totals(6)
-    real(dp) :: worst_margin
-    real(dp), allocatable :: work(:)
+    ! estimator variants replayed in section 7: [two-grid factor, safety, safety in the O(h²) band]
+    integer, parameter :: nvar = 5
+    real(dp), parameter :: variants(3, nvar) = reshape([estimate_safety, estimate_safety, estimate_safety_h2, &
+        2.0_dp, 2.0_dp, 1.25_dp, &
+        2.0_dp, 2.0_dp, 2.0_dp, 2.0_dp/3, 2.0_dp, 2.0_dp, 1.0_dp/3, 1.0_dp, 1.0_dp], [3, nvar])
+    character(len=*), parameter :: variant_names(nvar) = [character(len=40) :: &
+        'package: 2|d|; s = 2, 1.5 for r in [3,6]', 'band factor 1.25', 's = 2 everywhere', &
+        'previous: two-grid 2|d|/3; s = 2', 'pure Richardson: |d|/3; s = 1']
+    integer :: totals(6, nvar), nwork(nvar)
+    real(dp) :: worst_margin(nvar), work(4000, nvar)
     character(len=:), allocatable :: scene
     real(dp) :: tr, tf, b, p0
     type(fc_hertz_solution) :: hz
@@ -140,12 +148,13 @@ contains
 
     !> Section 7: the estimator replayed from every given grid of 15 scenes.
     subroutine replay_all()
+        integer :: v
         ! ---- 7. replay of the estimator from every given grid: one reference sequence per scene,
         ! the estimator (fc_auto's level_estimate) replayed on it for each given grid (probe one
         ! level below) and 21 targets 1e-2 ... 1e-4; true errors against analytic Hertz where it
         ! applies, else against the Richardson value of the two finest grids (then not replayed).
         write (*, '(a)') '  replay from every given grid (21 targets 1e-2 ... 1e-4 each):'
-        totals = 0; worst_margin = 0; allocate (work(0))
+        totals = 0; worst_margin = 0; nwork = 0
         scene = hertz_scene//'&grid nx = 16, ny = 16, xmin = -10.0, xmax = 10.0, ymin = -6.0, ymax = 6.0 /'//nl
         call replay('hertz_16', scene, hz%fn, 0.0_dp)
         call replay('hertz_12', hertz_scene//'&grid nx = 12, ny = 12, xmin = -10.0, xmax = 10.0, ymin = -6.0, ymax = 6.0 /'// &
@@ -182,13 +191,19 @@ contains
             0.0_dp, 0.0_dp)
         call replay('rigid_on_elastic', scene//'&material g1 = 1.0e30, g2 = 200.0, nu1 = 0.28, nu2 = 0.3 /'//nl// &
             '&tangential mu = 0.3, xi = -0.004 /'//nl, 0.0_dp, 0.0_dp)
-        write (*, '(4x,a,i0,a,i0,a,i0,a,i0,a,i0,a,f0.1,a,f5.2,a,f5.2,a,f5.2)') 'all: met ', totals(1), ', bound failures ', &
-            totals(2), ', not met ', totals(4), '; probe misses T: ', totals(5), ', of which one level coarser misses ', &
-            totals(6), ' (', 100.0_dp*totals(6)/max(totals(5), 1), ' %); worst true/estimate ', worst_margin, &
-            '; work / cheapest: median ', percentile(work, 0.5_dp), ', 90 % ', percentile(work, 0.9_dp)
-        write (csv, '(a,6(i0,a),es12.4,a,es12.4)') 'replay,all,met|bound_fail|minimal|not_met|attainable|'// &
-            'minimal_attainable,', totals(1), '|', totals(2), '|', totals(3), '|', totals(4), '|', totals(5), '|', &
-            totals(6), ',worst_true_over_estimate,', worst_margin, ',,,', percentile(work, 0.5_dp)
+        write (*, '(a)') '  all scenes, per estimator variant (minimal: one level coarser misses T, counted where the '// &
+            'probe misses T):'
+        do v = 1, nvar
+            write (*, '(4x,a40,a,i0,a,i0,a,i0,a,i0,a,f5.1,a,f5.2,a,f6.2,a,f6.2)') variant_names(v), ': met ', totals(1, v), &
+                ', bound failures ', totals(2, v), ', not met ', totals(4, v), ', minimal ', totals(6, v), ' (', &
+                100.0_dp*totals(6, v)/max(totals(5, v), 1), ' %), worst true/est ', worst_margin(v), &
+                ', work/cheapest median ', percentile(work(1:nwork(v), v), 0.5_dp), ', 90 % ', &
+                percentile(work(1:nwork(v), v), 0.9_dp)
+            write (csv, '(a,6(i0,a),es12.4,a,es12.4,a,es12.4)') 'replay,all:'//trim(variant_names(v))// &
+                ',met|bound_fail|minimal|not_met|attainable|minimal_attainable,', totals(1, v), '|', totals(2, v), '|', &
+                totals(3, v), '|', totals(4, v), '|', totals(5, v), '|', totals(6, v), ',worst_true_over_estimate,', &
+                worst_margin(v), ',', percentile(work(1:nwork(v), v), 0.5_dp), ',', percentile(work(1:nwork(v), v), 0.9_dp)
+        end do
     end subroutine replay_all
 
     !> Target sweep: for each target solve `scene` with it and compare the chosen grid with
@@ -268,10 +283,11 @@ contains
     !! the grid the algorithm would stop at (default `max_levels` 5, noise 10·min(tol, T/100))
     !! is compared with the true errors: `truth_q1` of fn (approach prescribed) or of the
     !! approach (fn prescribed), `truth_q2` of the tangential quantity; 0 = the Richardson value
-    !! of the two finest grids (observed ratio), which are then not replayed.  Adds to `totals`
-    !! (met, bound failures, one level coarser misses, not met), `worst_margin` and `work`
+    !! of the two finest grids (observed ratio), which are then not replayed.  For each
+    !! estimator variant adds to `totals` (met, bound failures, one level coarser misses, not
+    !! met, probe misses T, of those one level coarser misses), `worst_margin` and `work`
     !! (elements of all grids visited / elements of the coarsest sufficient grid, when the
-    !! probe is not sufficient itself).
+    !! probe is not sufficient itself); prints the scene's line for the package's variant.
     subroutine replay(name, text, truth_q1, truth_q2)
         character(len=*), intent(in) :: name, text
         real(dp), intent(in) :: truth_q1, truth_q2
@@ -280,7 +296,7 @@ contains
         type(fc_level), allocatable :: lv(:)
         real(dp), allocatable :: q(:, :), true_err(:)
         real(dp) :: secs, truth(2), scale(2), tgt, noise, est, ratio, margin
-        integer :: n, nq, nuse, k, start, it, chosen, oracle, cnt(6), j
+        integer :: n, nq, nuse, k, start, it, chosen, oracle, cnt(6), j, v
         logical :: tang, mono, extrapolated
         character(len=64) :: qname
         call solve_text(text//'&solver target = 1.0e-9, max_levels = 6 /'//nl, ref, secs, s)
@@ -318,47 +334,54 @@ contains
         do k = 1, nuse
             true_err(k) = maxval(abs(q(k, :) - truth(1:nq))/scale(1:nq))
         end do
-        cnt = 0; margin = 0
-        do start = 1, nuse - 1
-            do it = 0, 20
-                tgt = 10.0_dp**(-2 - it/10.0_dp)
-                noise = 10*min(s%settings%tol, tgt/100)
-                chosen = 0
-                do k = start + 1, min(nuse, start + 5)
-                    call level_estimate(lv(start:k), s, tang, noise, est, ratio, mono, qname)
-                    if (est <= tgt) then
-                        chosen = k; exit
+        do v = 1, nvar
+            cnt = 0; margin = 0
+            do start = 1, nuse - 1
+                do it = 0, 20
+                    tgt = 10.0_dp**(-2 - it/10.0_dp)
+                    noise = 10*min(s%settings%tol, tgt/100)
+                    chosen = 0
+                    do k = start + 1, min(nuse, start + 5)
+                        call level_estimate(lv(start:k), s, tang, noise, est, ratio, mono, qname, variants(:, v))
+                        if (est <= tgt) then
+                            chosen = k; exit
+                        end if
+                    end do
+                    if (chosen == 0) then
+                        cnt(4) = cnt(4) + 1; cycle
+                    end if
+                    cnt(1) = cnt(1) + 1
+                    if (true_err(chosen) > est) cnt(2) = cnt(2) + 1
+                    if (true_err(chosen - 1) > tgt) cnt(3) = cnt(3) + 1
+                    ! attainable: the probe misses the target, so a minimal choice exists above it
+                    if (true_err(start) > tgt) then
+                        cnt(5) = cnt(5) + 1
+                        if (true_err(chosen - 1) > tgt) cnt(6) = cnt(6) + 1
+                    end if
+                    margin = max(margin, true_err(chosen)/est)
+                    oracle = 0
+                    do k = start, nuse
+                        if (true_err(k) <= tgt) then
+                            oracle = k; exit
+                        end if
+                    end do
+                    if (oracle > start .and. nwork(v) < size(work, 1)) then
+                        nwork(v) = nwork(v) + 1
+                        work(nwork(v), v) = sum(real(lv(start:chosen)%nx, dp)*lv(start:chosen)%ny)/ &
+                            (real(lv(oracle)%nx, dp)*lv(oracle)%ny)
                     end if
                 end do
-                if (chosen == 0) then
-                    cnt(4) = cnt(4) + 1; cycle
-                end if
-                cnt(1) = cnt(1) + 1
-                if (true_err(chosen) > est) cnt(2) = cnt(2) + 1
-                if (true_err(chosen - 1) > tgt) cnt(3) = cnt(3) + 1
-                ! attainable: the probe misses the target, so a minimal choice exists above it
-                if (true_err(start) > tgt) then
-                    cnt(5) = cnt(5) + 1
-                    if (true_err(chosen - 1) > tgt) cnt(6) = cnt(6) + 1
-                end if
-                margin = max(margin, true_err(chosen)/est)
-                oracle = 0
-                do k = start, nuse
-                    if (true_err(k) <= tgt) then
-                        oracle = k; exit
-                    end if
-                end do
-                if (oracle > start) work = [work, sum(real(lv(start:chosen)%nx, dp)*lv(start:chosen)%ny)/ &
-                    (real(lv(oracle)%nx, dp)*lv(oracle)%ny)]
             end do
+            totals(:, v) = totals(:, v) + cnt
+            worst_margin(v) = max(worst_margin(v), margin)
+            if (v > 1) cycle
+            write (*, '(4x,a20,a,i0,a,i0,a,i3,a,i3,a,i3,a,i3,a,i3,a,i3,a,f5.2)') name, ' grids ', lv(1)%nx, '..', &
+                lv(nuse)%nx, ': met ', cnt(1), '  bound failures ', cnt(2), '  not met ', cnt(4), '  coarser misses ', &
+                cnt(3), '; probe misses T: ', cnt(5), ', of which minimal ', cnt(6), '  worst true/est ', margin
+            write (csv, '(a,6(i0,a),es12.4)') 'replay,'//name//',met|bound_fail|minimal|not_met|attainable|'// &
+                'minimal_attainable,', cnt(1), '|', cnt(2), '|', cnt(3), '|', cnt(4), '|', cnt(5), '|', cnt(6), &
+                ',worst_true_over_estimate,', margin
         end do
-        totals = totals + cnt
-        worst_margin = max(worst_margin, margin)
-        write (*, '(4x,a20,a,i0,a,i0,a,i3,a,i3,a,i3,a,i3,a,i3,a,i3,a,f5.2)') name, ' grids ', lv(1)%nx, '..', &
-            lv(nuse)%nx, ': met ', cnt(1), '  bound failures ', cnt(2), '  not met ', cnt(4), '  coarser misses ', &
-            cnt(3), '; probe misses T: ', cnt(5), ', of which minimal ', cnt(6), '  worst true/est ', margin
-        write (csv, '(a,6(i0,a),es12.4)') 'replay,'//name//',met|bound_fail|minimal|not_met|attainable|minimal_attainable,', &
-            cnt(1), '|', cnt(2), '|', cnt(3), '|', cnt(4), '|', cnt(5), '|', cnt(6), ',worst_true_over_estimate,', margin
     end subroutine replay
 
     !> Limit of a sequence on grids refined by two: Richardson with the observed ratio of its

@@ -460,7 +460,7 @@ contains
     !> Estimate of the last level's relative error over the target quantities (the largest
     !! over fn or approach, the tangential quantity and, with `target_pmax`, pmax).  Public so
     !! that fastcontact-bench-auto can replay it on reference sequences from every given grid.
-    subroutine level_estimate(levels, s, tang, noise, est, ratio, monotone, qname)
+    subroutine level_estimate(levels, s, tang, noise, est, ratio, monotone, qname, factors)
         type(fc_level), intent(in) :: levels(:)
         type(fc_case_input), intent(in) :: s
         logical, intent(in) :: tang
@@ -468,6 +468,7 @@ contains
         real(dp), intent(out) :: est, ratio
         logical, intent(out) :: monotone
         character(len=*), intent(out) :: qname
+        real(dp), intent(in), optional :: factors(3)  !! see [[richardson_estimate]]
         real(dp), allocatable :: q(:, :)
         real(dp) :: e, r, scale, norm_t
         logical :: mono
@@ -498,7 +499,7 @@ contains
         end if
         est = 0; ratio = 0; monotone = .true.
         do k = 1, size(q, 2)
-            call richardson_estimate(q(:, k), noise, e, r, mono)
+            call richardson_estimate(q(:, k), noise, e, r, mono, factors)
             if (e > est) then
                 est = e; ratio = r
             end if
@@ -510,13 +511,19 @@ contains
     !! value's magnitude, or distances to the last value) on grids refined by two; see the
     !! module header.  `ratio`: observed d_{k−1}/d_k (0 with two grids); `monotone`: false
     !! when the differences change sign or grow.
-    pure subroutine richardson_estimate(q, noise, est, ratio, monotone)
+    !! `factors` = [two-grid factor f2 (est_2 = f2·|d_2|), safety s, safety in the O(h²) band]
+    !! replaces the package's [`estimate_safety`, `estimate_safety`, `estimate_safety_h2`];
+    !! only fastcontact-bench-auto sets it, to measure the alternatives on the same data.
+    pure subroutine richardson_estimate(q, noise, est, ratio, monotone, factors)
         real(dp), intent(in) :: q(:)
         real(dp), intent(in) :: noise
         real(dp), intent(out) :: est, ratio
         logical, intent(out) :: monotone
-        real(dp) :: d, dprev
+        real(dp), intent(in), optional :: factors(3)
+        real(dp) :: d, dprev, f(3)
         integer :: n
+        f = [estimate_safety, estimate_safety, estimate_safety_h2]
+        if (present(factors)) f = factors
         n = size(q)
         est = -1; ratio = 0; monotone = .true.
         if (n < 2) return
@@ -525,7 +532,7 @@ contains
             ! no rate is known yet: assume only that the error at least halves per level (the
             ! slowest ratio measured); |d|/3 from the O(h²) rate failed whenever the two grids
             ! happened to err alike (Cattaneo from 32² to 64²: true error 1.4× |d|/3)
-            est = estimate_safety*abs(d)
+            est = f(1)*abs(d)
             return
         end if
         dprev = q(n - 1) - q(n - 2)
@@ -534,7 +541,7 @@ contains
         end if
         if (abs(d) <= noise) then
             ratio = abs(dprev)/max(abs(d), tiny(1.0_dp))
-            est = estimate_safety*max(noise, abs(dprev)/12); return
+            est = f(2)*max(noise, abs(dprev)/12); return
         end if
         ratio = dprev/d
         if (ratio <= 1) then
@@ -543,9 +550,9 @@ contains
         else
             est = max(abs(d)/(min(ratio, 4.0_dp) - 1), abs(dprev)/12)
             if (ratio >= h2_ratio_low .and. ratio <= h2_ratio_high) then
-                est = estimate_safety_h2*est
+                est = f(3)*est
             else
-                est = estimate_safety*est
+                est = f(2)*est
             end if
         end if
     end subroutine richardson_estimate
