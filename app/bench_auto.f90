@@ -17,7 +17,7 @@ program bench_auto
     use fc_tangcg, only: fc_tangential_operator
     use fc_hertz, only: fc_hertz_solution, hertz_from_approach, hertz_from_force
     use fc_auto, only: fc_auto_outcome, fc_level, solve_case_auto, plane_strain_hertz, level_estimate, &
-        estimate_safety, estimate_safety_h2
+        certify_coarsest, estimate_safety, estimate_safety_h2
     implicit none
     character(len=*), parameter :: nl = new_line('a')
     character(len=*), parameter :: hertz_scene = &
@@ -37,7 +37,7 @@ program bench_auto
     character(len=*), parameter :: variant_names(nvar) = [character(len=40) :: &
         'package: 2|d|; s = 2, 1.5 for r in [3,6]', 'band factor 1.25', 's = 2 everywhere', &
         'previous: two-grid 2|d|/3; s = 2', 'pure Richardson: |d|/3; s = 1']
-    integer :: totals(6, nvar), nwork(nvar)
+    integer :: totals(6, nvar), nwork(nvar), cert_totals(3)  ! certified grid: bound failures, minimal, attainable
     real(dp) :: worst_margin(nvar), work(4000, nvar)
     character(len=:), allocatable :: scene
     real(dp) :: tr, tf, b, p0
@@ -154,7 +154,7 @@ contains
         ! level below) and 21 targets 1e-2 ... 1e-4; true errors against analytic Hertz where it
         ! applies, else against the Richardson value of the two finest grids (then not replayed).
         write (*, '(a)') '  replay from every given grid (21 targets 1e-2 ... 1e-4 each):'
-        totals = 0; worst_margin = 0; nwork = 0
+        totals = 0; worst_margin = 0; nwork = 0; cert_totals = 0
         scene = hertz_scene//'&grid nx = 16, ny = 16, xmin = -10.0, xmax = 10.0, ymin = -6.0, ymax = 6.0 /'//nl
         call replay('hertz_16', scene, hz%fn, 0.0_dp)
         call replay('hertz_12', hertz_scene//'&grid nx = 12, ny = 12, xmin = -10.0, xmax = 10.0, ymin = -6.0, ymax = 6.0 /'// &
@@ -193,6 +193,11 @@ contains
             '&tangential mu = 0.3, xi = -0.004 /'//nl, 0.0_dp, 0.0_dp)
         write (*, '(a)') '  all scenes, per estimator variant (minimal: one level coarser misses T, counted where the '// &
             'probe misses T):'
+        write (*, '(4x,a,i0,a,i0,a,i0,a,f5.1,a)') 'package, coarsest grid certified by the finest: bound failures ', &
+            cert_totals(1), ', minimal ', cert_totals(2), ' of ', cert_totals(3), ' (', &
+            100.0_dp*cert_totals(2)/max(cert_totals(3), 1), ' %)'
+        write (csv, '(a,3(i0,a))') 'replay,all:certified coarsest grid,bound_fail|minimal_attainable|attainable,', &
+            cert_totals(1), '|', cert_totals(2), '|', cert_totals(3), ',,,,,'
         do v = 1, nvar
             write (*, '(4x,a40,a,i0,a,i0,a,i0,a,i0,a,f5.1,a,f5.2,a,f6.2,a,f6.2)') variant_names(v), ': met ', totals(1, v), &
                 ', bound failures ', totals(2, v), ', not met ', totals(4, v), ', minimal ', totals(6, v), ' (', &
@@ -296,7 +301,8 @@ contains
         type(fc_level), allocatable :: lv(:)
         real(dp), allocatable :: q(:, :), true_err(:)
         real(dp) :: secs, truth(2), scale(2), tgt, noise, est, ratio, margin
-        integer :: n, nq, nuse, k, start, it, chosen, oracle, cnt(6), j, v
+        integer :: n, nq, nuse, k, start, it, chosen, oracle, cnt(6), j, v, jc
+        real(dp) :: cbound
         logical :: tang, mono, extrapolated
         character(len=64) :: qname
         call solve_text(text//'&solver target = 1.0e-9, max_levels = 6 /'//nl, ref, secs, s)
@@ -359,6 +365,18 @@ contains
                         if (true_err(chosen - 1) > tgt) cnt(6) = cnt(6) + 1
                     end if
                     margin = max(margin, true_err(chosen)/est)
+                    if (v == 1) then
+                        ! the coarsest grid certified by the finest (reported as coarsest_sufficient)
+                        call certify_coarsest(lv(start:chosen), s, tang, est, tgt, jc, cbound)
+                        jc = start - 1 + jc
+                        if (true_err(jc) > cbound) cert_totals(1) = cert_totals(1) + 1
+                        if (true_err(start) > tgt) then
+                            cert_totals(3) = cert_totals(3) + 1
+                            if (jc > start) then
+                                if (true_err(jc - 1) > tgt) cert_totals(2) = cert_totals(2) + 1
+                            end if
+                        end if
+                    end if
                     oracle = 0
                     do k = start, nuse
                         if (true_err(k) <= tgt) then

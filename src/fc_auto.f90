@@ -81,6 +81,10 @@ module fc_auto
         logical :: reliable = .true.                       !! convergence was monotone
         logical :: target_met = .false.                    !! estimate ≤ target
         character(len=64) :: quantities = ''               !! quantities the estimate covers
+        !> Index in `levels` of the coarsest grid visited that is certified to meet the target
+        !! (0: none): its error bound max_q |q_j − q_n| + estimate uses the finest grid n
+        integer :: sufficient = 0
+        real(dp) :: sufficient_bound = -1                  !! that certified bound (relative)
         logical :: grid_auto = .false.                     !! potential area sized automatically
         integer :: enlargements = 0                        !! automatic enlargements of the area
         logical :: touches_boundary = .false.              !! final contact reaches the area's edge
@@ -112,7 +116,7 @@ module fc_auto
     integer, parameter :: max_enlargements = 6
 
     public :: solve_case_auto, auto_area, richardson_estimate, prolong_copy, contact_touches_boundary
-    public :: plane_strain_hertz, level_estimate
+    public :: plane_strain_hertz, level_estimate, certify_coarsest
 
 contains
 
@@ -260,6 +264,7 @@ contains
         if (s%ny == 1) fy = 1
         out%total_seconds = 0
         out%estimate = -1; out%target_met = .false.; out%reliable = .true.
+        out%sufficient = 0; out%sufficient_bound = -1
         noise = 10*s%settings%tol
         sl = s
         ! probe grid: with a target, start one level below the given grid (a quarter of its
@@ -299,6 +304,8 @@ contains
         end do
         if (s%target > 0) then
             if (size(out%levels) < 2) out%target_met = .false.
+            if (out%target_met) call certify_coarsest(out%levels, s, tang, out%estimate, s%target, out%sufficient, &
+                out%sufficient_bound)
             if (size(out%levels) == 2 .and. out%target_met) call add(out%warnings, 'accuracy target: estimate from '// &
                 'two grids: 2|d|, assuming only that the error at least halves per level (a third grid would '// &
                 'measure the rate)')
@@ -470,19 +477,40 @@ contains
         character(len=*), intent(out) :: qname
         real(dp), intent(in), optional :: factors(3)  !! see [[richardson_estimate]]
         real(dp), allocatable :: q(:, :)
-        real(dp) :: e, r, scale, norm_t
+        real(dp) :: e, r
         logical :: mono
-        integer :: n, k
+        integer :: k
+        call target_quantities(levels, s, tang, q, qname)
+        est = 0; ratio = 0; monotone = .true.
+        do k = 1, size(q, 2)
+            call richardson_estimate(q(:, k), noise, e, r, mono, factors)
+            if (e > est) then
+                est = e; ratio = r
+            end if
+            monotone = monotone .and. mono
+        end do
+    end subroutine level_estimate
+
+    !> The target quantities of each level, relative to the last level: fn (approach
+    !! prescribed) or the approach (fn prescribed); the tangential quantity (signed projection
+    !! on the last level's direction of (xi, eta) when forces are prescribed, of (Fx, Fy)
+    !! relative to max(|Ft|, 0.1·mu·Fn) when shifts are); pmax with `target_pmax`.
+    subroutine target_quantities(levels, s, tang, q, qname)
+        type(fc_level), intent(in) :: levels(:)
+        type(fc_case_input), intent(in) :: s
+        logical, intent(in) :: tang
+        real(dp), allocatable, intent(out) :: q(:, :)
+        character(len=*), intent(out) :: qname
+        real(dp) :: scale, norm_t
+        integer :: n
         n = size(levels)
         allocate (q(n, 0))
-        ! quantity 1: the computed normal load
         if (s%force_prescribed) then
             q = reshape([q, levels%approach/abs(levels(n)%approach)], [n, size(q, 2) + 1]); qname = 'approach'
         else
             q = reshape([q, levels%fn/abs(levels(n)%fn)], [n, size(q, 2) + 1]); qname = 'fn'
         end if
         if (tang) then
-            ! signed projection on the final direction of the tangential quantity
             if (s%tforce_prescribed) then
                 scale = max(hypot(levels(n)%xi, levels(n)%eta), tiny(1.0_dp))
                 q = reshape([q, (levels%xi*levels(n)%xi + levels%eta*levels(n)%eta)/scale**2], [n, size(q, 2) + 1])
@@ -497,15 +525,33 @@ contains
         if (s%target_pmax) then
             q = reshape([q, levels%pmax/abs(levels(n)%pmax)], [n, size(q, 2) + 1]); qname = trim(qname)//' pmax'
         end if
-        est = 0; ratio = 0; monotone = .true.
-        do k = 1, size(q, 2)
-            call richardson_estimate(q(:, k), noise, e, r, mono, factors)
-            if (e > est) then
-                est = e; ratio = r
-            end if
-            monotone = monotone .and. mono
+    end subroutine target_quantities
+
+    !> The coarsest of `levels` certified to meet `target`, once the finest (last) level has
+    !! the error estimate `est`: level j's error is at most max_q |q_j − q_n| + est (triangle
+    !! inequality through the finest grid), so this holds whenever the estimate does.  The
+    !! solve cannot stop there (seeing grid n is what certifies it), but the grid is the answer
+    !! to "which grid does this scene need" for later solves of the same scene.
+    subroutine certify_coarsest(levels, s, tang, est, target, j, bound)
+        type(fc_level), intent(in) :: levels(:)
+        type(fc_case_input), intent(in) :: s
+        logical, intent(in) :: tang
+        real(dp), intent(in) :: est, target
+        integer, intent(out) :: j                     !! level index (0: none, est > target)
+        real(dp), intent(out) :: bound                !! certified relative error bound of level j
+        real(dp), allocatable :: q(:, :)
+        character(len=64) :: qname
+        integer :: n
+        n = size(levels)
+        j = 0; bound = -1
+        if (n == 0 .or. est > target) return
+        call target_quantities(levels, s, tang, q, qname)
+        do j = 1, n
+            bound = maxval(abs(q(j, :) - q(n, :))) + est
+            if (bound <= target) return
         end do
-    end subroutine level_estimate
+        j = n; bound = est
+    end subroutine certify_coarsest
 
     !> Relative error estimate of the last of the values `q` (already divided by the last
     !! value's magnitude, or distances to the last value) on grids refined by two; see the

@@ -219,6 +219,10 @@ contains
             s%touches_boundary = auto%touches_boundary
             s%target = auto%target; s%estimate = auto%estimate; s%reliable = auto%reliable
             s%target_met = auto%target_met; s%quantities = auto%quantities; s%levels = auto%levels
+            if (auto%sufficient > 0) then
+                s%sufficient_nx = auto%levels(auto%sufficient)%nx; s%sufficient_ny = auto%levels(auto%sufficient)%ny
+                s%sufficient_bound = auto%sufficient_bound
+            end if
             s%levels_seconds = auto%total_seconds
             if (auto%analytic) then
                 call analytic_summary(s, auto, state)

@@ -67,6 +67,8 @@ module fc_output
         logical :: reliable = .true.                 !! monotone convergence
         logical :: target_met = .false.              !! estimate ≤ target
         character(len=64) :: quantities = ''         !! quantities covered by the estimate
+        integer :: sufficient_nx = 0, sufficient_ny = 0  !! coarsest grid visited certified to meet the target (0: none)
+        real(dp) :: sufficient_bound = -1            !! its certified relative error bound
         type(fc_level), allocatable :: levels(:)     !! grids visited
         real(dp) :: levels_seconds = 0               !! all grids incl. set-up [s]
         logical :: analytic = .false.                !! analytic answer, no grid
@@ -174,7 +176,7 @@ contains
             write (u, '(a)') '  "accuracy": {"target": '//json_real(s%target)//', "estimate": '//json_real(s%estimate)// &
                 ', "target_met": '//trim(merge('true ', 'false', s%target_met))//', "reliable": '// &
                 trim(merge('true ', 'false', s%reliable))//', "quantities": '//json_string(trim(s%quantities))// &
-                ', "seconds": '//json_real(s%levels_seconds)//'},'
+                ', "seconds": '//json_real(s%levels_seconds)//', "coarsest_sufficient": '//sufficient_json()//'},'
         end if
         if (allocated(s%levels)) call kv_levels()
         if (s%has_cattaneo) then
@@ -227,6 +229,16 @@ contains
             end if
             write (u, '(a)') line//'],'
         end subroutine kv_list
+        function sufficient_json() result(text)
+            character(len=:), allocatable :: text
+            character(len=40) :: buf
+            if (s%sufficient_nx == 0) then
+                text = 'null'
+            else
+                write (buf, '(i0,a,i0)') s%sufficient_nx, ', "ny": ', s%sufficient_ny
+                text = '{"nx": '//trim(buf)//', "bound": '//json_real(s%sufficient_bound)//'}'
+            end if
+        end function sufficient_json
         subroutine kv_levels()
             integer :: k
             character(len=40) :: buf
@@ -551,6 +563,9 @@ contains
             end do
             write (unit, '(a,es10.3,a,a,a,f9.4,a)') '              estimate ', s%estimate, '  target ', &
                 trim(merge('met    ', 'NOT MET', s%target_met)), '   all grids ', s%levels_seconds, ' s'
+            if (s%sufficient_nx > 0) write (unit, '(a,i0,a,i0,a,es10.3,a)') '              coarsest grid meeting the '// &
+                'target: ', s%sufficient_nx, ' x ', s%sufficient_ny, ' (error bound ', s%sufficient_bound, &
+                ', certified by the finest grid; use it for further solves of this scene)'
         end if
         if (s%has_cattaneo) write (unit, '(a,3(a,es12.5))') ' Cattaneo     ', 'a = ', s%cattaneo%a, '   c = ', &
             s%cattaneo%c, '   shift = ', s%cattaneo%shift
