@@ -280,6 +280,21 @@ contains
             write (csv, '(a,es9.2,a,es12.4,a,es12.4,a,es12.4,a,es12.4,a,es12.4)') 'target_sweep,'//scene_name//',T=', &
                 targets(t), ',chosen='//trim(cgrid)//'|oracle='//trim(ogrid)//',estimate,', out%estimate, ',', true_err, &
                 ',', coarser_err, ',', out%total_seconds, ',', ratio
+            ! the coarsest grid certified by the finest (JSON accuracy.coarsest_sufficient)
+            if (out%sufficient < 1) cycle
+            kc = 0
+            do k = 1, n
+                if (seq%levels(k)%nx == out%levels(out%sufficient)%nx) kc = k
+            end do
+            if (kc < 1) cycle
+            coarser_err = huge(1.0_dp)
+            if (kc >= 2) coarser_err = true_seq(kc - 1)
+            write (cgrid, '(i0)') out%levels(out%sufficient)%nx
+            write (*, '(4x,a16,a,es8.1,a,a5,a,es9.2,a,es9.2,a,es9.2,a)') scene_name, ' T ', targets(t), '  certified ', &
+                cgrid, '  bound ', out%sufficient_bound, '  true ', true_seq(kc), '  one level below ', coarser_err, &
+                trim(merge(' misses', ' meets ', coarser_err > targets(t)))
+            write (csv, '(a,es9.2,a,es12.4,a,es12.4,a,es12.4)') 'target_sweep_certified,'//scene_name//',T=', &
+                targets(t), ',certified='//trim(cgrid)//',bound,', out%sufficient_bound, ',', true_seq(kc), ',', coarser_err
         end do
     end subroutine sweep
 
