@@ -287,12 +287,12 @@ contains
                 if (seq%levels(k)%nx == out%levels(out%sufficient)%nx) kc = k
             end do
             if (kc < 1) cycle
-            coarser_err = huge(1.0_dp)
+            coarser_err = -1      ! −1: no grid below the certified one was visited
             if (kc >= 2) coarser_err = true_seq(kc - 1)
             write (cgrid, '(i0)') out%levels(out%sufficient)%nx
             write (*, '(4x,a16,a,es8.1,a,a5,a,es9.2,a,es9.2,a,es9.2,a)') scene_name, ' T ', targets(t), '  certified ', &
                 cgrid, '  bound ', out%sufficient_bound, '  true ', true_seq(kc), '  one level below ', coarser_err, &
-                trim(merge(' misses', ' meets ', coarser_err > targets(t)))
+                trim(merge(' misses', ' meets ', coarser_err > targets(t) .or. coarser_err < 0))
             write (csv, '(a,es9.2,a,es12.4,a,es12.4,a,es12.4)') 'target_sweep_certified,'//scene_name//',T=', &
                 targets(t), ',certified='//trim(cgrid)//',bound,', out%sufficient_bound, ',', true_seq(kc), ',', coarser_err
         end do

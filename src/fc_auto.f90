@@ -28,7 +28,9 @@
 !!   cost; skipped when the given grid has fewer than 16 elements or an odd count in a
 !!   direction), so that the given grid itself can be the answer, and stops at the first grid
 !!   k ≥ 2 with est_k ≤ target, or after `max_levels` grids beyond the probe (target not met:
-!!   reported).
+!!   reported).  The coarsest grid visited whose bound through the finest grid,
+!!   max |q_j − q_n| + est_n, meets the target is then reported as the grid the scene needs
+!!   (`sufficient`; the solve returns the finest grid's, more accurate, solution).
 !! * **Automatic potential contact area** (`&grid auto`): the Hertz estimate of the scene
 !!   (elliptic Hertz for quadratic profiles, plane-strain Hertz per unit length for line
 !!   contacts) plus `margin`, with `n_across` elements across the contact.  After the solve,
