@@ -56,6 +56,7 @@ contains
             new_unittest('auto_area_covers_contact', test_auto_area), &
             new_unittest('auto_area_enlarged_when_clipped', test_enlarge), &
             new_unittest('fixed_grid_clipped_warns', test_fixed_warns), &
+            new_unittest('target_outputs_json_report', test_target_outputs), &
             new_unittest('reduction_hertz_analytic', test_reduction_hertz), &
             new_unittest('reduction_cattaneo_analytic', test_reduction_cattaneo), &
             new_unittest('reduction_line_contact_strip', test_reduction_strip), &
@@ -548,6 +549,24 @@ contains
         call check(error, index(report, '*** WARNING  CONTACT REACHES THE BOUNDARY') > 0, 'report warns loudly')
         call execute_command_line("rm -rf '"//dir//"'")
     end subroutine test_fixed_warns
+
+    !> The driver's outputs of a targeted case: JSON `accuracy.coarsest_sufficient` (Hertz Test
+    !! I, automatic area, target 1e-3: solved up to 40², 40² certified, see doc/benchmarks.md),
+    !! `ncon` per level, and the report line naming the certified grid.
+    subroutine test_target_outputs(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: json, report, dir
+        integer :: code
+        dir = run_in_tmp("&case name = 'tgt' /"//nl//hertz_scene//'&solver target = 1.0e-3 /'//nl, code)
+        json = read_all(dir//'/tgt.json')
+        report = read_all(dir//'/report.txt')
+        call check(error, code == 0, 'case solved')
+        call check(error, index(json, '"coarsest_sufficient": {"nx": 40, "ny": 40, "bound": ') > 0, &
+            'JSON accuracy.coarsest_sufficient 40x40: '//json)
+        call check(error, index(json, '{"nx": 10, "ny": 10, "ncon": ') > 0, 'JSON levels carry ncon')
+        call check(error, index(report, 'coarsest grid meeting the target: 40 x 40') > 0, 'report names the certified grid')
+        call execute_command_line("rm -rf '"//dir//"'")
+    end subroutine test_target_outputs
 
     !> problem = 'hertz' (no grid) agrees with the full numerical model at target 1e-3 within
     !! 2e-3 in fn and pmax, and its JSON carries a, b, p0, fn, approach.
