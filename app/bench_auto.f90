@@ -17,7 +17,7 @@ program bench_auto
     use fc_tangcg, only: fc_tangential_operator
     use fc_hertz, only: fc_hertz_solution, hertz_from_approach, hertz_from_force
     use fc_auto, only: fc_auto_outcome, fc_level, solve_case_auto, plane_strain_hertz, level_estimate, &
-        certify_coarsest, estimate_safety, estimate_safety_h2
+        certify_coarsest, target_quantities, estimate_safety, estimate_safety_h2
     implicit none
     character(len=*), parameter :: nl = new_line('a')
     character(len=*), parameter :: hertz_scene = &
@@ -328,29 +328,19 @@ contains
         end do
         lv = ref%levels(1:n)
         tang = ref%tangential
-        nq = merge(2, 1, tang)
-        allocate (q(n, nq), true_err(n))
-        q(:, 1) = merge(lv%approach, lv%fn, s%force_prescribed)
-        scale(1) = 0
-        if (tang) then
-            ! the tangential quantity of level_estimate: projection on the finest direction
-            if (s%tforce_prescribed) then
-                scale(2) = hypot(lv(n)%xi, lv(n)%eta)
-                q(:, 2) = (lv%xi*lv(n)%xi + lv%eta*lv(n)%eta)/scale(2)
-            else
-                scale(2) = hypot(lv(n)%fx, lv(n)%fy)
-                q(:, 2) = (lv%fx*lv(n)%fx + lv%fy*lv(n)%fy)/scale(2)
-                scale(2) = max(scale(2), 0.1_dp*s%mu*lv(n)%fn)
-            end if
-        end if
-        truth = [truth_q1, truth_q2]
+        ! the estimator's own quantities (relative to the finest level; the tangential one
+        ! already relative to its scale): fn or approach, then the tangential quantity
+        call target_quantities(lv, s, tang, q, qname)
+        nq = size(q, 2)
+        allocate (true_err(n))
+        truth = [truth_q1/abs(merge(lv(n)%approach, lv(n)%fn, s%force_prescribed)), truth_q2]
         extrapolated = .false.
         do j = 1, nq
             if (truth(j) == 0) then
                 truth(j) = richardson_limit(q(:, j)); extrapolated = .true.
             end if
         end do
-        scale(1) = abs(truth(1))
+        scale = [abs(truth(1)), 1.0_dp]
         nuse = merge(n - 1, n, extrapolated)
         do k = 1, nuse
             true_err(k) = maxval(abs(q(k, :) - truth(1:nq))/scale(1:nq))

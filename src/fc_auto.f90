@@ -118,7 +118,7 @@ module fc_auto
     integer, parameter :: max_enlargements = 6
 
     public :: solve_case_auto, auto_area, richardson_estimate, prolong_copy, contact_touches_boundary
-    public :: plane_strain_hertz, level_estimate, certify_coarsest
+    public :: plane_strain_hertz, level_estimate, certify_coarsest, target_quantities
 
 contains
 
