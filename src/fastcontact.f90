@@ -5,7 +5,7 @@
 !! through the one orchestrator [[solve_contact]] (also public here, with its loading,
 !! settings, operator, state and result types): normal contact, or normal + tangential
 !! (Panagiotopoulos coupling for K ≠ 0) when `prob%load%problem = FC_PROBLEM_TANGENTIAL`.
-!! Errors come back through `stat`/`errmsg`, never by stopping.  [[destroy]] releases the
+!! Errors come back through `stat`/`errmsg`, never by stopping.  `prob%destroy()` releases the
 !! operators (FFT plans).  The operator-level routines of [[fc_norm]] and [[fc_tangcg]]
 !! stay available for callers that manage operators themselves.
 !!
@@ -18,7 +18,7 @@
 !! prob%h0 = quadratic_gap(prob%grid, 300.0_dp, 163.0_dp)
 !! prob%load%normal%approach = 0.1091_dp
 !! call solve(prob, res, stat, errmsg)
-!! call destroy(prob)
+!! call prob%destroy()
 !! ```
 module fastcontact
     use fc_kinds
@@ -63,9 +63,11 @@ module fastcontact
         type(fc_contact_settings) :: settings    !! solver choice and tolerances
         type(fc_contact_operators) :: operators  !! cached influence operators
         type(fc_contact_state) :: state          !! previous solution (warm start, transient steps)
+    contains
+        procedure :: destroy => problem_destroy
     end type fc_problem
 
-    public :: set_material, solve, destroy
+    public :: set_material, solve
 
 contains
 
@@ -100,10 +102,10 @@ contains
     end subroutine solve
 
     !> Release the operators (FFT plans and buffers) and the previous solution of `prob`.
-    subroutine destroy(prob)
-        type(fc_problem), intent(inout) :: prob
+    subroutine problem_destroy(prob)
+        class(fc_problem), intent(inout) :: prob
         call prob%operators%destroy()
         call prob%state%reset()
-    end subroutine destroy
+    end subroutine problem_destroy
 
 end module fastcontact
