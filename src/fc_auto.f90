@@ -51,7 +51,8 @@ module fc_auto
     use fc_hertz, only: fc_hertz_solution, fc_cattaneo_solution, hertz_from_approach, hertz_from_force, &
         cattaneo_mindlin
     use fc_fmg, only: fc_quadratic_surface, fc_punch_rough_surface, fc_wavy_surface
-    use fc_input, only: fc_case_input, setup_case, is_tangential, tangential_loading, fmt_real, grid_is_auto, &
+    use fc_strings, only: fmt_int, fmt_real
+    use fc_input, only: fc_case_input, setup_case, is_tangential, tangential_loading, grid_is_auto, &
         is_line_contact, is_given
     implicit none
     private
@@ -742,13 +743,5 @@ contains
         tmp(size(list) + 1) = text
         call move_alloc(tmp, list)
     end subroutine add
-
-    function fmt_int(i) result(s)
-        integer, intent(in) :: i
-        character(len=:), allocatable :: s
-        character(len=20) :: buf
-        write (buf, '(i0)') i
-        s = trim(buf)
-    end function fmt_int
 
 end module fc_auto

@@ -28,8 +28,10 @@ module fc_driver
     use fc_mg2d, only: fc_strip_problem, fc_mg2d_settings, fc_mg2d_result, strip_model_problem, solve_strip_mg, &
         solve_strip_fft_rsm
     use fc_hertz, only: hertz_from_approach, hertz_from_force
-    use fc_input, only: fc_case_chunk, fc_case_input, read_case_file, apply_case, validate_case, setup_case, fmt_real, &
+    use fc_input, only: fc_case_chunk, fc_case_input, read_case_file, apply_case, validate_case, setup_case, &
         is_tangential, tangential_loading, strip_model_index, is_given
+    use fc_strings, only: fmt_int, fmt_real
+    use fc_errors, only: FC_ERR_FRICTION_BOUND
     use fc_output, only: fc_case_summary, write_case_json, write_case_csv, write_case_report
     use fc_auto, only: fc_auto_outcome, solve_case_auto
     implicit none
@@ -201,7 +203,7 @@ contains
             call solve_case_auto(state, ops, auto, stat, errmsg)
             call system_clock(t2)
             if (stat /= 0) then
-                call library_message(errmsg, state)
+                call library_context(stat, errmsg, state)
                 call case_error(); return
             end if
             tang = auto%tangential
@@ -449,14 +451,6 @@ contains
         stat = 0; errmsg = ''
     end subroutine solve_strip_case
 
-    function fmt_int(i) result(text)
-        integer, intent(in) :: i
-        character(len=:), allocatable :: text
-        character(len=20) :: buf
-        write (buf, '(i0)') i
-        text = trim(buf)
-    end function fmt_int
-
     !> Summary of an analytic (problem = 'hertz') case: no grid, Hertz values as results.
     subroutine analytic_summary(s, auto, state)
         type(fc_case_summary), intent(inout) :: s
@@ -528,19 +522,18 @@ contains
         end if
     end subroutine tangential_summary
 
-    !> Library messages start with the group ('tangential: ...', 'solver: ...'):
-    !! make them name the group as the input checks do, with the values given.
-    subroutine library_message(errmsg, state)
+    !> Name the namelist group, keys and values of a library error the input checks cannot
+    !! foresee (they depend on the solution), chosen by the error code.
+    subroutine library_context(stat, errmsg, state)
+        integer, intent(in) :: stat
         character(len=*), intent(inout) :: errmsg
         type(fc_case_input), intent(in) :: state
-        if (index(errmsg, 'tangential: |(fx, fy)|') == 1) then
+        select case (stat)
+        case (FC_ERR_FRICTION_BOUND)
             errmsg = '&tangential fx = '//fmt_real(state%fx)//', fy = '//fmt_real(state%fy)//', mu = '// &
-                fmt_real(state%mu)//': '//trim(errmsg(13:))//' for &normal approach = '//fmt_real(state%approach)
-        else if (index(errmsg, 'tangential: ') == 1 .or. index(errmsg, 'solver: ') == 1 .or. &
-                 index(errmsg, 'normal: ') == 1) then
-            errmsg = '&'//trim(errmsg)
-        end if
-    end subroutine library_message
+                fmt_real(state%mu)//': '//trim(errmsg)//' for &normal approach = '//fmt_real(state%approach)
+        end select
+    end subroutine library_context
 
     !> mkdir -p DIR.
     subroutine make_directory(dir, stat)

@@ -46,6 +46,7 @@
 module fc_input
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
     use fc_kinds, only: dp, i8, msg_len
+    use fc_strings, only: fmt_int, fmt_real, lower, shorten
     use fc_geometry, only: fc_grid, fc_rough_params, make_grid, quadratic_gap, punch_rough_gap, wavy_gap, &
         read_gap_table, h_no_contact
     use fc_influence, only: fc_material, combine_material, rigid_modulus
@@ -1337,67 +1338,10 @@ contains
         inquire (file=trim(path), exist=file_exists)
     end function file_exists
 
-    !> Short text of a real for messages.
-    function fmt_real(x) result(s)
-        real(dp), intent(in) :: x
-        character(len=:), allocatable :: s
-        character(len=40) :: buf
-        if (ieee_is_nan(x)) then
-            s = 'NaN'; return
-        end if
-        if (.not. ieee_is_finite(x)) then
-            s = merge('+Inf', '-Inf', x > 0); return
-        end if
-        if (x == 0 .or. (abs(x) >= 1.0e-3_dp .and. abs(x) < 1.0e7_dp)) then
-            write (buf, '(f0.8)') x
-            buf = adjustl(buf)
-            s = trim(buf)
-            do while (len(s) > 1 .and. s(len(s):len(s)) == '0')
-                s = s(1:len(s) - 1)
-            end do
-            if (s(len(s):len(s)) == '.') s = s//'0'
-            if (s(1:1) == '.') s = '0'//s
-            if (len(s) >= 2) then
-                if (s(1:2) == '-.') s = '-0'//s(2:)
-            end if
-        else
-            write (buf, '(es15.8)') x
-            s = trim(adjustl(buf))
-        end if
-    end function fmt_real
-
-    function fmt_int(i) result(s)
-        integer, intent(in) :: i
-        character(len=:), allocatable :: s
-        character(len=20) :: buf
-        write (buf, '(i0)') i
-        s = trim(buf)
-    end function fmt_int
-
     pure logical function is_ident_char(c)
         character, intent(in) :: c
         is_ident_char = (c >= 'a' .and. c <= 'z') .or. (c >= 'A' .and. c <= 'Z') .or. (c >= '0' .and. c <= '9') &
             .or. c == '_'
     end function is_ident_char
-
-    pure function lower(s) result(t)
-        character(len=*), intent(in) :: s
-        character(len=len(s)) :: t
-        integer :: i
-        t = s
-        do i = 1, len(s)
-            if (s(i:i) >= 'A' .and. s(i:i) <= 'Z') t(i:i) = achar(iachar(s(i:i)) + 32)
-        end do
-    end function lower
-
-    function shorten(s) result(t)
-        character(len=*), intent(in) :: s
-        character(len=:), allocatable :: t
-        if (len_trim(s) > 60) then
-            t = s(1:57)//'...'
-        else
-            t = trim(s)
-        end if
-    end function shorten
 
 end module fc_input

@@ -31,6 +31,8 @@ module fc_legacy
     use fc_norm
     use fc_tangcg
     use fc_contact
+    use fc_strings, only: fmt_int, fmt_g6
+    use fc_errors
     implicit none
     private
 
@@ -128,24 +130,6 @@ contains
         ierr = code
         s%message = msg
     end subroutine fail
-
-    !> Format a real for messages.
-    function num(x) result(str)
-        real(dp), intent(in) :: x
-        character(len=:), allocatable :: str
-        character(len=32) :: buf
-        write (buf, '(g0.6)') x
-        str = trim(adjustl(buf))
-    end function num
-
-    !> Format an integer for messages.
-    function inum(i) result(str)
-        integer, intent(in) :: i
-        character(len=:), allocatable :: str
-        character(len=16) :: buf
-        write (buf, '(i0)') i
-        str = trim(buf)
-    end function inum
 
     logical function finite(x)
         real(dp), intent(in) :: x
@@ -248,7 +232,7 @@ contains
         call lookup(handle, 'fc_set_grid', s, ierr)
         if (ierr /= FCL_OK) return
         if (nx > 4096 .or. ny > 4096) then
-            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_grid: nx = '//inum(nx)//', ny = '//inum(ny)// &
+            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_grid: nx = '//fmt_int(nx)//', ny = '//fmt_int(ny)// &
                 ' exceeds the limit 4096'); return
         end if
         call make_grid(g, nx, ny, xmin, xmax, ymin, ymax, stat, msg)
@@ -297,12 +281,12 @@ contains
             call fail(s, ierr, FCL_ORDER, 'fc_set_gap_array: call fc_set_grid first'); return
         end if
         if (n /= s%grid%n()) then
-            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_gap_array: n = '//inum(n)//' but the grid has nx*ny = ' &
-                //inum(s%grid%n())//' elements'); return
+            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_gap_array: n = '//fmt_int(n)//' but the grid has nx*ny = ' &
+                //fmt_int(s%grid%n())//' elements'); return
         end if
         do k = 1, n
             if (ieee_is_nan(h0(k))) then
-                call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_gap_array: h0('//inum(k)//') is NaN'); return
+                call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_gap_array: h0('//fmt_int(k)//') is NaN'); return
             end if
         end do
         s%h0 = reshape(h0(1:n), [s%grid%nx, s%grid%ny])
@@ -319,7 +303,7 @@ contains
         call lookup(handle, 'fc_set_gap_quadratic', s, ierr)
         if (ierr /= FCL_OK) return
         if (.not. (finite(rx) .and. finite(ry)) .or. .not. (rx > 0 .or. ry > 0)) then
-            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_gap_quadratic: rx = '//num(rx)//', ry = '//num(ry)// &
+            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_gap_quadratic: rx = '//fmt_g6(rx)//', ry = '//fmt_g6(ry)// &
                 ': at least one radius must be > 0 and both finite'); return
         end if
         s%rx = rx; s%ry = ry
@@ -335,7 +319,7 @@ contains
         call lookup(handle, 'fc_set_normal_approach', s, ierr)
         if (ierr /= FCL_OK) return
         if (.not. finite(approach)) then
-            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_normal_approach: approach = '//num(approach)// &
+            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_normal_approach: approach = '//fmt_g6(approach)// &
                 ' is not finite'); return
         end if
         s%load%normal%approach = approach; s%load%normal%force_prescribed = .false.; s%has_normal = .true.
@@ -350,7 +334,7 @@ contains
         call lookup(handle, 'fc_set_normal_force', s, ierr)
         if (ierr /= FCL_OK) return
         if (.not. (fn > 0 .and. finite(fn))) then
-            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_normal_force: fn = '//num(fn)//' must be > 0'); return
+            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_normal_force: fn = '//fmt_g6(fn)//' must be > 0'); return
         end if
         s%load%normal%fn = fn; s%load%normal%force_prescribed = .true.; s%has_normal = .true.
     end subroutine fc_set_normal_force
@@ -364,7 +348,7 @@ contains
         call lookup(handle, 'fc_set_friction', s, ierr)
         if (ierr /= FCL_OK) return
         if (.not. (mu >= 0 .and. finite(mu))) then
-            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_friction: mu = '//num(mu)//' must be >= 0'); return
+            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_friction: mu = '//fmt_g6(mu)//' must be >= 0'); return
         end if
         s%load%tangential%mu = mu; s%has_friction = .true.
     end subroutine fc_set_friction
@@ -381,8 +365,8 @@ contains
         call lookup(handle, 'fc_set_shifts', s, ierr)
         if (ierr /= FCL_OK) return
         if (.not. (finite(xi) .and. finite(eta) .and. finite(phi))) then
-            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_shifts: xi = '//num(xi)//', eta = '//num(eta)//', phi = ' &
-                //num(phi)//' must be finite'); return
+            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_shifts: xi = '//fmt_g6(xi)//', eta = '//fmt_g6(eta)//', phi = ' &
+                //fmt_g6(phi)//' must be finite'); return
         end if
         s%load%tangential%xi = xi; s%load%tangential%eta = eta; s%load%tangential%phi = phi
         s%load%tangential%force_prescribed = .false.; s%load%problem = FC_PROBLEM_TANGENTIAL
@@ -399,8 +383,8 @@ contains
         call lookup(handle, 'fc_set_forces', s, ierr)
         if (ierr /= FCL_OK) return
         if (.not. (finite(fx) .and. finite(fy) .and. finite(phi))) then
-            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_forces: fx = '//num(fx)//', fy = '//num(fy)//', phi = ' &
-                //num(phi)//' must be finite'); return
+            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_forces: fx = '//fmt_g6(fx)//', fy = '//fmt_g6(fy)//', phi = ' &
+                //fmt_g6(phi)//' must be finite'); return
         end if
         s%load%tangential%fx = fx; s%load%tangential%fy = fy; s%load%tangential%phi = phi
         s%load%tangential%force_prescribed = .true.; s%load%problem = FC_PROBLEM_TANGENTIAL
@@ -420,24 +404,24 @@ contains
         call lookup(handle, 'fc_set_solver', s, ierr)
         if (ierr /= FCL_OK) return
         if (normal_solver < 0 .or. normal_solver > 2) then
-            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_solver: normal_solver = '//inum(normal_solver)// &
+            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_solver: normal_solver = '//fmt_int(normal_solver)// &
                 ' is not 0/1 (BCCG) or 2 (NORM)'); return
         end if
         if (tangential_solver < 0 .or. tangential_solver > 2) then
-            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_solver: tangential_solver = '//inum(tangential_solver)// &
+            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_solver: tangential_solver = '//fmt_int(tangential_solver)// &
                 ' is not 0/1 (TangCG) or 2 (ConvexGS)'); return
         end if
         if (.not. (tol > 0 .and. tol < 1)) then
-            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_solver: tol = '//num(tol)//' must lie in (0, 1)'); return
+            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_solver: tol = '//fmt_g6(tol)//' must lie in (0, 1)'); return
         end if
         if (maxit < 1) then
-            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_solver: maxit = '//inum(maxit)//' must be >= 1'); return
+            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_solver: maxit = '//fmt_int(maxit)//' must be >= 1'); return
         end if
         if (inner_k < 1) then
-            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_solver: inner_k = '//inum(inner_k)//' must be >= 1'); return
+            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_solver: inner_k = '//fmt_int(inner_k)//' must be >= 1'); return
         end if
         if (precondition /= 0 .and. precondition /= 1) then
-            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_solver: precondition = '//inum(precondition)// &
+            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_solver: precondition = '//fmt_int(precondition)// &
                 ' must be 0 or 1'); return
         end if
         associate (ns => s%settings%normal, ts => s%settings%tangential)
@@ -461,7 +445,7 @@ contains
         call lookup(handle, 'fc_set_transient', s, ierr)
         if (ierr /= FCL_OK) return
         if (mode < 0 .or. mode > 2) then
-            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_transient: mode = '//inum(mode)// &
+            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_transient: mode = '//fmt_int(mode)// &
                 ' is not 0 (from rest), 1 (continue) or 2 (rolling)'); return
         end if
         select case (mode)
@@ -482,7 +466,7 @@ contains
         call lookup(handle, 'fc_set_rolling_step', s, ierr)
         if (ierr /= FCL_OK) return
         if (.not. finite(dq)) then
-            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_rolling_step: dq = '//num(dq)//' is not finite'); return
+            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_rolling_step: dq = '//fmt_g6(dq)//' is not finite'); return
         end if
         s%load%dq = dq
     end subroutine fc_set_rolling_step
@@ -498,8 +482,8 @@ contains
         call lookup(handle, 'fc_set_reuse', s, ierr)
         if (ierr /= FCL_OK) return
         if (reuse_operators /= 0 .and. reuse_operators /= 1 .or. warm_start /= 0 .and. warm_start /= 1) then
-            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_reuse: reuse_operators = '//inum(reuse_operators)// &
-                ', warm_start = '//inum(warm_start)//' must be 0 or 1'); return
+            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_reuse: reuse_operators = '//fmt_int(reuse_operators)// &
+                ', warm_start = '//fmt_int(warm_start)//' must be 0 or 1'); return
         end if
         s%ops%reuse = reuse_operators == 1
         s%prev%warm_start = warm_start == 1
@@ -557,7 +541,7 @@ contains
         !     state (warm start, u', p') advances only when every stage converged
         call solve_contact(s%ops, s%grid, s%mat, h0, s%load, s%settings, s%result, stat, msg, state=s%prev)
         if (stat /= 0) then
-            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_calculate: '//trim(msg)); return
+            call fail(s, ierr, flat_code(stat), 'fc_calculate: '//trim(msg)); return
         end if
         s%calculations = s%calculations + 1
         s%has_result = .true.
@@ -569,6 +553,17 @@ contains
                 trim(s%result%tangential%message))
         end if
     end subroutine calculate
+
+    !> The flat API's `ierr` for a library error code.
+    pure integer(c_int) function flat_code(stat)
+        integer, intent(in) :: stat
+        select case (stat)
+        case (FC_OK); flat_code = FCL_OK
+        case (FC_ERR_NOT_READY); flat_code = FCL_ORDER
+        case (FC_ERR_SHAPE, FC_ERR_ALLOC, FC_ERR_INTERNAL); flat_code = FCL_INTERNAL
+        case default; flat_code = FCL_INVALID_VALUE
+        end select
+    end function flat_code
 
     pure integer(c_int) function status_code(status)
         integer, intent(in) :: status
@@ -602,8 +597,8 @@ contains
         integer(c_int), intent(in) :: n
         integer(c_int), intent(out) :: ierr
         ierr = FCL_OK
-        if (n < s%grid%n()) call fail(s, ierr, FCL_ARRAY_SIZE, caller//': n = '//inum(n)// &
-            ' is smaller than nx*ny = '//inum(s%grid%n()))
+        if (n < s%grid%n()) call fail(s, ierr, FCL_ARRAY_SIZE, caller//': n = '//fmt_int(n)// &
+            ' is smaller than nx*ny = '//fmt_int(s%grid%n()))
     end subroutine check_size
 
     !> Total forces Fn, Fx, Fy [N] on body 1 and moment Mz = Σ(x·py − y·px)·dx·dy [N·mm].
