@@ -20,6 +20,7 @@ module fc_errors
     integer, parameter, public :: FC_ERR_GRID = 8           !! the grid does not suit the chosen solver
     integer, parameter, public :: FC_ERR_ALLOC = 9          !! memory allocation failed
     integer, parameter, public :: FC_ERR_INTERNAL = 10      !! unexpected internal error
+    integer, parameter, public :: FC_ERR_GEOMETRY = 11      !! the geometry cannot touch on this grid
 
     public :: error_name
 
@@ -40,6 +41,7 @@ contains
         case (FC_ERR_FRICTION_BOUND); name = 'friction_bound'
         case (FC_ERR_GRID);           name = 'grid'
         case (FC_ERR_ALLOC);          name = 'alloc'
+        case (FC_ERR_GEOMETRY);       name = 'geometry'
         case default;                 name = 'internal'
         end select
     end function error_name
