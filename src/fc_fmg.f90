@@ -189,6 +189,9 @@ contains
             p = 0
             call active_set(hier, 1, settings, delta, con, p, .false., 100, nit, status, resid, msg)
             stats%level_iterations(1) = nit
+            if (status == FC_ERROR) then
+                call fail_on_level(); return
+            end if
             do l = 2, nlev
                 ! nested iteration: copy p, bilinear u, initial area e ≤ β max(u) (eq. 2.17)
                 call move_alloc(p, pc)
@@ -207,6 +210,9 @@ contains
                     call active_set(hier, l, settings, delta, con, p, .false., settings%maxit_level, nit, status, &
                         resid, msg)
                     stats%level_iterations(l) = nit
+                    if (status == FC_ERROR) then
+                        call fail_on_level(); return
+                    end if
                 end if
             end do
             if (nlev == 1) then
@@ -225,6 +231,14 @@ contains
         stats%level_iterations(nlev) = nit
         call finish(status, resid, msg, nit)
     contains
+        !> A coarse level failed (LAPACK): report it with zero pressure on the target grid.
+        subroutine fail_on_level()
+            deallocate (p)
+            allocate (p(hier%lev(nlev)%grid%nx, hier%lev(nlev)%grid%ny))
+            p = 0
+            call finish(status, resid, msg, nit)
+        end subroutine fail_on_level
+
         subroutine finish(status, resid, msg, nit)
             integer, intent(in) :: status, nit
             real(dp), intent(in) :: resid
@@ -345,6 +359,8 @@ contains
         integer :: k, kk
         real(dp), allocatable :: rhist(:), phist(:, :, :)
         logical, allocatable :: chist(:)
+        integer :: vstat
+        character(len=msg_len) :: vmsg
         allocate (h(size(p, 1), size(p, 2)), u(size(p, 1), size(p, 2)), rhs(size(p, 1), size(p, 2)))
         allocate (con_new(size(p, 1), size(p, 2)))
         associate (lv => hier%lev(l))
@@ -368,7 +384,11 @@ contains
                     elsewhere
                         rhs = 0
                     end where
-                    call vcycle(hier, l, settings, con, rhs, p)
+                    call vcycle(hier, l, settings, con, rhs, p, vstat, vmsg)
+                    if (vstat /= 0) then
+                        status = FC_ERROR; msg = vmsg
+                        exit
+                    end if
                     call lv%op%apply(p, u)
                     hier%checks = hier%checks + lv%cost
                 end if
@@ -463,7 +483,10 @@ contains
                 if (d <= settings%tol*hn) then
                     status = FC_CONVERGED; exit
                 end if
-                call vcycle(hier, hier%nlev, settings, con, rhs, p)
+                call vcycle(hier, hier%nlev, settings, con, rhs, p, stat, msg)
+                if (stat /= 0) then
+                    status = FC_ERROR; exit
+                end if
                 call lv%op%apply(p, u)
                 d = sqrt(sum((rhs - u)**2, mask=con))
                 cycles = k
@@ -480,21 +503,25 @@ contains
     ! ---- V-cycle ---------------------------------------------------------------------------
 
     !> One V(ν1,ν2)-cycle for A_CC p_C = rhs_C on level l (p = 0 outside `con`).
-    recursive subroutine vcycle(hier, l, settings, con, rhs, p)
+    !! stat ≠ 0 (with errmsg) when the coarsest-grid Cholesky solve fails.
+    recursive subroutine vcycle(hier, l, settings, con, rhs, p, stat, errmsg)
         type(fc_fmg_hierarchy), intent(inout) :: hier
         integer, intent(in) :: l
         type(fc_fmg_settings), intent(in) :: settings
         logical, intent(in) :: con(:, :)
         real(dp), intent(in) :: rhs(:, :)
         real(dp), intent(inout) :: p(:, :)
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
         real(dp), allocatable :: d(:, :), dc(:, :), vc(:, :), v(:, :), rs(:, :)
         logical, allocatable :: conc(:, :)
         integer :: k, ncx, ncy
+        stat = 0; errmsg = ''
         if (.not. any(con)) then
             p = 0; return
         end if
         if (l == 1) then
-            call direct_solve(hier%lev(1), con, rhs, p)
+            call direct_solve(hier%lev(1), con, rhs, p, stat, errmsg)
             return
         end if
         associate (lv => hier%lev(l), lc => hier%lev(l - 1))
@@ -513,7 +540,8 @@ contains
             allocate (dc(ncx, ncy), conc(ncx, ncy), vc(ncx, ncy), v(size(p, 1), size(p, 2)))
             call restrict_defect(d, lv%fx, lv%fy, con, dc, conc)
             vc = 0
-            call vcycle(hier, l - 1, settings, conc, dc, vc)
+            call vcycle(hier, l - 1, settings, conc, dc, vc, stat, errmsg)
+            if (stat /= 0) return
             call interp_copy(vc, lv%fx, lv%fy, v)
             where (con) p = p + v
             do k = 1, settings%nu2

@@ -3,20 +3,10 @@
 module fc_fmg_diagnostics
     use fc_kinds
     use fc_geometry, only: fc_grid
+    use fc_lapack, only: eigenvalues_general
     use fc_influence, only: fc_material, ic_kernel, IC_ZZ
     implicit none
     private
-
-    interface
-        subroutine dgeev(jobvl, jobvr, n, a, lda, wr, wi, vl, ldvl, vr, ldvr, work, lwork, info)
-            import :: dp
-            character(len=1), intent(in) :: jobvl, jobvr
-            integer, intent(in) :: n, lda, ldvl, ldvr, lwork
-            real(dp), intent(inout) :: a(lda, *)
-            real(dp), intent(out) :: wr(*), wi(*), vl(ldvl, *), vr(ldvr, *), work(*)
-            integer, intent(out) :: info
-        end subroutine dgeev
-    end interface
 
     public :: smoother_eigenvalues
 
@@ -34,8 +24,8 @@ contains
         real(dp), allocatable, intent(out) :: wr(:), wi(:)
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
-        real(dp), allocatable :: kernel(:, :), a(:, :), w(:, :), r(:, :), vl(:, :), vr(:, :), work(:)
-        integer :: n, i, j, info
+        real(dp), allocatable :: kernel(:, :), a(:, :), w(:, :), r(:, :)
+        integer :: n, i, j
         stat = 0; errmsg = ''
         n = grid%n()
         if (n > 2048) then
@@ -71,11 +61,8 @@ contains
         do i = 1, n
             r(i, i) = r(i, i) + 1
         end do
-        allocate (wr(n), wi(n), vl(1, 1), vr(1, 1), work(8*n))
-        call dgeev('N', 'N', n, r, n, wr, wi, vl, 1, vr, 1, work, size(work), info)
-        if (info /= 0) then
-            stat = 1; write (errmsg, '(a,i0)') 'smoother_eigenvalues: dgeev info = ', info
-        end if
+        call eigenvalues_general(r, wr, wi, stat, errmsg)
+        if (stat /= 0) errmsg = 'smoother_eigenvalues: '//trim(errmsg)
     contains
         subroutine solve_lower(lw, x)
             real(dp), intent(in) :: lw(:, :)

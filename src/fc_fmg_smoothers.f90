@@ -16,19 +16,10 @@
 !! and level for the row sums M·1_C.
 module fc_fmg_smoothers
     use fc_kinds
+    use fc_lapack, only: solve_spd
     use fc_fmg_levels, only: fc_fmg_settings, fc_fmg_hierarchy, fmg_level
     implicit none
     private
-
-    interface
-        subroutine dposv(uplo, n, nrhs, a, lda, b, ldb, info)
-            import :: dp
-            character(len=1), intent(in) :: uplo
-            integer, intent(in) :: n, nrhs, lda, ldb
-            real(dp), intent(inout) :: a(lda, *), b(ldb, *)
-            integer, intent(out) :: info
-        end subroutine dposv
-    end interface
 
     public :: smooth, direct_solve
 
@@ -148,15 +139,19 @@ contains
         call lv%prec%apply(one, rs)
     end subroutine rsm_rowsums
 
-    !> Exact solve of A_CC p_C = rhs_C on the coarsest level (LAPACK dposv).
-    subroutine direct_solve(lv, con, rhs, p)
+    !> Exact solve of A_CC p_C = rhs_C on the coarsest level (LAPACK dposv).  A_CC is
+    !! symmetric positive definite; a Cholesky failure (stat ≠ 0) leaves p = 0.
+    subroutine direct_solve(lv, con, rhs, p, stat, errmsg)
         type(fmg_level), intent(in) :: lv
         logical, intent(in) :: con(:, :)
         real(dp), intent(in) :: rhs(:, :)
         real(dp), intent(out) :: p(:, :)
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
         integer, allocatable :: ix(:), iy(:)
         real(dp), allocatable :: a(:, :), b(:, :)
-        integer :: n, i, j, k, info
+        integer :: n, i, j, k
+        stat = 0; errmsg = ''
         n = count(con)
         p = 0
         if (n == 0) return
@@ -174,8 +169,12 @@ contains
                 a(i, j) = lv%op%kernel(ix(i) - ix(j), iy(i) - iy(j))
             end do
         end do
-        call dposv('U', n, 1, a, n, b, n, info)
-        if (info /= 0) return     ! A is SPD; a failure leaves the correction zero
+        call solve_spd(a, b, stat, errmsg)
+        if (stat /= 0) then
+            write (errmsg, '(a,i0,a,i0,a)') 'fmg coarsest-grid solve on ', size(con, 1), 'x', size(con, 2), ': ' &
+                //trim(errmsg)
+            return
+        end if
         do k = 1, n
             p(ix(k), iy(k)) = b(k, 1)
         end do
