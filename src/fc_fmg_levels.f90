@@ -176,7 +176,7 @@ contains
         real(dp), allocatable :: ones(:, :), rs(:, :)
         do l = 1, hier%nlev
             associate (lv => hier%lev(l))
-                call build_inverse_toeplitz(IC_ZZ, hier%material, lv%grid, lv%prec)
+                call build_inverse_toeplitz(IC_ZZ, hier%material, lv%grid, lv%prec, plans_from=lv%op)
                 allocate (ones(lv%grid%nx, lv%grid%ny), rs(lv%grid%nx, lv%grid%ny))
                 ones = 1
                 call lv%prec%apply(ones, rs)

@@ -209,7 +209,7 @@ contains
         if (ierr /= FCL_OK) return
         call s%nop%destroy()
         call s%top%destroy()
-        deallocate (registry(handle)%s)
+        deallocate (s)
         registry(handle)%s => null()
         handle = 0
     end subroutine fc_finalize
