@@ -134,8 +134,12 @@ contains
     !> Release the state of a valid `handle` (operators, FFT plans, arrays).
     subroutine close_handle(handle)
         integer(c_int), intent(in) :: handle
-        call registry(handle)%s%ops%destroy()
-        deallocate (registry(handle)%s)
+        type(legacy_state), pointer :: s
+        s => registry(handle)%s
+        call s%ops%destroy()
+        ! Through a local pointer: gfortran 12 has an internal compiler error on deallocating
+        ! the registry component directly once the operators carry final bindings.
+        deallocate (s)
         registry(handle)%s => null()
     end subroutine close_handle
 
