@@ -1,4 +1,4 @@
-!> Suite `auto` (issue 7): accuracy-targeted refinement against analytic Hertz, Cattaneo and a
+!> Suite `auto`: accuracy-targeted refinement against analytic Hertz, Cattaneo and a
 !! finer rough-punch reference; the automatic potential contact area; model reductions against
 !! the full model; and the user guide's key tables against the keys the reader accepts.
 !! Cases are read from namelist text exactly as the driver reads them ([[fc_input]]), built into
@@ -599,7 +599,7 @@ contains
     end subroutine test_reduction_hertz
 
     !> problem = 'hertz' with a tangential force on a sphere: Cattaneo–Mindlin stick radius
-    !! 0.5 mm and shift 0.008172 mm (SPEC §4); the numerical shift for the same force agrees
+    !! 0.5 mm and shift 0.008172 mm (the Cattaneo reference scene); the numerical shift for the same force agrees
     !! within 2.5 % at 64² (the discrete problem converges 0.2 % away, Mindlin's approximation).
     subroutine test_reduction_cattaneo(error)
         type(error_type), allocatable, intent(out) :: error

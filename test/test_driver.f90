@@ -1,4 +1,4 @@
-!> Tests of the batch driver (SPEC §5): good files with inheritance, and every kind of bad
+!> Tests of the batch driver (doc/user_guide.md): good files with inheritance, and every kind of bad
 !! input giving a non-zero exit code, a message naming group and key, and no outputs.
 !! The driver runs in-process on small grids; files go to a unique directory under /tmp.
 module test_driver
@@ -378,7 +378,7 @@ contains
 
     ! ---------------------------------------------------------------- tangential ----
 
-    !> Cattaneo (SPEC §4) on 30×25, Table 4.1 case 3 shifts, named `name`.
+    !> Cattaneo reference scene on 30×25, Table 4.1 case 3 shifts, named `name`.
     function cattaneo_case(name) result(text)
         character(len=*), intent(in) :: name
         character(len=:), allocatable :: text
@@ -646,7 +646,7 @@ contains
         close (u)
     end subroutine test_bad_command_line
 
-    ! ---------------------------------------------------------------- multigrid (issue 4) ----
+    ! ---------------------------------------------------------------- multigrid ----
 
     !> Hertz Test I on 32² (the base case's area at 32²) with tolerance 1e-8.
     function hertz32(name) result(text)
