@@ -26,7 +26,8 @@ contains
             new_unittest('direct_oracle_complementarity', test_oracle), &
             new_unittest('strip2d_line_contact', test_strip), &
             new_unittest('errors_reported', test_errors), &
-            new_unittest('not_converged_reported', test_not_converged) ]
+            new_unittest('not_converged_reported', test_not_converged), &
+            new_unittest('norm_readings', test_norm_readings) ]
     end subroutine collect_normal
 
     subroutine test1_setup(n, nop, h0, grid)
@@ -179,6 +180,44 @@ contains
         call check(error, rel_diff(pack(r1%pn, .true.), pack(r2%pn, .true.)), 0.0_dp, 'pressures agree', abs=1e-6_dp)
         call nop%destroy()
     end subroutine test_agree
+
+    !> NORM's research readings (thesis Table 2.8, bench/norm_table28.f90): the readings that
+    !! converge reach the same solution as ours on Hertz Test I 32²; 'restart' with 4 CG steps
+    !! per active-set step does not converge where ours does (each step starts from p = 0); an unknown reading
+    !! is an error.
+    subroutine test_norm_readings(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_normal_operator) :: nop
+        type(fc_normal_settings) :: set
+        type(fc_normal_result) :: r0, r1
+        type(fc_grid) :: grid
+        real(dp), allocatable :: h0(:, :)
+        integer :: stat, k
+        character(len=200) :: msg
+        character(len=16), parameter :: readings(3) = [character(len=16) :: 'add_if_no_drop', 'add_on_zero', &
+            'recompute_u']
+        call test1_setup(32, nop, h0, grid)
+        set%solver = 'norm'; set%tol = 1e-8_dp
+        call solve_normal(nop, h0, set, r0, stat, msg, approach=test1_approach)
+        call check(error, r0%status == FC_CONVERGED, 'ours converged')
+        do k = 1, size(readings)
+            set%norm_reading = readings(k)
+            call solve_normal(nop, h0, set, r1, stat, msg, approach=test1_approach)
+            call check(error, stat == 0 .and. r1%status == FC_CONVERGED, trim(readings(k))//' converged')
+            call check(error, rel_diff(pack(r1%pn, .true.), pack(r0%pn, .true.)), 0.0_dp, trim(readings(k))//' = ours', &
+                abs=1e-6_dp)
+        end do
+        set%norm_reading = ''; set%inner_maxit = 4; set%maxit = 60; set%tol = 1e-6_dp
+        call solve_normal(nop, h0, set, r1, stat, msg, approach=test1_approach)
+        call check(error, stat == 0 .and. r1%status == FC_CONVERGED, 'ours with 4 CG steps converges')
+        set%norm_reading = 'restart'
+        call solve_normal(nop, h0, set, r1, stat, msg, approach=test1_approach)
+        call check(error, stat == 0 .and. r1%status /= FC_CONVERGED, 'restart with 4 CG steps does not converge')
+        set%norm_reading = 'bogus'
+        call solve_normal(nop, h0, set, r1, stat, msg, approach=test1_approach)
+        call check(error, stat /= 0 .and. index(msg, 'norm_reading') > 0, 'unknown reading rejected: '//trim(msg))
+        call nop%destroy()
+    end subroutine test_norm_readings
 
     !> Prescribed total force 82004 N (the Hertz force of approach 0.1091): both solvers hit
     !! the force to 1e−10 relative and find the approach within 0.5 % of Hertz's 0.1091.
