@@ -1,4 +1,4 @@
-!> Normal contact problem: the LCP e = h + A p ≥ 0, p ≥ 0, e·p = 0 (thesis §2.2, SPEC §2–§3).
+!> Normal contact problem: the LCP e = h + A p ≥ 0, p ≥ 0, e·p = 0 (thesis §2.2; doc/conventions.md).
 !!
 !! Two solvers share one operator object ([[fc_normal_operator]], built once per grid and
 !! material and reused across calls):

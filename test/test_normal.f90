@@ -1,4 +1,4 @@
-!> Suite `normal`: NORM and BCCG on Hertz Test I and the rough punch (SPEC §4).
+!> Suite `normal`: NORM and BCCG on Hertz Test I and the rough punch (doc/conventions.md).
 module test_normal
     use fc_kinds
     use fc_geometry
@@ -64,7 +64,7 @@ contains
         rms_error = sqrt(rms_error/grid%n())
     end function rms_error
 
-    !> SPEC §2 self-check (dense solve): 32², approach 0.1091 → F = 82049.40, 332 contact
+    !> Self-check of doc/conventions.md (dense solve): 32², approach 0.1091 → F = 82049.40, 332 contact
     !! cells, pmax = 1628.29.  Both solvers at tol 1e−8; tolerance 0.01 on F and pmax
     !! (the quoted digits).
     subroutine test_selfcheck(error)
@@ -246,7 +246,7 @@ contains
         call nop%destroy()
     end subroutine test_force
 
-    !> Rough punch (thesis §2.5.2, SPEC §4) at 64²: contact fraction of the punch area grows
+    !> Rough punch (thesis §2.5.2) at 64²: contact fraction of the punch area grows
     !! with the approach and lies in a sane band around the thesis' 5.0 / 12.0 / 28.2 %
     !! (our random surface differs from theirs: bands 1–12 %, 5–25 %, 15–45 %); p ≥ 0,
     !! gap ≥ −1e−6·σ, complementarity Σ p·|gap| ≤ 1e−5·Σ p·σ; NORM and BCCG agree.
@@ -326,7 +326,7 @@ contains
         call nop%destroy()
     end subroutine test_oracle
 
-    !> 2D strip (n×1 grid, SPEC §4): a cylinder R = 100 on a strip 100 mm long under
+    !> 2D strip (n×1 grid, thesis §3.2.5): a cylinder R = 100 on a strip 100 mm long under
     !! P' = 1000 N/mm approximates plane-strain Hertz line contact, b² = 4RP'/(πE*),
     !! p0 = 2P'/(πb).  At 128×1: pmax within 1 %, RMS pressure error ≤ 1 % of p0 (the strip
     !! ends are 50 b away); NORM and BCCG agree to 1e−5.
