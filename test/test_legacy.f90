@@ -40,7 +40,7 @@ contains
             new_unittest('errors_and_handles', test_errors) ]
     end subroutine collect_legacy
 
-    !> Handle with the Cattaneo reference scene (no tangential loading yet).
+    !> Handle with the Cattaneo scene of doc/conventions.md (no tangential loading yet).
     subroutine cattaneo_handle(h, nx, ny, tol)
         integer, intent(out) :: h
         integer, intent(in) :: nx, ny
