@@ -15,6 +15,10 @@
 !!   in the transient modes, the previous displacements u' and tractions p' of the step.
 !! * [[fc_contact_result]]: the normal and tangential results and the process counters.
 !!
+!! The problem kinds, [[fc_normal_loading]], [[fc_contact_settings]] and [[fc_contact_result]]
+!! are defined in [[fc_contact_types]] (so that the case description and the outputs need
+!! not sit above the solvers) and re-exported here.
+!!
 !! Coupling (thesis §4.4): with K ≠ 0 the normal displacement A^zx·px + A^zy·py of the
 !! tangential tractions enters the normal problem and the tangential displacement A^xz·pn of
 !! the pressure enters the slip.  Rounds alternate normal and tangential solves until
@@ -29,12 +33,10 @@ module fc_contact
     use fc_tangcg, only: fc_tangential_operator, fc_tangential_settings, fc_tangential_result, fc_tangential_loading, &
         build_tangential_operator, solve_tangential_loading, coupling_displacements, EL_EXTERIOR, EL_ADHESION, EL_SLIP
     use fc_fmg, only: fc_fmg_settings, fc_fmg_stats, fc_surface, solve_normal_fmg
+    use fc_contact_types, only: FC_PROBLEM_NORMAL, FC_PROBLEM_TANGENTIAL, fc_normal_loading, fc_contact_settings, &
+        fc_contact_result
     implicit none
     private
-
-    !> Problem kinds: what the tangential stage solves (one dispatch point in [[tangential_stage]]).
-    integer, parameter, public :: FC_PROBLEM_NORMAL = 1      !! normal contact only
-    integer, parameter, public :: FC_PROBLEM_TANGENTIAL = 2  !! normal, then tangential (shifts or forces)
 
     !> Transient modes: how the previous state of a sequence enters the step.
     integer, parameter, public :: FC_FROM_REST = 0          !! u' = 0: a steady (static) problem; warm start only
@@ -42,14 +44,6 @@ module fc_contact
     integer, parameter, public :: FC_TRANSIENT_ROLLING = 2  !! u', p' = previous step moved by the rolling step dq
 
     integer, parameter, public :: max_rounds = 50  !! most Panagiotopoulos rounds
-
-    !> Normal loading: prescribed approach δ or total force Fn, and an optional start pressure.
-    type, public :: fc_normal_loading
-        logical :: force_prescribed = .false.   !! .true.: fn, else approach
-        real(dp) :: approach = 0                !! prescribed approach δ [mm]
-        real(dp) :: fn = 0                      !! prescribed total normal force [N]
-        real(dp), allocatable :: p_start(:, :)  !! warm start [N/mm²] (zeroed where contact is impossible)
-    end type fc_normal_loading
 
     !> Everything prescribed for one solve.
     type, public :: fc_contact_loading
@@ -60,13 +54,6 @@ module fc_contact
         integer :: transient = FC_FROM_REST               !! how a [[fc_contact_state]] enters the step
         real(dp) :: dq = 0                                !! rolling step [mm] (FC_TRANSIENT_ROLLING)
     end type fc_contact_loading
-
-    !> Solver settings of both stages.
-    type, public :: fc_contact_settings
-        type(fc_normal_settings) :: normal          !! solver 'bccg', 'norm' or 'fmg'
-        type(fc_tangential_settings) :: tangential  !! solver 'tangcg' or 'convexgs'
-        type(fc_fmg_settings) :: fmg                !! used when normal%solver = 'fmg'
-    end type fc_contact_settings
 
     !> Influence operators of one grid and material, reused while they match.
     type, public :: fc_contact_operators
@@ -96,22 +83,7 @@ module fc_contact
         procedure :: reset => state_reset
     end type fc_contact_state
 
-    !> Result of [[solve_contact]].
-    type, public :: fc_contact_result
-        type(fc_normal_result) :: normal            !! pressure, gap, approach, force (iterations: all rounds)
-        !> tractions, slip, states (iterations: all rounds); unallocated for a normal problem;
-        !! when the normal stage of a tangential problem failed: zero tractions and slip,
-        !! adhesion where pn > 0
-        type(fc_tangential_result) :: tangential
-        logical :: tangential_run = .false.         !! the tangential stage was solved
-        integer :: rounds = 0                       !! Panagiotopoulos rounds (0 for a normal problem)
-        integer :: status = FC_ERROR                !! worst status of the stages run
-        real(dp) :: setup_seconds_normal = 0        !! operator set-up of this solve (0: reused)
-        real(dp) :: setup_seconds_tangential = 0
-        real(dp) :: work_units = -1                 !! FMG: thesis work units (−1: not FMG)
-        real(dp) :: convergence_factor = -1         !! FMG: convergence factor (−1: not FMG)
-    end type fc_contact_result
-
+    public :: FC_PROBLEM_NORMAL, FC_PROBLEM_TANGENTIAL, fc_normal_loading, fc_contact_settings, fc_contact_result
     public :: solve_contact, ensure_operators, solve_normal_tangential, shift_along_x, fc_tangential_loading
 
 contains

@@ -34,7 +34,8 @@ module fc_driver
     use fc_input_scene, only: build_case, case_notes
     use fc_scene, only: fc_case
     use fc_strings, only: fmt_int, fmt_real
-    use fc_errors, only: FC_ERR_FRICTION_BOUND, FC_ERR_NO_CONTACT, FC_ERR_GEOMETRY, FC_ERR_IO, FC_ERR_ALLOC, FC_ERR_GRID
+    use fc_errors, only: FC_ERR_VALUE, FC_ERR_FRICTION_BOUND, FC_ERR_NO_CONTACT, FC_ERR_GEOMETRY, FC_ERR_IO, FC_ERR_ALLOC, &
+        FC_ERR_GRID
     use fc_output, only: fc_case_summary, write_case_json, write_case_csv, write_case_report
     use fc_auto, only: fc_auto_outcome, solve_case_auto
     implicit none
@@ -413,7 +414,7 @@ contains
         case ('fft-rsm')
             call solve_strip_fft_rsm(prob, t, r, stat, errmsg)
         case default
-            stat = 1; errmsg = 'unknown strip solver'
+            stat = FC_ERR_VALUE; errmsg = 'unknown strip solver'
         end select
         if (stat /= 0) then
             errmsg = "&solver strip = '"//trim(state%strip)//"': "//trim(errmsg); return

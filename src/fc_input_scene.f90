@@ -4,8 +4,8 @@
 !! keys the case does not use.
 module fc_input_scene
     use fc_kinds, only: dp, msg_len
-    use fc_fmg, only: fmg_cycle_from_name
-    use fc_contact, only: FC_PROBLEM_NORMAL, FC_PROBLEM_TANGENTIAL
+    use fc_fmg_levels, only: fmg_cycle_from_name
+    use fc_contact_types, only: FC_PROBLEM_NORMAL, FC_PROBLEM_TANGENTIAL
     use fc_scene, only: fc_case
     use fc_input, only: fc_case_input, is_given, grid_is_auto, is_tangential, strip_model_index
     use fc_input_validate, only: effective_record

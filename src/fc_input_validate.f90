@@ -9,7 +9,7 @@ module fc_input_validate
     use fc_errors, only: FC_OK, FC_ERR_VALUE
     use fc_strings, only: fmt_int, fmt_real
     use fc_influence, only: fc_material, combine_material, rigid_modulus
-    use fc_fmg, only: fmg_cycle_from_name
+    use fc_fmg_levels, only: fmg_cycle_from_name
     use fc_input, only: fc_case_input, is_given, grid_is_auto, is_tangential, strip_model_index, max_grid_elements
     implicit none
     private

@@ -11,8 +11,8 @@ module fc_scene
     use fc_geometry, only: fc_grid, fc_rough_params, make_grid, quadratic_gap, punch_rough_gap, wavy_gap, &
         read_gap_table, h_no_contact
     use fc_influence, only: fc_material, combine_material
-    use fc_contact, only: fc_normal_loading, fc_tangential_loading, fc_contact_settings, FC_PROBLEM_NORMAL, &
-        FC_PROBLEM_TANGENTIAL
+    use fc_tangcg, only: fc_tangential_loading
+    use fc_contact_types, only: fc_normal_loading, fc_contact_settings, FC_PROBLEM_NORMAL, FC_PROBLEM_TANGENTIAL
     implicit none
     private
 
