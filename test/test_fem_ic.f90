@@ -1,0 +1,259 @@
+!> Suite `fem_ic`: influence-coefficient files (our format and CONTACT's), their validation,
+!! the combination of two bodies, and numerical coefficients computed with CalculiX
+!! (thesis ch. 5; small models, a few seconds each).
+module test_fem_ic
+    use fc_kinds, only: dp, msg_len
+    use fc_geometry, only: fc_grid, make_grid
+    use fc_influence
+    use fc_icfile
+    use fc_icfile_contact
+    use fc_fem_mesh, only: fc_fem_params
+    use fc_fem_ic, only: compute_fem_ic, fc_fem_info
+    use fc_testing
+    implicit none
+    private
+    public :: collect_fem_ic, small_fem_model
+
+contains
+
+    subroutine collect_fem_ic(tests)
+        type(unittest_type), allocatable, intent(out) :: tests(:)
+        tests = [ &
+            new_unittest('own_format_roundtrip_exact', test_own_roundtrip), &
+            new_unittest('contact_format_roundtrip_lossless', test_contact_roundtrip), &
+            new_unittest('two_half_space_bodies_equal_analytic', test_combine), &
+            new_unittest('nonsymmetric_file_rejected', test_reject_nonsymmetric), &
+            new_unittest('non_spd_file_rejected', test_reject_non_spd), &
+            new_unittest('bad_header_rejected', test_reject_header), &
+            new_unittest('missing_ccx_clear_error', test_missing_ccx), &
+            new_unittest('fem_coefficients_vs_analytic', test_fem_vs_analytic) ]
+    end subroutine collect_fem_ic
+
+    !> Combined analytic set of two equal bodies on a small grid.
+    subroutine analytic_combined(g, nu, n, h, set)
+        real(dp), intent(in) :: g, nu, h
+        integer, intent(in) :: n
+        type(fc_ic_set), intent(out) :: set
+        type(fc_ic_set) :: b
+        integer :: stat
+        character(len=msg_len) :: msg
+        call analytic_body_set(g, nu, h, h, n, n, b, stat, msg)
+        call combine_ic_sets(b, b, set, stat, msg)
+    end subroutine analytic_combined
+
+    subroutine test_own_roundtrip(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_ic_set) :: a, b
+        integer :: stat
+        character(len=msg_len) :: msg
+        call analytic_body_set(200.0_dp, 0.42_dp, 0.24_dp, 0.3_dp, 6, 4, a, stat, msg)
+        a%hash = hash_text('test'); a%model = 'analytic test set'
+        call write_ic_file('test_fem_ic_own.fcic', a, stat, msg)
+        call check(error, stat == 0, 'write: '//trim(msg)); if (allocated(error)) return
+        call read_ic_file('test_fem_ic_own.fcic', b, stat, msg)
+        call check(error, stat == 0, 'read: '//trim(msg)); if (allocated(error)) return
+        call check(error, b%mx == 6 .and. b%my == 4 .and. b%dx == a%dx .and. b%dy == a%dy, 'sizes differ')
+        call check(error, all(b%a == a%a), 'coefficients differ after the round trip')
+        call check(error, b%g == a%g .and. b%nu == a%nu .and. b%hash == a%hash .and. b%content == 'body', 'header differs')
+        call delete('test_fem_ic_own.fcic')
+    end subroutine test_own_roundtrip
+
+    !> write → read → write → read of CONTACT's format keeps every coefficient bit for bit.
+    subroutine test_contact_roundtrip(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_ic_set) :: a, b, c, b1, b2
+        integer :: stat
+        character(len=msg_len) :: msg
+        ! dissimilar bodies: the coupling blocks are non-zero and exercise the mirror signs
+        call analytic_body_set(200.0_dp, 0.42_dp, 0.2_dp, 0.25_dp, 5, 3, b1, stat, msg)
+        call analytic_body_set(800.0_dp, 0.2_dp, 0.2_dp, 0.25_dp, 5, 3, b2, stat, msg)
+        call combine_ic_sets(b1, b2, a, stat, msg)
+        call check(error, maxval(abs(a%a(:, :, 3, 1))) > 0, 'coupling block zero: test is void'); if (allocated(error)) return
+        call write_contact_file('test_fem_ic.cnt', a, stat, msg)
+        call check(error, stat == 0, 'write: '//trim(msg)); if (allocated(error)) return
+        call read_contact_file('test_fem_ic.cnt', b, stat, msg)
+        call check(error, stat == 0, 'read: '//trim(msg)); if (allocated(error)) return
+        call check(error, b%mx == a%mx .and. b%my == a%my .and. b%dx == a%dx .and. b%dy == a%dy, 'sizes differ')
+        ! ix >= 0 is stored as written; ix < 0 is rebuilt by mirroring (the analytic set is
+        ! mirror-symmetric up to rounding)
+        call check(error, all(b%a(0:, :, :, :) == a%a(0:, :, :, :)), 'stored coefficients differ after write/read')
+        call check(error, maxval(abs(b%a - a%a)) <= 1e-15_dp*maxval(abs(a%a)), 'mirrored coefficients differ')
+        if (allocated(error)) return
+        call write_contact_file('test_fem_ic.cnt', b, stat, msg)
+        call read_contact_file('test_fem_ic.cnt', c, stat, msg)
+        call check(error, stat == 0 .and. all(c%a == b%a), 'second round trip not bit for bit')
+        call delete('test_fem_ic.cnt')
+    end subroutine test_contact_roundtrip
+
+    !> Two half-space body sets combine to the library's analytic kernel, all eight blocks,
+    !! for dissimilar materials (K ≠ 0) — the combination rule of doc/ic_file_format.md.
+    subroutine test_combine(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_ic_set) :: b1, b2, c
+        type(fc_material) :: mat
+        type(fc_grid) :: grid
+        real(dp), allocatable :: k(:, :)
+        integer :: stat, blk, i, j
+        character(len=msg_len) :: msg
+        integer, parameter :: blocks(8) = [IC_ZZ, IC_XX, IC_YY, IC_XY, IC_XZ, IC_ZX, IC_YZ, IC_ZY]
+        mat%g1 = 200; mat%nu1 = 0.42_dp; mat%g2 = 700; mat%nu2 = 0.25_dp
+        call combine_material(mat, stat, msg)
+        call make_grid(grid, 7, 5, -1.0_dp, 1.0_dp, -0.5_dp, 0.5_dp, stat, msg)
+        call analytic_body_set(mat%g1, mat%nu1, grid%dx, grid%dy, 7, 5, b1, stat, msg)
+        call analytic_body_set(mat%g2, mat%nu2, grid%dx, grid%dy, 7, 5, b2, stat, msg)
+        call combine_ic_sets(b1, b2, c, stat, msg)
+        call check(error, stat == 0, msg); if (allocated(error)) return
+        do blk = 1, 8
+            call ic_kernel_extended(blocks(blk), mat, grid, 7, 5, k)
+            call ic_block_index(blocks(blk), i, j)
+            call check(error, maxval(abs(c%a(:, :, i, j) - k)) <= 1e-13_dp*maxval(abs(k)) + 1e-300_dp, &
+                'block mismatch after combination')
+            if (allocated(error)) return
+        end do
+    end subroutine test_combine
+
+    subroutine test_reject_nonsymmetric(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_ic_set) :: a, b
+        integer :: stat
+        character(len=msg_len) :: msg
+        call analytic_combined(200.0_dp, 0.3_dp, 4, 0.1_dp, a)
+        a%a(2, 1, 3, 3) = a%a(2, 1, 3, 3)*1.01_dp
+        call write_ic_file('test_fem_ic_bad.fcic', a, stat, msg)
+        call read_ic_file('test_fem_ic_bad.fcic', b, stat, msg)
+        call check(error, stat /= 0 .and. index(msg, 'block zz is not symmetric') > 0, &
+            'non-symmetric zz accepted or unclear message: '//trim(msg))
+        if (allocated(error)) return
+        call analytic_combined(200.0_dp, 0.3_dp, 4, 0.1_dp, a)
+        a%a(1, 1, 1, 2) = a%a(1, 1, 1, 2) + 1e-3_dp*maxval(abs(a%a(:, :, 1, 2)))
+        a%a(-1, -1, 1, 2) = a%a(1, 1, 1, 2)
+        call write_ic_file('test_fem_ic_bad.fcic', a, stat, msg)
+        call read_ic_file('test_fem_ic_bad.fcic', b, stat, msg)
+        call check(error, stat /= 0 .and. index(msg, 'xy and yx differ') > 0, &
+            'xy /= yx accepted or unclear message: '//trim(msg))
+        call delete('test_fem_ic_bad.fcic')
+    end subroutine test_reject_nonsymmetric
+
+    subroutine test_reject_non_spd(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_ic_set) :: a, b
+        integer :: stat
+        character(len=msg_len) :: msg
+        ! the analytic set passes (the positive-symbol check is not void)
+        call analytic_combined(200.0_dp, 0.3_dp, 6, 0.1_dp, a)
+        call validate_ic_set(a, 'analytic', stat, msg)
+        call check(error, stat == 0, 'analytic set rejected: '//trim(msg)); if (allocated(error)) return
+        ! symmetric but indefinite zz: nearest neighbours larger than the diagonal
+        a%a(1, 0, 3, 3) = 0.8_dp*a%a(0, 0, 3, 3); a%a(-1, 0, 3, 3) = a%a(1, 0, 3, 3)
+        a%a(0, 1, 3, 3) = 0.8_dp*a%a(0, 0, 3, 3); a%a(0, -1, 3, 3) = a%a(0, 1, 3, 3)
+        call write_ic_file('test_fem_ic_bad.fcic', a, stat, msg)
+        call read_ic_file('test_fem_ic_bad.fcic', b, stat, msg)
+        call check(error, stat /= 0 .and. index(msg, 'zz is not positive definite') > 0, &
+            'indefinite zz accepted or unclear message: '//trim(msg))
+        if (allocated(error)) return
+        ! tangential block indefinite through a large xy
+        call analytic_combined(200.0_dp, 0.3_dp, 6, 0.1_dp, a)
+        a%a(:, :, 1, 2) = 3*a%a(:, :, 1, 1); a%a(:, :, 2, 1) = a%a(:, :, 1, 2)
+        call write_ic_file('test_fem_ic_bad.cnt', a, stat, msg)
+        call read_ic_file('test_fem_ic_bad.cnt', b, stat, msg)
+        call check(error, stat /= 0 .and. index(msg, 'tangential block') > 0 .and. index(msg, 'not positive definite') > 0, &
+            'indefinite tangential block accepted or unclear message: '//trim(msg))
+        call delete('test_fem_ic_bad.fcic'); call delete('test_fem_ic_bad.cnt')
+    end subroutine test_reject_non_spd
+
+    subroutine test_reject_header(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_ic_set) :: b
+        integer :: stat, u
+        character(len=msg_len) :: msg
+        open (newunit=u, file='test_fem_ic_hdr.fcic', status='replace')
+        write (u, '(a)') 'format = fastcontact-ic'
+        write (u, '(a)') 'version = 7'
+        write (u, '(a)') 'data'
+        close (u)
+        call read_ic_file('test_fem_ic_hdr.fcic', b, stat, msg)
+        call check(error, stat /= 0 .and. index(msg, 'version = 7') > 0, 'future version accepted: '//trim(msg))
+        if (allocated(error)) return
+        open (newunit=u, file='test_fem_ic_hdr.fcic', status='replace')
+        write (u, '(a)') '1 1'
+        write (u, '(a)') '0 312'
+        write (u, '(a)') '0 0'
+        write (u, '(a)') '3 3 0.1 0.1'
+        close (u)
+        call read_contact_file('test_fem_ic_hdr.fcic', b, stat, msg)
+        call check(error, stat /= 0 .and. index(msg, 'lsymmx = 0') > 0, 'lsymmx = 0 accepted: '//trim(msg))
+        call delete('test_fem_ic_hdr.fcic')
+    end subroutine test_reject_header
+
+    !> A missing CalculiX command gives an error naming the command and the log.
+    subroutine test_missing_ccx(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_fem_params) :: p
+        type(fc_ic_set) :: set
+        type(fc_fem_info) :: info
+        integer :: stat
+        character(len=msg_len) :: msg
+        call small_fem_model(p)
+        p%ccx = 'fastcontact-no-such-ccx'
+        call compute_fem_ic(p, 1.0_dp, 0.3_dp, 2, 2, 1.0_dp, 1.0_dp, set, info, stat, msg)
+        call check(error, stat /= 0, 'no error for a missing ccx'); if (allocated(error)) return
+        call check(error, index(msg, 'fastcontact-no-such-ccx') > 0 .and. index(msg, 'not found') > 0 .and. &
+            index(msg, '.log') > 0, 'message does not name the command and log: '//trim(msg))
+    end subroutine test_missing_ccx
+
+    !> Small, quick model used by the tests (quadratic hexahedra, coarse grading).
+    subroutine small_fem_model(p)
+        type(fc_fem_params), intent(out) :: p
+        p%mesh = 'hex'; p%order = 2; p%load = 'constant'
+        p%l_over_hc = 80; p%cube_over_hc = 1; p%hc_over_hs = 4; p%stretch = 2
+    end subroutine small_fem_model
+
+    !> FE coefficients against the half-space ones (thesis eq. 5.12: 1 % at the origin):
+    !! A^zz at the origin and along the axes, A^xx, A^yy at the origin; the coupling blocks
+    !! with their sign (body against a rigid one).
+    subroutine test_fem_vs_analytic(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_fem_params) :: p
+        type(fc_ic_set) :: set, ana
+        type(fc_fem_info) :: info
+        integer :: stat, k
+        character(len=msg_len) :: msg
+        character(len=80) :: line
+        call small_fem_model(p)
+        call compute_fem_ic(p, 1.0_dp, 0.3_dp, 3, 3, 1.0_dp, 1.0_dp, set, info, stat, msg)
+        call check(error, stat == 0, trim(msg)); if (allocated(error)) return
+        call validate_ic_set(set, 'fem set', stat, msg)
+        call check(error, stat == 0, trim(msg)); if (allocated(error)) return
+        call analytic_body_set(1.0_dp, 0.3_dp, 1.0_dp, 1.0_dp, 3, 3, ana, stat, msg)
+        call check(error, abs(set%a(0, 0, 3, 3)/ana%a(0, 0, 3, 3) - 1) < 0.01_dp, 'A^zz(0,0) outside eq. 5.12')
+        ! along the axes: the clamped faces at distance L shift all displacements near the
+        ! load by about the same amount (≈ ρ/L relative, see doc/numerical_ic.md), so the
+        ! shape A(0) − A(k) is compared, within the same 1 %
+        do k = 1, 3
+            write (line, '(a,i0,a,es10.3)') 'A^zz(0) - A^zz(k) along the axes, offset ', k, ': ', &
+                dev(set%a(0, 0, 3, 3) - set%a(k, 0, 3, 3), ana%a(0, 0, 3, 3) - ana%a(k, 0, 3, 3))
+            call check(error, abs(dev(set%a(0, 0, 3, 3) - set%a(k, 0, 3, 3), ana%a(0, 0, 3, 3) - ana%a(k, 0, 3, 3))) &
+                < 0.01_dp, line)
+            call check(error, abs(dev(set%a(0, 0, 3, 3) - set%a(0, -k, 3, 3), ana%a(0, 0, 3, 3) - ana%a(0, -k, 3, 3))) &
+                < 0.01_dp, line)
+        end do
+        call check(error, abs(set%a(0, 0, 1, 1)/ana%a(0, 0, 1, 1) - 1) < 0.01_dp, 'A^xx(0,0) outside 1 %')
+        call check(error, abs(set%a(0, 0, 2, 2)/ana%a(0, 0, 2, 2) - 1) < 0.01_dp, 'A^yy(0,0) outside 1 %')
+        call check(error, abs(set%a(1, 1, 1, 2)/ana%a(1, 1, 1, 2) - 1) < 0.05_dp, 'A^xy(1,1) outside 5 %')
+        call check(error, abs(set%a(1, 0, 3, 1)/ana%a(1, 0, 3, 1) - 1) < 0.05_dp, 'A^zx(1,0) outside 5 % (or sign)')
+        call check(error, abs(set%a(-1, 0, 1, 3)/ana%a(-1, 0, 1, 3) - 1) < 0.05_dp, 'A^xz(-1,0) outside 5 % (or sign)')
+    end subroutine test_fem_vs_analytic
+
+    pure real(dp) function dev(a, b)
+        real(dp), intent(in) :: a, b
+        dev = a/b - 1
+    end function dev
+
+    subroutine delete(path)
+        character(len=*), intent(in) :: path
+        integer :: u, ios
+        open (newunit=u, file=path, status='old', iostat=ios)
+        if (ios == 0) close (u, status='delete')
+    end subroutine delete
+
+end module test_fem_ic
