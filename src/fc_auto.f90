@@ -46,11 +46,14 @@ module fc_auto
     use fc_influence, only: fc_material, combine_material
     use fc_norm, only: fc_normal_result
     use fc_tangcg, only: fc_tangential_result
-    use fc_contact, only: fc_contact_operators, fc_contact_loading, fc_contact_settings, fc_contact_result, &
+    use fc_contact, only: set_influence_coefficients, clear_influence_coefficients, &
+        fc_contact_operators, fc_contact_loading, fc_contact_settings, fc_contact_result, &
         solve_contact, FC_PROBLEM_TANGENTIAL
     use fc_hertz, only: fc_hertz_solution, fc_cattaneo_solution, hertz_from_approach, hertz_from_force, &
         cattaneo_mindlin
     use fc_fmg, only: fc_quadratic_surface, fc_punch_rough_surface, fc_wavy_surface
+    use fc_icfile, only: fc_ic_set
+    use fc_icfile_load, only: load_influence_source
     use fc_input, only: fc_case_input, setup_case, is_tangential, tangential_loading, fmt_real, grid_is_auto, &
         is_line_contact, is_given
     implicit none
@@ -144,6 +147,8 @@ contains
         if (stat /= 0) then
             errmsg = '&'//trim(errmsg); return
         end if
+        call use_ic_file(s, ops, stat, errmsg)
+        if (stat /= 0) return
         ! ---- analytic answer: no grid at all
         if (s%problem == 'hertz') then
             call analytic_answer(s, out, stat, errmsg)
@@ -750,5 +755,37 @@ contains
         write (buf, '(i0)') i
         s = trim(buf)
     end function fmt_int
+
+    !> Influence coefficients of the case: `&material ic_file` (and ic_file2) replace the
+    !! half-space kernels in `ops`; without a file the half-space ones are (re)used.  Modes
+    !! that need coefficients on other grids are refused.
+    subroutine use_ic_file(s, ops, stat, errmsg)
+        type(fc_case_input), intent(in) :: s
+        type(fc_contact_operators), intent(inout) :: ops
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        type(fc_ic_set) :: ic
+        stat = 0; errmsg = ''
+        if (len_trim(s%ic_file) == 0) then
+            if (allocated(ops%ic%a)) call clear_influence_coefficients(ops)
+            return
+        end if
+        stat = 1
+        if (grid_is_auto(s)) then
+            errmsg = "&material ic_file with &grid auto = .true.: the automatic area chooses its own element size, "// &
+                "the file holds coefficients for one; give &grid nx, ny, xmin, xmax, ymin, ymax matching the file"
+            return
+        end if
+        if (s%target > 0) then
+            errmsg = "&material ic_file with &solver target: the accuracy target refines the grid, the file holds "// &
+                "coefficients for one grid; remove target"
+            return
+        end if
+        call load_influence_source(s%ic_file, s%ic_file2, s%g1, s%nu1, s%g2, s%nu2, ic, stat, errmsg)
+        if (stat /= 0) then
+            errmsg = "&material ic_file = '"//trim(s%ic_file)//"': "//trim(errmsg); return
+        end if
+        call set_influence_coefficients(ops, ic, stat, errmsg)
+    end subroutine use_ic_file
 
 end module fc_auto
