@@ -94,9 +94,13 @@ contains
         info%workdir = dir
         need_y = mesh%prism .or. abs(dx - dy) > 1.0e-12_dp*max(dx, dy)
         call run_case(FEM_LOAD_Z, 'job_z', uz); if (stat /= 0) return
-        call run_case(FEM_LOAD_X, 'job_x', ux); if (stat /= 0) return
-        if (need_y) then
-            call run_case(FEM_LOAD_Y, 'job_y', uy); if (stat /= 0) return
+        if (p%normal_only) then
+            allocate (ux, uy, mold=uz); ux = 0; uy = 0
+        else
+            call run_case(FEM_LOAD_X, 'job_x', ux); if (stat /= 0) return
+            if (need_y) then
+                call run_case(FEM_LOAD_Y, 'job_y', uy); if (stat /= 0) return
+            end if
         end if
         mxy = max(nx, ny)
         call ic_set_allocate(set, nx, ny, dx, dy)

@@ -38,6 +38,7 @@ module fc_fem_mesh
         character(len=256) :: ccx = 'ccx'         !! CalculiX command
         character(len=256) :: workdir = ''        !! work directory ('' : a fresh one under $TMPDIR or /tmp)
         logical :: keep_work = .false.            !! keep the work directory after success
+        logical :: normal_only = .false.          !! run the normal load case only (A^zz, A^xz, A^yz; benchmarks)
     end type fc_fem_params
 
     !> The generated mesh: axes and lattice node numbering.
