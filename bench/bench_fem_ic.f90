@@ -1,6 +1,6 @@
 !> Benchmark of numerical influence coefficients (thesis ch. 5), results in doc/numerical_ic.md.
 !!
-!!   fastcontact-bench-fem-ic coef    [CSV]   §5.3: |A0 − F0|/|A0| (eq. 5.12) of A^zz against
+!!   fastcontact-bench-fem-ic coef STRETCH [CSV]   §5.3: |A0 − F0|/|A0| (eq. 5.12) of A^zz against
 !!        L/h_c for Mesh1/Mesh2, linear/quadratic (10×10 grid on [−4,4]², G = 82000, ν = 0.28),
 !!        with CalculiX CPU time and degrees of freedom (normal load case only).
 !!   fastcontact-bench-fem-ic contact N MESH STRETCH L_OVER_HC [CSV]   §5.4: the sphere
@@ -19,13 +19,16 @@ program bench_fem_ic
     implicit none
     character(len=256) :: mode, arg, csv
     integer :: n
+    real(dp) :: stretch
     mode = ''
     if (command_argument_count() >= 1) call get_command_argument(1, mode)
     select case (trim(mode))
     case ('coef')
+        if (command_argument_count() < 2) call usage()
+        call get_command_argument(2, arg); read (arg, *) stretch
         csv = 'doc/bench_fem_ic_coef.csv'
-        if (command_argument_count() >= 2) call get_command_argument(2, csv)
-        call bench_coef(csv)
+        if (command_argument_count() >= 3) call get_command_argument(3, csv)
+        call bench_coef(stretch, csv)
     case ('contact')
         if (command_argument_count() < 5) call usage()
         call get_command_argument(2, arg); read (arg, *) n
@@ -38,12 +41,13 @@ program bench_fem_ic
 contains
 
     subroutine usage()
-        write (*, '(a)') 'usage: fastcontact-bench-fem-ic coef [CSV] | contact N MESH STRETCH L_OVER_HC [CSV]'
+        write (*, '(a)') 'usage: fastcontact-bench-fem-ic coef STRETCH [CSV] | contact N MESH STRETCH L_OVER_HC [CSV]'
         stop 2
     end subroutine usage
 
     !> §5.3: eq. 5.12 error of A^zz at the origin (normal load only).
-    subroutine bench_coef(csv)
+    subroutine bench_coef(f, csv)
+        real(dp), intent(in) :: f
         character(len=*), intent(in) :: csv
         type(fc_fem_params) :: p
         type(fc_ic_set) :: set, ana
@@ -65,7 +69,7 @@ contains
                     if (order == 1 .and. k == 3) cycle
                     p = fc_fem_params()
                     p%mesh = meshes(im); p%order = order; p%l_over_hc = ratios(k)
-                    p%stretch = merge(1.2_dp, 1.5_dp, im == 1)   ! Table 5.3 optima (TEST 3, TEST 2)
+                    p%stretch = f
                     p%normal_only = .true.
                     call compute_fem_ic(p, 82000.0_dp, 0.28_dp, 10, 10, h, h, set, info, stat, msg)
                     if (stat /= 0) then
