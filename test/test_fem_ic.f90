@@ -32,6 +32,7 @@ contains
             new_unittest('missing_ccx_clear_error', test_missing_ccx), &
             new_unittest('file_with_analytic_kernel_equals_analytic_solve', test_file_solve), &
             new_unittest('file_refused_by_fmg_and_other_cells', test_file_refusals), &
+            new_unittest('flat_api_set_influence_file', test_flat_api), &
             new_unittest('fem_coefficients_vs_analytic_and_hertz', test_fem_vs_analytic) ]
     end subroutine collect_fem_ic
 
@@ -305,6 +306,44 @@ contains
         call check(error, stat == 0 .and. r%status == 0, 'matching grid refused: '//trim(msg))
         call ops%destroy()
     end subroutine test_file_refusals
+
+    !> The flat API: fc_set_influence_file with a file of the analytic body kernels gives the
+    !! half-space answer to 1e−12; a missing file is refused with FCL_INVALID_VALUE; '' returns
+    !! to the half-space kernels.
+    subroutine test_flat_api(error)
+        use, intrinsic :: iso_c_binding, only: c_int, c_double, c_null_char
+        use fc_legacy, only: fc_init, fc_finalize, fc_set_material, fc_set_grid, fc_set_gap_quadratic, &
+            fc_set_normal_approach, fc_calculate, fc_get_forces, fc_set_influence_file, FCL_OK, FCL_INVALID_VALUE
+        type(error_type), allocatable, intent(out) :: error
+        integer(c_int) :: h, ierr
+        real(c_double) :: fn0, fn1, fx, fy, mz
+        type(fc_ic_set) :: b1
+        integer :: stat
+        character(len=msg_len) :: msg
+        call fc_init(h, ierr)
+        call fc_set_material(h, 200.0_dp, 200.0_dp, 0.42_dp, 0.42_dp, ierr)
+        call fc_set_grid(h, 12, 12, -1.2_dp, 1.2_dp, -1.2_dp, 1.2_dp, ierr)
+        call fc_set_gap_quadratic(h, 50.0_dp, 50.0_dp, ierr)
+        call fc_set_normal_approach(h, 0.02_dp, ierr)
+        call fc_calculate(h, ierr)
+        call fc_get_forces(h, fn0, fx, fy, mz, ierr)
+        call check(error, ierr == FCL_OK, 'half-space calculation failed'); if (allocated(error)) return
+        call analytic_body_set(200.0_dp, 0.42_dp, 0.2_dp, 0.2_dp, 12, 12, b1, stat, msg)
+        call write_ic_file('test_fem_ic_api.fcic', b1, stat, msg)
+        call fc_set_influence_file(h, 'test_fem_ic_no_such_file'//c_null_char, ''//c_null_char, ierr)
+        call check(error, ierr == FCL_INVALID_VALUE, 'missing file accepted'); if (allocated(error)) return
+        call fc_set_influence_file(h, 'test_fem_ic_api.fcic'//c_null_char, ''//c_null_char, ierr)
+        call check(error, ierr == FCL_OK, 'file refused'); if (allocated(error)) return
+        call fc_calculate(h, ierr)
+        call fc_get_forces(h, fn1, fx, fy, mz, ierr)
+        call check(error, ierr == FCL_OK .and. abs(fn1 - fn0) <= 1e-12_dp*fn0, 'file kernel changes the force')
+        call fc_set_influence_file(h, ''//c_null_char, ''//c_null_char, ierr)
+        call fc_calculate(h, ierr)
+        call fc_get_forces(h, fn1, fx, fy, mz, ierr)
+        call check(error, ierr == FCL_OK .and. fn1 == fn0, 'half-space kernels not restored')
+        call fc_finalize(h, ierr)
+        call delete('test_fem_ic_api.fcic')
+    end subroutine test_flat_api
 
     !> Small, quick model used by the tests (quadratic hexahedra, coarse grading).
     subroutine small_fem_model(p)
