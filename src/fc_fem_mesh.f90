@@ -53,7 +53,7 @@ module fc_fem_mesh
     end type fc_fem_mesh_t
 
     integer, parameter :: max_cells_axis = 400        !! cells per axis accepted
-    integer(i8), parameter :: max_nodes = 3000000_i8  !! nodes accepted (≈ 9 M unknowns)
+    integer(i8), parameter :: max_nodes = 500000_i8   !! nodes accepted (1.5 M unknowns: SPOOLES needs ~20 GB beyond)
 
     public :: fem_defaults, fem_validate, build_fem_mesh, write_fem_deck, fem_domain, lattice_coord
     public :: face_shape, face_lattice
