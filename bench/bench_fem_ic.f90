@@ -3,7 +3,7 @@
 !!   fastcontact-bench-fem-ic coef STRETCH [CSV]   §5.3: |A0 − F0|/|A0| (eq. 5.12) of A^zz against
 !!        L/h_c for Mesh1/Mesh2, linear/quadratic (10×10 grid on [−4,4]², G = 82000, ν = 0.28),
 !!        with CalculiX CPU time and degrees of freedom (normal load case only).
-!!   fastcontact-bench-fem-ic contact N MESH STRETCH L_OVER_HC [CSV]   §5.4: the sphere
+!!   fastcontact-bench-fem-ic contact N MESH F[:F_FAR] L_OVER_HC [CSV]   §5.4: the sphere
 !!        (G = 200, ν = 0.42, R = 50, approach 0.02, [−1.2,1.2]², N×N grid): errors in Fz,
 !!        pmax and contact area against Hertz and in Fx (w_x = 0.00817, μ = 0.4) against
 !!        3.2216 N, with the half-space kernels and with FE coefficients of both bodies.
@@ -105,7 +105,12 @@ contains
         logical :: exists
         p = fc_fem_params()
         call get_command_argument(3, arg); p%mesh = trim(arg)
-        call get_command_argument(4, arg); read (arg, *) p%stretch
+        call get_command_argument(4, arg)   ! f, or f:f_far
+        if (index(arg, ':') > 0) then
+            read (arg(:index(arg, ':') - 1), *) p%stretch; read (arg(index(arg, ':') + 1:), *) p%stretch_far
+        else
+            read (arg, *) p%stretch
+        end if
         call get_command_argument(5, arg); read (arg, *) p%l_over_hc
         h = 2.4_dp/n
         call compute_fem_ic(p, 200.0_dp, 0.42_dp, n, n, h, h, set, info, stat, msg)
@@ -122,8 +127,8 @@ contains
         open (newunit=u, file=csv, position='append', action='write')
         if (.not. exists) write (u, '(a)') 'grid,mesh,order,l_over_hc,L_mm,stretch,hc_over_hs,elements,dofs,ccx_cpu_s,'// &
             'solve_s,fz_err,pmax_err,area_err,fx_err,fz_err_halfspace,pmax_err_halfspace,area_err_halfspace,fx_err_halfspace'
-        write (u, '(i0,",",a,",",i0,",",f0.0,",",f0.2,",",f0.2,",",f0.0,2(",",i0),",",f0.2,",",f0.4,8(",",es10.3))') &
-            n, trim(p%mesh), p%order, p%l_over_hc, info%domain, p%stretch, p%hc_over_hs, info%elements, info%dofs, &
+        write (u, '(i0,",",a,",",i0,",",f0.0,",",f0.2,",",a,",",f0.0,2(",",i0),",",f0.2,",",f0.4,8(",",es10.3))') &
+            n, trim(p%mesh), p%order, p%l_over_hc, info%domain, trim(stretch_text(p)), p%hc_over_hs, info%elements, info%dofs, &
             info%ccx_cpu, tf, errs(rf, h), errs(ra, h)
         close (u)
         write (*, '(a,i0,1x,a,a,f0.0,a,i0,a,f0.1,a,4es10.2,a,4es10.2)') 'grid ', n, trim(p%mesh), ' L/hc=', p%l_over_hc, &
@@ -159,6 +164,17 @@ contains
             write (*, '(2a)') 'error: ', trim(msg); stop 1
         end if
     end subroutine sphere
+
+    !> f, or f:f_far when the far-field factor differs.
+    function stretch_text(p) result(t)
+        type(fc_fem_params), intent(in) :: p
+        character(len=24) :: t
+        if (p%stretch_far /= p%stretch) then
+            write (t, '(f0.2,":",f0.2)') p%stretch, p%stretch_far
+        else
+            write (t, '(f0.2)') p%stretch
+        end if
+    end function stretch_text
 
     !> Relative errors of Fz, pmax, contact area (Hertz) and Fx (3.2216 N, thesis §5.4.2).
     function errs(r, h) result(e)

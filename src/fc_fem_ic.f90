@@ -43,9 +43,17 @@ contains
         character(len=512) :: text
         write (text, '(a,i0,4a,4(a,es24.16e3),a,2(a,es24.16e3),2(a,i0),2(a,es24.16e3))') 'fem-model-1 mesh=', &
             p%order, '/'//trim(p%mesh), ' load=', trim(p%load), ' solver='//trim(p%solver), &
-            ' L/hc=', p%l_over_hc, ' l/hc=', p%cube_over_hc, ' hc/hs=', p%hc_over_hs, ' f=', p%stretch, ' |', &
+            ' L/hc=', p%l_over_hc, ' l/hc=', p%cube_over_hc, ' hc/hs=', p%hc_over_hs, ' f=', p%stretch, &
+            ' ffar='//trim(real_text(p%stretch_far))//' |', &
             ' g=', g, ' nu=', nu, ' nx=', nx, ' ny=', ny, ' dx=', dx, ' dy=', dy
     end function fem_model_text
+
+    function real_text(x) result(t)
+        real(dp), intent(in) :: x
+        character(len=32) :: t
+        write (t, '(es24.16e3)') x
+        t = adjustl(t)
+    end function real_text
 
     !> Cache key of a model (parameters after [[fem_defaults]]).
     function fem_model_hash(p, g, nu, nx, ny, dx, dy) result(h)
@@ -86,7 +94,7 @@ contains
         end if
         call fem_defaults(p, nx, ny)
         call fem_validate(p, nx, ny, dx, dy, stat, errmsg); if (stat /= 0) return
-        call build_fem_mesh(p, dx, dy, mesh, stat, errmsg); if (stat /= 0) return
+        call build_fem_mesh(p, nx, ny, dx, dy, mesh, stat, errmsg); if (stat /= 0) return
         info%nodes = mesh%nnodes; info%elements = mesh%nelems; info%dofs = 3*mesh%nnodes
         info%domain = mesh%domain
         call make_workdir(p, fem_model_hash(p, g, nu, nx, ny, dx, dy), dir, made_dir, stat, errmsg)
@@ -133,9 +141,10 @@ contains
         set%a(:, :, 2, 1) = set%a(:, :, 1, 2)
         set%content = 'body'; set%source = 'fem'; set%g = g; set%nu = nu; set%load = p%load
         set%hash = fem_model_hash(p, g, nu, nx, ny, dx, dy)
-        write (set%model, '(3a,i0,a,es12.5,4(a,g0.6),a,i0,a,i0,a,f0.2,a)') 'CalculiX ', trim(p%mesh), ' order ', p%order, &
+        write (set%model, '(3a,i0,a,es12.5,5(a,g0.6),a,i0,a,i0,a,f0.2,a)') 'CalculiX ', trim(p%mesh), ' order ', p%order, &
             ' L = ', mesh%domain, ' mm (L/hc = ', p%l_over_hc, ', l/hc = ', p%cube_over_hc, ', hc/hs = ', p%hc_over_hs, &
-            ', f = ', p%stretch, '), ', mesh%nelems, ' elements, ', 3*mesh%nnodes, ' dofs, ccx cpu ', info%ccx_cpu, ' s'
+            ', f = ', p%stretch, ', f_far = ', p%stretch_far, '), ', mesh%nelems, ' elements, ', 3*mesh%nnodes, &
+            ' dofs, ccx cpu ', info%ccx_cpu, ' s'
         if (made_dir .and. .not. p%keep_work) call remove_dir(dir)
         stat = 0; errmsg = ''
     contains

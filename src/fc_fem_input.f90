@@ -34,13 +34,13 @@ contains
         character(len=8) :: mesh
         integer :: order, threads
         character(len=16) :: load
-        real(dp) :: l_over_hc, cube_over_hc, hc_over_hs, stretch
+        real(dp) :: l_over_hc, cube_over_hc, hc_over_hs, stretch, stretch_far
         character(len=24) :: solver
         character(len=256) :: ccx, workdir
         logical :: keep_work
         namelist /material/ g1, nu1, g2, nu2, ic_file
         namelist /grid/ nx, ny, xmin, xmax, ymin, ymax
-        namelist /fem/ mesh, order, load, l_over_hc, cube_over_hc, hc_over_hs, stretch, solver, threads, ccx, &
+        namelist /fem/ mesh, order, load, l_over_hc, cube_over_hc, hc_over_hs, stretch, stretch_far, solver, threads, ccx, &
             workdir, keep_work
         stat = 1
         open (newunit=u, file=path, status='old', action='read', iostat=ios, iomsg=iomsg)
@@ -63,6 +63,7 @@ contains
         rewind (u)
         mesh = m%fem%mesh; order = m%fem%order; load = m%fem%load; l_over_hc = m%fem%l_over_hc
         cube_over_hc = m%fem%cube_over_hc; hc_over_hs = m%fem%hc_over_hs; stretch = m%fem%stretch
+        stretch_far = m%fem%stretch_far
         solver = m%fem%solver; threads = m%fem%threads; ccx = m%fem%ccx; workdir = m%fem%workdir
         keep_work = m%fem%keep_work
         read (u, nml=fem, iostat=ios, iomsg=iomsg)
@@ -72,6 +73,7 @@ contains
         close (u)
         m%fem%mesh = lower(mesh); m%fem%order = order; m%fem%load = lower(load); m%fem%l_over_hc = l_over_hc
         m%fem%cube_over_hc = cube_over_hc; m%fem%hc_over_hs = hc_over_hs; m%fem%stretch = stretch
+        m%fem%stretch_far = stretch_far
         m%fem%solver = lower(solver); m%fem%threads = threads; m%fem%ccx = ccx; m%fem%workdir = workdir
         m%fem%keep_work = keep_work
         if (.not. (m%g1 > 0)) then

@@ -33,6 +33,7 @@ module fc_fem_mesh
         real(dp) :: cube_over_hc = 1              !! uniform cube size l/h_c (Table 5.3: 1 … 1.25)
         real(dp) :: hc_over_hs = 4                !! cube refinement h_c/h_s (Table 5.3: ≥ 4)
         real(dp) :: stretch = 0                   !! growth factor f outside the cube (0: 1.2 hex, 1.5 prism)
+        real(dp) :: stretch_far = 0               !! growth factor beyond the grid's extent (0: stretch)
         character(len=24) :: solver = 'spooles'   !! CalculiX solver: spooles, iterative cholesky, iterative scaling
         integer :: threads = 1                    !! threads given to CalculiX
         character(len=256) :: ccx = 'ccx'         !! CalculiX command
@@ -68,6 +69,7 @@ contains
             p%stretch = 1.2_dp
             if (p%mesh == 'prism') p%stretch = 1.5_dp
         end if
+        if (p%stretch_far == 0) p%stretch_far = p%stretch
         if (p%l_over_hc == 0) then
             if (p%mesh == 'prism') then
                 p%l_over_hc = max(80.0_dp, 50.0_dp*max(nx, ny))
@@ -122,6 +124,9 @@ contains
         if (.not. (p%stretch >= 1.01_dp .and. p%stretch <= 4)) then
             write (errmsg, '(a,g0.6,a)') 'fem: stretch = ', p%stretch, ' must lie in [1.01, 4]'; return
         end if
+        if (.not. (p%stretch_far >= 1.01_dp .and. p%stretch_far <= 4)) then
+            write (errmsg, '(a,g0.6,a)') 'fem: stretch_far = ', p%stretch_far, ' must lie in [1.01, 4]'; return
+        end if
         l = fem_domain(p, dx, dy)
         if (.not. (l >= 2*max((nx + 1)*dx, (ny + 1)*dy)) .or. .not. (p%l_over_hc <= 1.0e7_dp)) then
             write (errmsg, '(a,g0.6,a,es10.3,a,es10.3,a)') 'fem: l_over_hc = ', p%l_over_hc, ' gives L = ', l, &
@@ -143,9 +148,10 @@ contains
     end subroutine fem_validate
 
     !> Cell boundaries of one axis from −L to 0: m uniform cells of size hs in [−m·hs, 0],
-    !! then growing by f; the last cell ends at −L (merged with its neighbour if < half size).
-    subroutine graded_axis(l, hs, m, f, xs, stat, errmsg)
-        real(dp), intent(in) :: l, hs, f
+    !! then growing by f up to `near`, by f_far beyond; the last cell ends at −L (merged with
+    !! its neighbour if < half size).
+    subroutine graded_axis(l, hs, m, f, near, f_far, xs, stat, errmsg)
+        real(dp), intent(in) :: l, hs, f, near, f_far
         integer, intent(in) :: m
         real(dp), allocatable, intent(out) :: xs(:)
         integer, intent(out) :: stat
@@ -159,7 +165,11 @@ contains
         end do
         n = m; pos = m*hs; h = hs
         do while (pos < l)
-            h = h*f
+            if (pos < near) then
+                h = h*f
+            else
+                h = h*f_far
+            end if
             if (n >= max_cells_axis) then
                 stat = 1
                 write (errmsg, '(a,i0,a)') 'fem: the mesh needs more than ', max_cells_axis, &
@@ -184,21 +194,26 @@ contains
     end subroutine graded_axis
 
     !> Build the mesh for cells dx×dy (parameters validated).
-    subroutine build_fem_mesh(p, dx, dy, mesh, stat, errmsg)
+    subroutine build_fem_mesh(p, nx, ny, dx, dy, mesh, stat, errmsg)
         type(fc_fem_params), intent(in) :: p
+        integer, intent(in) :: nx, ny
         real(dp), intent(in) :: dx, dy
         type(fc_fem_mesh_t), intent(out) :: mesh
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
         integer :: m, i, j, k, nodd, n
         integer(i8) :: count
-        real(dp) :: l
+        real(dp) :: l, near
         l = fem_domain(p, dx, dy)
         mesh%domain = l
+        near = max((nx + 1)*dx, (ny + 1)*dy)   ! the coefficients are sampled up to here
         m = nint(p%cube_over_hc*p%hc_over_hs)
-        call graded_axis(l, dx/p%hc_over_hs, m, p%stretch, mesh%xs, stat, errmsg); if (stat /= 0) return
-        call graded_axis(l, dy/p%hc_over_hs, m, p%stretch, mesh%ys, stat, errmsg); if (stat /= 0) return
-        call graded_axis(l, min(dx, dy)/p%hc_over_hs, m, p%stretch, mesh%zs, stat, errmsg); if (stat /= 0) return
+        call graded_axis(l, dx/p%hc_over_hs, m, p%stretch, near, p%stretch_far, mesh%xs, stat, errmsg)
+        if (stat /= 0) return
+        call graded_axis(l, dy/p%hc_over_hs, m, p%stretch, near, p%stretch_far, mesh%ys, stat, errmsg)
+        if (stat /= 0) return
+        call graded_axis(l, min(dx, dy)/p%hc_over_hs, m, p%stretch, near, p%stretch_far, mesh%zs, stat, errmsg)
+        if (stat /= 0) return
         mesh%nxc = ubound(mesh%xs, 1); mesh%nyc = ubound(mesh%ys, 1); mesh%nzc = ubound(mesh%zs, 1)
         mesh%prism = p%mesh == 'prism'
         mesh%order = p%order
