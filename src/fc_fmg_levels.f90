@@ -11,6 +11,7 @@
 !!   interpolation of the deformation for the nested iteration (thesis §2.4.3).
 module fc_fmg_levels
     use fc_kinds
+    use fc_errors, only: FC_ERR_GRID
     use fc_geometry, only: fc_grid, make_grid, h_no_contact
     use fc_geometry_surfaces, only: fc_surface
     use fc_influence
@@ -133,8 +134,8 @@ contains
             sx(nlev) = nx; sy(nlev) = ny; fxs(nlev) = 1; fys(nlev) = 1
         end do
         if (nx*ny > max_coarsest_cells) then
-            stat = 1
-            write (errmsg, '(a,i0,a,i0,a,i0,a,i0,a,i0,a)') 'fmg: grid ', grid%nx, 'x', grid%ny, ' coarsens only to ', &
+            stat = FC_ERR_GRID
+            write (errmsg, '(a,i0,a,i0,a,i0,a,i0,a,i0,a)') 'grid ', grid%nx, 'x', grid%ny, ' coarsens only to ', &
                 nx, 'x', ny, ' (more than ', max_coarsest_cells, ' cells for the direct coarsest solve); '// &
                 'use nx, ny with more factors of 2'
             return

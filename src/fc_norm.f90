@@ -28,6 +28,7 @@ module fc_norm
     use fc_geometry, only: fc_grid, h_no_contact
     use fc_influence
     use, intrinsic :: iso_c_binding, only: c_loc, c_associated
+    use fc_errors, only: FC_ERR_VALUE
     implicit none
     private
 
@@ -58,9 +59,9 @@ module fc_norm
         real(dp) :: setup_seconds = 0
     contains
         procedure :: destroy => normal_operator_destroy
+        procedure :: matches => normal_operator_matches
         procedure, private :: normal_operator_assign
         generic :: assignment(=) => normal_operator_assign
-        procedure :: matches => normal_operator_matches
     end type fc_normal_operator
 
     !> Result of a normal solve.
@@ -194,7 +195,7 @@ contains
         select case (settings%norm_reading)
         case ('', 'restart', 'keep_negative', 'add_if_no_drop', 'add_on_zero', 'continue_cg', 'recompute_u')
         case default
-            stat = 1; errmsg = "solve_normal: norm_reading = '"//trim(settings%norm_reading)//"' is not one of '', "// &
+            stat = FC_ERR_VALUE; errmsg = "solve_normal: norm_reading = '"//trim(settings%norm_reading)//"' is not one of '', "// &
                 "'restart', 'keep_negative', 'add_if_no_drop', 'add_on_zero', 'continue_cg', 'recompute_u'"
             return
         end select

@@ -58,9 +58,9 @@ module fc_tangcg
         procedure :: apply => tangential_apply
         procedure :: destroy => tangential_destroy
         procedure :: coupled => tangential_coupled
+        procedure :: matches => tangential_matches
         procedure, private :: tangential_assign
         generic :: assignment(=) => tangential_assign
-        procedure :: matches => tangential_matches
     end type fc_tangential_operator
 
     !> Result of a tangential solve.
@@ -132,6 +132,16 @@ contains
         if (allocated(self%spec_x)) deallocate (self%spec_x, self%spec_y, self%work)
     end subroutine tangential_destroy
 
+    !> Whether the built blocks serve `grid` and `material`: same element count and size
+    !! (relative 1e−12) and the same G, ν and K (K decides the coupling blocks).
+    pure logical function tangential_matches(self, grid, material) result(ok)
+        class(fc_tangential_operator), intent(in) :: self
+        type(fc_grid), intent(in) :: grid
+        type(fc_material), intent(in) :: material
+        ok = self%a_xx%built() .and. self%grid%nx == grid%nx .and. self%grid%ny == grid%ny .and. &
+            abs(self%grid%dx - grid%dx) <= 1e-12_dp*grid%dx .and. abs(self%grid%dy - grid%dy) <= 1e-12_dp*grid%dy &
+            .and. self%material%g == material%g .and. self%material%nu == material%nu .and. self%material%k == material%k
+    end function tangential_matches
     !> `lhs = rhs`: deep copy; the copy's blocks share their own new plan set.
     !! (Explicit rather than component-wise: gfortran 12 finalizes a shallow temporary in
     !! the intrinsic assignment of a type with finalizable components.)
@@ -159,17 +169,6 @@ contains
             same_object = c_associated(c_loc(a%setup_seconds), c_loc(b%setup_seconds))
         end function same_object
     end subroutine tangential_assign
-
-    !> Whether the built blocks serve `grid` and `material`: same element count and size
-    !! (relative 1e−12) and the same G, ν and K (K decides the coupling blocks).
-    pure logical function tangential_matches(self, grid, material) result(ok)
-        class(fc_tangential_operator), intent(in) :: self
-        type(fc_grid), intent(in) :: grid
-        type(fc_material), intent(in) :: material
-        ok = self%a_xx%built() .and. self%grid%nx == grid%nx .and. self%grid%ny == grid%ny .and. &
-            abs(self%grid%dx - grid%dx) <= 1e-12_dp*grid%dx .and. abs(self%grid%dy - grid%dy) <= 1e-12_dp*grid%dy &
-            .and. self%material%g == material%g .and. self%material%nu == material%nu .and. self%material%k == material%k
-    end function tangential_matches
 
     !> True when the normal and tangential problems are coupled (K ≠ 0).
     pure logical function tangential_coupled(self)
