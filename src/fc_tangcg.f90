@@ -99,21 +99,21 @@ contains
         stat = 0; errmsg = ''
         nx = top%grid%nx; ny = top%grid%ny
         if (.not. top%a_xx%built()) then
-            stat = 1; errmsg = 'solve_tangential: operator not built'; return
+            stat = FC_ERR_NOT_READY; errmsg = 'solve_tangential: operator not built'; return
         end if
         if (size(pn, 1) /= nx .or. size(pn, 2) /= ny) then
-            stat = 1; errmsg = 'solve_tangential: pn does not match the grid'; return
+            stat = FC_ERR_SHAPE; errmsg = 'solve_tangential: pn does not match the grid'; return
         end if
         if (.not. (mu >= 0)) then
-            stat = 1; write (errmsg, '(a,g0.6,a)') 'tangential: mu = ', mu, ' must be >= 0'; return
+            stat = FC_ERR_VALUE; write (errmsg, '(a,g0.6,a)') 'tangential: mu = ', mu, ' must be >= 0'; return
         end if
         call check_iteration_settings(settings%tol, settings%maxit, stat, errmsg)
         if (stat /= 0) return
         if (settings%inner_k < 1) then
-            stat = 1; write (errmsg, '(a,i0,a)') 'solver: inner_k = ', settings%inner_k, ' must be >= 1'; return
+            stat = FC_ERR_VALUE; write (errmsg, '(a,i0,a)') 'solver: inner_k = ', settings%inner_k, ' must be >= 1'; return
         end if
         if (settings%solver /= 'tangcg' .and. settings%solver /= 'convexgs') then
-            stat = 1; errmsg = "solver: tangential = '"//trim(settings%solver)//"' is not one of 'tangcg', 'convexgs'"
+            stat = FC_ERR_VALUE; errmsg = "solver: tangential = '"//trim(settings%solver)//"' is not one of 'tangcg', 'convexgs'"
             return
         end if
         allocate (wx(nx, ny), wy(nx, ny), g(nx, ny))
@@ -194,7 +194,7 @@ contains
         fn = sum(max(pn, 0.0_dp))*top%grid%area()
         flimit = load%mu*fn
         if (.not. (hypot(load%fx, load%fy) < flimit)) then
-            stat = 1
+            stat = FC_ERR_FRICTION_BOUND
             write (errmsg, '(a,es12.5,a,es12.5,a)') 'tangential: |(fx, fy)| = ', hypot(load%fx, load%fy), &
                 ' must be < mu*fn = ', flimit, ' (full slip has no unique shift)'
             return
