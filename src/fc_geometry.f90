@@ -5,7 +5,7 @@
 !! (xmin+(i-½)dx, ymin+(j-½)dy).  The undeformed distance `h0` returned here does not
 !! contain the approach: the solvers use h = h0 − δ.
 module fc_geometry
-    use fc_kinds, only: dp, i8, pi, msg_len
+    use fc_kinds, only: dp, i8, pi, msg_len, FC_ERR_VALUE, FC_ERR_IO
     implicit none
     private
 
@@ -49,11 +49,12 @@ contains
         character(len=*), intent(out) :: errmsg
         stat = 0; errmsg = ''
         if (nx < 1 .or. ny < 1) then
-            stat = 1; write (errmsg, '(a,i0,a,i0)') 'grid: nx and ny must be >= 1, got nx = ', nx, ', ny = ', ny
+            stat = FC_ERR_VALUE; write (errmsg, '(a,i0,a,i0)') 'grid: nx and ny must be >= 1, got nx = ', nx, ', ny = ', ny
             return
         end if
         if (.not. (xmax > xmin) .or. .not. (ymax > ymin)) then
-            stat = 1; write (errmsg, '(a,4(es12.4))') 'grid: need xmax > xmin and ymax > ymin, got ', xmin, xmax, ymin, ymax
+            stat = FC_ERR_VALUE
+            write (errmsg, '(a,4(es12.4))') 'grid: need xmax > xmin and ymax > ymin, got ', xmin, xmax, ymin, ymax
             return
         end if
         grid%nx = nx; grid%ny = ny
@@ -220,7 +221,7 @@ contains
         stat = 0; errmsg = ''
         open (newunit=unit, file=filename, status='old', action='read', iostat=ios)
         if (ios /= 0) then
-            stat = 1; errmsg = "cannot open table file '"//trim(filename)//"'"
+            stat = FC_ERR_IO; errmsg = "cannot open table file '"//trim(filename)//"'"
             return
         end if
         nread = 0; lineno = 0
@@ -233,11 +234,11 @@ contains
             if (line(1:1) == '#' .or. line(1:1) == '!') cycle
             nline = count_numbers(line)
             if (nline < 0) then
-                stat = 1; write (errmsg, '(a,i0,a)') "table file '"//trim(filename)//"', line ", lineno, ': not a number'
+                stat = FC_ERR_IO; write (errmsg, '(a,i0,a)') "table file '"//trim(filename)//"', line ", lineno, ': not a number'
                 close (unit); return
             end if
             if (nread + nline > size(vals)) then
-                stat = 1; write (errmsg, '(a,i0,a)') "table file '"//trim(filename)//"' has more than nx*ny = ", &
+                stat = FC_ERR_IO; write (errmsg, '(a,i0,a)') "table file '"//trim(filename)//"' has more than nx*ny = ", &
                     size(vals), ' values'
                 close (unit); return
             end if
@@ -247,7 +248,7 @@ contains
         end do
         close (unit)
         if (nread /= size(vals)) then
-            stat = 1; write (errmsg, '(a,i0,a,i0)') "table file '"//trim(filename)//"' has ", nread, &
+            stat = FC_ERR_IO; write (errmsg, '(a,i0,a,i0)') "table file '"//trim(filename)//"' has ", nread, &
                 ' values, expected nx*ny = ', size(vals)
             return
         end if
