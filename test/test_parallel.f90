@@ -1,0 +1,183 @@
+!> Suite `parallel`: threads (results independent of the thread count), the periodic
+!! half-space (Johnson's wavy surface in full contact, circulant structure, grid checks) and
+!! the row-slab generation of rough surfaces used by distributed runs.  The distributed
+!! solver itself is tested in mpi/test (run under mpirun).
+module test_parallel
+    use fc_kinds, only: dp, pi, FC_CONVERGED
+    use fc_geometry, only: fc_grid, make_grid, fc_rough_params, quadratic_gap, wavy_gap, rough_heights, &
+        rough_heights_rows
+    use fc_influence, only: fc_material, combine_material
+    use fc_norm, only: fc_normal_operator, fc_normal_settings, fc_normal_result, build_normal_operator, solve_normal
+    use fc_periodic, only: build_periodic_normal_operator
+    use fc_threads, only: fc_set_threads, fc_thread_count, check_thread_count, fc_openmp_enabled
+    use fc_testing
+    implicit none
+    private
+    public :: collect_parallel
+
+contains
+
+    subroutine collect_parallel(tests)
+        type(unittest_type), allocatable, intent(out) :: tests(:)
+        tests = [ &
+            new_unittest('threads_same_result', test_threads_same), &
+            new_unittest('threads_count_bounds', test_thread_bounds), &
+            new_unittest('periodic_wavy_full_contact', test_wavy), &
+            new_unittest('periodic_operator_is_circulant', test_circulant), &
+            new_unittest('periodic_grid_checks', test_periodic_checks), &
+            new_unittest('rough_rows_equal_whole_surface', test_rough_rows) ]
+    end subroutine collect_parallel
+
+    subroutine steel(mat)
+        type(fc_material), intent(out) :: mat
+        integer :: stat
+        character(len=200) :: m
+        mat%g1 = 82000; mat%g2 = 82000; mat%nu1 = 0.28_dp; mat%nu2 = 0.28_dp
+        call combine_material(mat, stat, m)
+    end subroutine steel
+
+    !> Hertz 64×48, force prescribed, solved with 1 and with 2 threads (threaded FFTW plans
+    !! and OpenMP loops): the same iterations and pressures to 1e−12 of pmax (sums in a
+    !! different order change the last bits only).
+    subroutine test_threads_same(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_material) :: mat
+        type(fc_grid) :: grid
+        type(fc_normal_operator) :: nop
+        type(fc_normal_settings) :: set
+        type(fc_normal_result) :: r1, r2
+        integer :: stat, nt0
+        character(len=256) :: em
+        nt0 = fc_thread_count()
+        call steel(mat)
+        call make_grid(grid, 64, 48, -2.0_dp, 2.0_dp, -1.5_dp, 1.5_dp, stat, em)
+        call fc_set_threads(1)
+        call build_normal_operator(nop, mat, grid)
+        call solve_normal(nop, quadratic_gap(grid, 30.0_dp, 20.0_dp), set, r1, stat, em, fn=400.0_dp)
+        call fc_set_threads(2)
+        call build_normal_operator(nop, mat, grid)
+        call solve_normal(nop, quadratic_gap(grid, 30.0_dp, 20.0_dp), set, r2, stat, em, fn=400.0_dp)
+        call fc_set_threads(nt0)
+        call check(error, r1%status == FC_CONVERGED .and. r2%status == FC_CONVERGED, 'both runs converge')
+        call check(error, r1%iterations == r2%iterations, 'same iteration count')
+        call check(error, maxval(abs(r1%pn - r2%pn)), 0.0_dp, '1 vs 2 threads: pressure', abs=1e-12_dp*r1%pmax)
+        call check(error, r2%fn, r1%fn, '1 vs 2 threads: force', rel=1e-13_dp)
+        if (fc_openmp_enabled()) then
+            call fc_set_threads(2)
+            call check(error, fc_thread_count() == 2, 'fc_set_threads(2) gives 2 threads')
+            call fc_set_threads(nt0)
+        end if
+    end subroutine test_threads_same
+
+    subroutine test_thread_bounds(error)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: stat
+        character(len=256) :: em
+        call check_thread_count(-1, stat, em)
+        call check(error, stat /= 0 .and. index(em, 'threads = -1') > 0, 'threads = -1 rejected naming the key: '//trim(em))
+        call check_thread_count(5000, stat, em)
+        call check(error, stat /= 0 .and. index(em, '1024') > 0, 'threads = 5000 rejected naming the limit: '//trim(em))
+        call check_thread_count(0, stat, em)
+        call check(error, stat == 0, 'threads = 0 (OMP_NUM_THREADS) accepted')
+    end subroutine test_thread_bounds
+
+    !> Wavy surface h0 = A(1 − cos 2πx/λ) on a periodic cell of one wavelength under mean
+    !! pressure p̄ = 1.5 p*, p* = π E* A/λ (E* = G/(1−ν) with Kalker's combined constants):
+    !! full contact, p = p̄ + p* cos 2πx/λ (Johnson, Contact Mechanics §13.2).  64 elements
+    !! per wavelength: the piecewise-constant elements change the amplitude by about
+    !! (π/64)²/6 ≈ 0.04 %, the image sum (2 rings + continuum tail) by < 0.1 %; tolerance 0.5 %
+    !! of p*.  Below p̄ = p* the contact must open.
+    subroutine test_wavy(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_material) :: mat
+        type(fc_grid) :: grid
+        type(fc_normal_operator) :: nop
+        type(fc_normal_settings) :: set
+        type(fc_normal_result) :: res
+        real(dp), allocatable :: h0(:, :), pex(:, :)
+        real(dp) :: lam, amp, pstar, pbar
+        integer :: stat, i
+        character(len=256) :: em
+        call steel(mat)
+        lam = 2.0_dp; amp = 2e-4_dp
+        call make_grid(grid, 64, 4, 0.0_dp, lam, 0.0_dp, 4*lam/64, stat, em)
+        h0 = wavy_gap(grid, amp, lam, 0.0_dp)
+        pstar = pi*mat%g/(1 - mat%nu)*amp/lam
+        pbar = 1.5_dp*pstar
+        call build_periodic_normal_operator(nop, mat, grid, stat, em)
+        call check(error, stat == 0, 'build: '//trim(em))
+        if (allocated(error)) return
+        set%tol = 1e-10_dp
+        call solve_normal(nop, h0, set, res, stat, em, fn=pbar*lam*grid%ymax)
+        call check(error, stat == 0 .and. res%status == FC_CONVERGED, 'solve: '//trim(em)//' '//trim(res%message))
+        if (allocated(error)) return
+        allocate (pex(64, 4))
+        do i = 1, 64
+            pex(i, :) = pbar + pstar*cos(2*pi*grid%x(i)/lam)
+        end do
+        call check(error, res%ncon == 64*4, 'full contact at 1.5 p*')
+        call check(error, maxval(abs(res%pn - pex)), 0.0_dp, 'pressure vs Johnson (units of p*)', abs=0.005_dp*pstar)
+        call solve_normal(nop, h0, set, res, stat, em, fn=0.9_dp*pstar*lam*grid%ymax)
+        call check(error, res%ncon < 64*4, 'partial contact at 0.9 p*')
+    end subroutine test_wavy
+
+    !> A cyclic shift of the load shifts the periodic response by the same amount, and the
+    !! response to a uniform load is zero (displacements up to a constant, mean removed).
+    subroutine test_circulant(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_material) :: mat
+        type(fc_grid) :: grid
+        type(fc_normal_operator) :: nop
+        real(dp) :: x(16, 12), y(16, 12), ys(16, 12)
+        integer :: stat, i, j
+        character(len=256) :: em
+        call steel(mat)
+        call make_grid(grid, 16, 12, 0.0_dp, 1.6_dp, 0.0_dp, 1.0_dp, stat, em)
+        call build_periodic_normal_operator(nop, mat, grid, stat, em)
+        do j = 1, 12
+            do i = 1, 16
+                x(i, j) = modulo(0.37_dp*i + 0.61_dp*j*j, 1.0_dp)
+            end do
+        end do
+        call nop%a_zz%apply(x, y)
+        call nop%a_zz%apply(cshift(cshift(x, 5, 1), -3, 2), ys)
+        call check(error, maxval(abs(ys - cshift(cshift(y, 5, 1), -3, 2))), 0.0_dp, 'shifted response', &
+            abs=1e-12_dp*maxval(abs(y)))
+        x = 1
+        call nop%a_zz%apply(x, y)
+        call check(error, maxval(abs(y)), 0.0_dp, 'uniform load: zero response', abs=1e-12_dp*maxval(abs(ys)))
+    end subroutine test_circulant
+
+    subroutine test_periodic_checks(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_material) :: mat
+        type(fc_grid) :: grid
+        type(fc_normal_operator) :: nop
+        integer :: stat
+        character(len=256) :: em
+        call steel(mat)
+        call make_grid(grid, 15, 12, 0.0_dp, 1.6_dp, 0.0_dp, 1.0_dp, stat, em)
+        call build_periodic_normal_operator(nop, mat, grid, stat, em)
+        call check(error, stat /= 0 .and. index(em, 'nx = 15') > 0, 'odd nx rejected naming it: '//trim(em))
+        call make_grid(grid, 16, 12, 0.0_dp, 1.6_dp, 0.0_dp, 1.0_dp, stat, em)
+        call build_periodic_normal_operator(nop, mat, grid, stat, em, images=51)
+        call check(error, stat /= 0 .and. index(em, 'images = 51') > 0, 'images above the bound rejected: '//trim(em))
+    end subroutine test_periodic_checks
+
+    !> Slabs of rows of the rough surface equal the whole-grid surface bit for bit.
+    subroutine test_rough_rows(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_grid) :: grid
+        type(fc_rough_params) :: par
+        real(dp) :: z(30, 22), za(30, 1:9), zb(30, 10:22)
+        integer :: stat
+        character(len=256) :: em
+        call make_grid(grid, 30, 22, -1.0_dp, 1.3_dp, -0.8_dp, 0.9_dp, stat, em)
+        par%seed = 123
+        call rough_heights(grid, par, z)
+        call rough_heights_rows(grid, par, 1, 9, za)
+        call rough_heights_rows(grid, par, 10, 22, zb)
+        call check(error, all(za == z(:, 1:9)) .and. all(zb == z(:, 10:22)), 'slabs equal the whole surface')
+    end subroutine test_rough_rows
+
+end module test_parallel
