@@ -14,7 +14,7 @@ program test_mpi
     use fcm_fftw_mpi, only: fftw_mpi_init
     use fcm_norm
     use fcm_geometry
-    !BATCH use fcm_batch_tests, only: batch_tests
+use fcm_batch_tests, only: batch_tests
     implicit none
     integer :: ierr, rank, nprocs, npass, nfail, tot(2)
     character(len=32) :: only
@@ -33,7 +33,7 @@ program test_mpi
     call run('dist_grid_too_small_rejected', test_too_small)
     call run('periodic_wavy_full_contact', test_wavy_full_contact)
     call run('dist_periodic_equals_serial', test_periodic_dist)
-    !BATCH call batch_tests(only, npass, nfail)
+call batch_tests(only, npass, nfail)
     tot = [npass, nfail]
     call mpi_allreduce(MPI_IN_PLACE, tot, 2, MPI_INTEGER, MPI_MIN, MPI_COMM_WORLD, ierr)
     npass = tot(1)
