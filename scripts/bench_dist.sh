@@ -8,13 +8,13 @@ out="$(realpath -m "${1:-../doc/bench_parallel_dist.csv}")"
 sizes="${2:-512 1024 2048}"
 cases="${3:-hertz rough}"
 command -v fpm >/dev/null || export PATH="$HOME/.venv-fpm/bin:$PATH"
-FLAGS="-I/usr/include -O3 -funroll-loops"
-FPM_FC=mpifort fpm build --flag "$FLAGS" >/dev/null
-bench="$(FPM_FC=mpifort fpm run --flag "$FLAGS" fastcontact-mpi-bench --runner echo 2>/dev/null | tail -1)"
+FLAGS="-I/usr/include -fopenmp -O3 -funroll-loops"
+FPM_FC=mpifort fpm build --flag "$FLAGS" --link-flag -fopenmp >/dev/null
+bench="$(FPM_FC=mpifort fpm run --flag "$FLAGS" --link-flag -fopenmp fastcontact-mpi-bench --runner echo 2>/dev/null | tail -1)"
 MPIRUN=(mpirun --oversubscribe)
 [ "$(id -u)" -eq 0 ] && MPIRUN+=(--allow-run-as-root)
 tmp="$(mktemp -d)"; trap 'rm -rf "$tmp"' EXIT
-echo "case,n,mode,ranks,threads,status,iterations,products,fn,setup_s,solve_s,peak_rss_mb_per_rank,dp_rel,dfn_rel" >"$out"
+echo "case,n,mode,ranks,threads,status,iterations,products,fn,setup_s,solve_s,peak_rss_mb_per_rank,dp_rel,dfn_rel,solve_cpu_s_max_rank,load1" >"$out"
 for n in $sizes; do
     for c in $cases; do
         OMP_NUM_THREADS=1 "${MPIRUN[@]}" -np 1 "$bench" --n "$n" --case "$c" --serial --save "$tmp/p.bin" --csv "$out"

@@ -1,7 +1,9 @@
 !> Threads: the OpenMP thread count and FFTW's threaded planner.
 !!
-!! The count comes from `OMP_NUM_THREADS` (OpenMP's own default: one per core) unless a
-!! positive `threads` is given (`&solver threads`, the flat API, [[fc_set_threads]]).
+!! The count is a positive `threads` when one is given (`&solver threads`, the flat API,
+!! [[fc_set_threads]]), else `OMP_NUM_THREADS` when it is set, else 1 ([[fc_default_threads]]):
+!! without either a run is serial, as before threads existed (OpenMP's own default, one
+!! thread per core, would also apply to machines shared with other jobs).
 !! FFTW plans made after [[fc_set_threads]] split each transform over that many threads
 !! (FFTW's threaded library, `fftw3_omp`); plans made before keep their count, so the
 !! driver sets the count before it builds the operators of a case.  The planner is made
@@ -33,7 +35,7 @@ module fc_threads
 
     logical, save :: fftw_threads_ready = .false.   ! set once, before any threaded plan
 
-    public :: fc_set_threads, fc_thread_count, fc_openmp_enabled, check_thread_count
+    public :: fc_set_threads, fc_thread_count, fc_openmp_enabled, check_thread_count, fc_default_threads
 
 contains
 
@@ -49,6 +51,20 @@ contains
         !$ fc_thread_count = omp_get_max_threads()
     end function fc_thread_count
 
+    !> Threads when none is requested: OMP_NUM_THREADS if set to a count in 1 … 1024 (the
+    !! first entry of a list), else 1.
+    integer function fc_default_threads() result(n)
+        character(len=64) :: v
+        integer :: length, st, ios, k
+        n = 1
+        call get_environment_variable('OMP_NUM_THREADS', v, length, st)
+        if (st /= 0 .or. length == 0) return
+        k = scan(v, ',')
+        if (k > 0) v = v(1:k - 1)
+        read (v, *, iostat=ios) k
+        if (ios == 0 .and. k >= 1 .and. k <= max_threads_allowed) n = k
+    end function fc_default_threads
+
     !> Validate a requested count: 0 (keep OMP_NUM_THREADS / the default) or 1 … 1024.
     subroutine check_thread_count(n, stat, errmsg)
         integer, intent(in) :: n
@@ -62,17 +78,22 @@ contains
         end if
     end subroutine check_thread_count
 
-    !> Use `n` threads (n ≤ 0: keep the current count) for OpenMP regions and for FFTW plans
+    !> Use `n` threads (n ≤ 0: [[fc_default_threads]]) for OpenMP regions and for FFTW plans
     !! made from now on.  Call it outside parallel regions.
     subroutine fc_set_threads(n)
         integer, intent(in) :: n
         integer(c_int) :: ok
-        !$ if (n > 0) call omp_set_num_threads(min(n, max_threads_allowed))
+        integer :: m
+        m = n
+        if (m <= 0) m = fc_default_threads()
+        !$ call omp_set_num_threads(min(m, max_threads_allowed))
+        !$omp critical (fc_threads_init)
         !$ if (.not. fftw_threads_ready) then
         !$     ok = fftw_init_threads()
         !$     call fftw_make_planner_thread_safe()
         !$     fftw_threads_ready = ok /= 0
         !$ end if
+        !$omp end critical (fc_threads_init)
         !$ if (fftw_threads_ready) call fftw_plan_with_nthreads(int(omp_get_max_threads(), c_int))
         ok = 0
     end subroutine fc_set_threads

@@ -24,7 +24,7 @@ program bench_dist
     integer :: ierr, rank, nprocs, n, stat, i, u, nthreads, j0, j1
     character(len=256) :: arg, kind, save_file, compare_file, csv_file, em
     logical :: serial
-    real(dp) :: tol, t0, t1, t2, fn_target, fn_other, dpmax, dfn
+    real(dp) :: tol, t0, t1, t2, fn_target, fn_other, dpmax, dfn, c1, c2, cpu_solve, load1
     real(dp), allocatable :: h0(:, :), pfull(:, :), pother(:, :), z(:, :)
     type(fc_material) :: mat
     type(fc_grid) :: grid
@@ -116,6 +116,7 @@ program bench_dist
         end if
     end if
     t1 = mpi_wtime()
+    call cpu_time(c1)
     if (serial) then
         if (trim(kind) == 'hertz') then
             call solve_normal(nop, h0, set, res, stat, em, approach=0.1_dp)
@@ -132,6 +133,8 @@ program bench_dist
         products = res%matvecs + res%precond_applications
     end if
     t2 = mpi_wtime()
+    call cpu_time(c2)
+    call mpi_allreduce(c2 - c1, cpu_solve, 1, MPI_DOUBLE_PRECISION, MPI_MAX, MPI_COMM_WORLD, ierr)
     if (stat /= 0) then
         write (*, '(a)') trim(em); call mpi_abort(MPI_COMM_WORLD, 1, ierr)
     end if
@@ -157,18 +160,24 @@ program bench_dist
         dpmax = maxval(abs(pother - pfull))/maxval(pother)
         dfn = abs(fn_other - res%fn)/fn_other
     end if
+    load1 = -1
     if (rank == 0) then
+        open (newunit=u, file='/proc/loadavg', action='read', iostat=i)
+        if (i == 0) then
+            read (u, *, iostat=i) load1
+            close (u)
+        end if
         write (arg, '(a)') 'case,n,mode,ranks,threads,status,iterations,products,fn,setup_s,solve_s,peak_rss_mb_per_rank,'// &
-            'dp_rel,dfn_rel'
+            'dp_rel,dfn_rel,solve_cpu_s_max_rank,load1'
         if (len_trim(csv_file) > 0) then
             open (newunit=u, file=trim(csv_file), position='append', action='write')
         else
             u = 6
         end if
         if (u == 6) write (u, '(a)') trim(arg)
-        write (u, '(a,",",i0,",",a,2(",",i0),",",a,2(",",i0),",",es22.15,2(",",f0.3),",",f0.1,2(",",es10.3))') &
+        write (u, '(a,",",i0,",",a,2(",",i0),",",a,2(",",i0),",",es22.15,2(",",f0.3),",",f0.1,2(",",es10.3),",",f0.3,",",f0.2)') &
             trim(kind), n, trim(merge('serial     ', 'distributed', serial)), nprocs, nthreads, &
-            status_name(res%status), iters, products, res%fn, t1 - t0, t2 - t1, real(hwm_max, dp)/1024, dpmax, dfn
+            status_name(res%status), iters, products, res%fn, t1 - t0, t2 - t1, real(hwm_max, dp)/1024, dpmax, dfn, cpu_solve, load1
         if (u /= 6) close (u)
     end if
     call mpi_finalize(ierr)

@@ -85,6 +85,7 @@ contains
         integer :: rank, nprocs, ierr, code_s, code_m, urs, ues, urm, uem, k, nused
         integer, allocatable :: ranks(:)
         character(len=:), allocatable :: a, b
+        character(len=64) :: args(3)
         logical :: ea, eb
         call mpi_comm_rank(MPI_COMM_WORLD, rank, ierr)
         call mpi_comm_size(MPI_COMM_WORLD, nprocs, ierr)
@@ -93,18 +94,19 @@ contains
             call write_cases(dir//'/cases.nml')
             open (newunit=urs, file=dir//'/serial.rep', status='replace')
             open (newunit=ues, file=dir//'/serial.err', status='replace')
-            call run_driver([character(len=64) :: dir//'/cases.nml', '--out', dir//'/serial'], code_s, urs, ues)
+            args(1) = dir//'/cases.nml'; args(2) = '--out'; args(3) = dir//'/serial'
+            call run_driver(args, code_s, urs, ues)
             close (urs); close (ues)
             open (newunit=urm, file=dir//'/mpi.rep', status='replace')
             open (newunit=uem, file=dir//'/mpi.err', status='replace')
         end if
         call mpi_barrier(MPI_COMM_WORLD, ierr)
+        args(1) = dir//'/cases.nml'; args(2) = '--out'; args(3) = dir//'/mpi'
         if (rank == 0) then
-            call run_mpi_batch([character(len=64) :: dir//'/cases.nml', '--out', dir//'/mpi'], MPI_COMM_WORLD, &
-                code_m, urm, uem, ranks)
+            call run_mpi_batch(args, MPI_COMM_WORLD, code_m, urm, uem, ranks)
             close (urm); close (uem)
         else
-            call run_mpi_batch([character(len=64) :: dir//'/cases.nml', '--out', dir//'/mpi'], MPI_COMM_WORLD, code_m)
+            call run_mpi_batch(args, MPI_COMM_WORLD, code_m)
         end if
         call mpi_bcast(code_s, 1, MPI_INTEGER, 0, MPI_COMM_WORLD, ierr)
         if (code_m /= code_s) msg = 'exit status differs from the serial driver'
@@ -157,9 +159,11 @@ contains
     subroutine test_bad_args(msg)
         character(len=:), allocatable, intent(out) :: msg
         integer :: code, u, rank, ierr
+        character(len=64) :: args(1)
         call mpi_comm_rank(MPI_COMM_WORLD, rank, ierr)
         open (newunit=u, status='scratch')
-        call run_mpi_batch([character(len=64) :: 'does/not/exist.nml'], MPI_COMM_WORLD, code, u, u)
+        args(1) = 'does/not/exist.nml'
+        call run_mpi_batch(args, MPI_COMM_WORLD, code, u, u)
         close (u)
         if (code /= 1) msg = 'missing case file must give exit status 1'
     end subroutine test_bad_args
