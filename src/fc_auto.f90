@@ -166,7 +166,8 @@ contains
             'materials (K = 0): one normal and one tangential solve, no Panagiotopoulos loop')
         out%tangential = tang
         ! ---- line contact → 2D strip
-        line = is_line_contact(s) .and. s%kind /= 'strip2d'
+        line = is_line_contact(s) .and. s%kind /= 'strip2d' .and. .not. s%periodic
+        ops%periodic = s%periodic
         if (line .and. s%model == 'auto') then
             if (s%kind == 'quadratic' .and. s%ry > 0) then
                 ! elongated ellipse: only a strip when the y curvature is negligible over the area
@@ -216,7 +217,7 @@ contains
             call solve_levels(s, tang, ops, out, stat, errmsg)
             if (stat /= 0) return
             out%touches_boundary = contact_touches_boundary(out%res%pn, out%model == 'strip2d' .or. &
-                s%kind == 'cylinder' .or. (s%kind == 'quadratic' .and. s%ry == 0))
+                s%kind == 'cylinder' .or. (s%kind == 'quadratic' .and. s%ry == 0)) .and. .not. s%periodic
             if (.not. out%touches_boundary) exit
             if (.not. out%grid_auto .or. attempt == max_enlargements + 1) then
                 if (out%grid_auto) then

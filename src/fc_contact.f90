@@ -28,6 +28,7 @@ module fc_contact
     use fc_tangcg, only: fc_tangential_operator, fc_tangential_settings, fc_tangential_result, fc_tangential_loading, &
         build_tangential_operator, solve_tangential_loading, coupling_displacements, EL_EXTERIOR, EL_ADHESION, EL_SLIP
     use fc_fmg, only: fc_fmg_settings, fc_fmg_stats, fc_surface, solve_normal_fmg
+    use fc_periodic, only: build_periodic_normal_operator, check_periodic_grid, periodic_images_default
     implicit none
     private
 
@@ -72,6 +73,8 @@ module fc_contact
         type(fc_normal_operator) :: normal          !! A^zz and its preconditioner
         type(fc_tangential_operator) :: tangential  !! tangential (and coupling) blocks
         logical :: reuse = .true.                   !! .false.: rebuild at every solve (checks, benchmarks)
+        logical :: periodic = .false.               !! normal operator of the periodic half-space ([[fc_periodic]])
+        logical :: built_periodic = .false.         !! the normal operator held is the periodic one
         integer :: builds_normal = 0                !! normal operator builds so far
         integer :: builds_tangential = 0            !! tangential operator builds so far
         real(dp) :: setup_seconds_normal = 0        !! set-up time of the last [[ensure_operators]] (0: reused)
@@ -122,10 +125,17 @@ contains
         type(fc_grid), intent(in) :: grid
         type(fc_material), intent(in) :: material
         logical, intent(in) :: normal, tangential   !! which operators are needed
+        integer :: stat
+        character(len=256) :: errmsg   ! a periodic grid is checked by the callers ([[solve_contact]])
         ops%setup_seconds_normal = 0; ops%setup_seconds_tangential = 0
         if (normal) then
-            if (.not. (ops%reuse .and. ops%normal%matches(grid, material))) then
-                call build_normal_operator(ops%normal, material, grid)
+            if (.not. (ops%reuse .and. ops%normal%matches(grid, material) .and. (ops%built_periodic .eqv. ops%periodic))) then
+                if (ops%periodic) then
+                    call build_periodic_normal_operator(ops%normal, material, grid, stat, errmsg)
+                else
+                    call build_normal_operator(ops%normal, material, grid)
+                end if
+                ops%built_periodic = ops%periodic
                 ops%builds_normal = ops%builds_normal + 1
                 ops%setup_seconds_normal = ops%normal%setup_seconds
             end if
@@ -186,9 +196,22 @@ contains
                 'normal and tangential solves; use BCCG'
             return
         end if
+        if (ops%periodic) then
+            call check_periodic_grid(grid, periodic_images_default, stat, errmsg)
+            if (stat == 0 .and. (tangential .or. use_fmg)) then
+                stat = 1; errmsg = 'solve_contact: the periodic half-space is available for normal contact with '// &
+                    "'bccg' or 'norm'"
+            end if
+            if (stat /= 0) return
+        end if
         call ensure_operators(ops, grid, material, normal=.not. use_fmg, tangential=tangential)
         call contact_rounds(ops%normal, ops%tangential, grid, material, h0, load, settings, res, stat, errmsg, &
                             state, surface)
+        if (ops%periodic) then
+            ! a periodic cell has no edge: the area cannot clip the contact
+            res%normal%touches_boundary = .false.
+            if (res%normal%status == FC_CONVERGED) res%normal%message = 'converged'
+        end if
         res%setup_seconds_normal = ops%setup_seconds_normal
         res%setup_seconds_tangential = ops%setup_seconds_tangential
     end subroutine solve_contact

@@ -32,6 +32,7 @@ module fc_driver
         is_tangential, tangential_loading, strip_model_index, is_given
     use fc_output, only: fc_case_summary, write_case_json, write_case_csv, write_case_report
     use fc_auto, only: fc_auto_outcome, solve_case_auto
+    use fc_threads, only: fc_set_threads
     implicit none
     private
 
@@ -207,6 +208,7 @@ contains
             end if
             ! ---- solve: model choice, potential area, accuracy target (fc_auto); operators reused
             call system_clock(t1)
+            call fc_set_threads(state%threads)   ! before any plan of this case is made
             call solve_case_auto(state, ops, auto, stat, errmsg)
             call system_clock(t2)
             if (stat /= 0) then
@@ -221,6 +223,9 @@ contains
             s%tol = state%settings%tol
             if (auto%tol > 0) s%tol = auto%tol
             s%notes = state%notes
+            if (state%periodic) s%notes = s%notes//'periodic half-space: the grid is one cell of a surface '// &
+                'repeated in x and y; mean pressure fn/area = '//fmt_real(state%fn/((state%xmax - state%xmin)* &
+                (state%ymax - state%ymin)))//' N/mm2. '
             s%model = auto%model; s%reductions = auto%reductions; s%warnings = auto%warnings
             s%grid_auto = auto%grid_auto; s%enlargements = auto%enlargements
             s%touches_boundary = auto%touches_boundary

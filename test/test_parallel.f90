@@ -10,6 +10,7 @@ module test_parallel
     use fc_norm, only: fc_normal_operator, fc_normal_settings, fc_normal_result, build_normal_operator, solve_normal
     use fc_periodic, only: build_periodic_normal_operator
     use fc_threads, only: fc_set_threads, fc_thread_count, check_thread_count, fc_openmp_enabled
+    use fc_driver, only: run_driver
     use fc_testing
     implicit none
     private
@@ -25,7 +26,10 @@ contains
             new_unittest('periodic_wavy_full_contact', test_wavy), &
             new_unittest('periodic_operator_is_circulant', test_circulant), &
             new_unittest('periodic_grid_checks', test_periodic_checks), &
-            new_unittest('rough_rows_equal_whole_surface', test_rough_rows) ]
+            new_unittest('rough_rows_equal_whole_surface', test_rough_rows), &
+            new_unittest('driver_periodic_wavy_partial_contact', test_driver_wavy), &
+            new_unittest('driver_periodic_input_errors', test_driver_periodic_errors), &
+            new_unittest('driver_threads_key', test_driver_threads) ]
     end subroutine collect_parallel
 
     subroutine steel(mat)
@@ -179,5 +183,115 @@ contains
         call rough_heights_rows(grid, par, 10, 22, zb)
         call check(error, all(za == z(:, 1:9)) .and. all(zb == z(:, 10:22)), 'slabs equal the whole surface')
     end subroutine test_rough_rows
+
+    !> Write `text` to build/test_parallel.nml and run the driver on it (report discarded);
+    !! errors go to build/test_parallel.err, returned in `errtext`.
+    subroutine drive(text, code, errtext)
+        character(len=*), intent(in) :: text
+        integer, intent(out) :: code
+        character(len=:), allocatable, intent(out) :: errtext
+        character(len=64) :: args(3)
+        character(len=512) :: line
+        integer :: u, ur, ue, ios
+        open (newunit=u, file='build/test_parallel.nml', status='replace', action='write')
+        write (u, '(a)') text
+        close (u)
+        args(1) = 'build/test_parallel.nml'; args(2) = '--out'; args(3) = 'build/test_parallel_out'
+        open (newunit=ur, status='scratch')
+        open (newunit=ue, file='build/test_parallel.err', status='replace')
+        call run_driver(args, code, ur, ue)
+        close (ur)
+        rewind (ue)
+        errtext = ''
+        do
+            read (ue, '(a)', iostat=ios) line
+            if (ios /= 0) exit
+            errtext = errtext//trim(line)//' '
+        end do
+        close (ue)
+    end subroutine drive
+
+    !> Value of a numeric JSON key of build/test_parallel_out/NAME.json (huge if absent).
+    real(dp) function json_value(name, key) result(v)
+        character(len=*), intent(in) :: name, key
+        character(len=4096) :: line
+        integer :: u, ios, k
+        v = huge(1.0_dp)
+        open (newunit=u, file='build/test_parallel_out/'//name//'.json', status='old', action='read', iostat=ios)
+        if (ios /= 0) return
+        do
+            read (u, '(a)', iostat=ios) line
+            if (ios /= 0) exit
+            k = index(line, '"'//key//'": ')
+            if (k == 1 + verify(line, ' ') - 1 .and. k > 0) then
+                read (line(k + len(key) + 4:), *, iostat=ios) v
+                exit
+            end if
+        end do
+        close (u)
+    end function json_value
+
+    !> The driver with `&grid periodic = .true.` on the wavy surface below full contact:
+    !! Johnson's partial-contact solution (§13.2) has sin²(πa/λ) = p̄/p* and
+    !! pmax = 2·sqrt(p̄·p*).  64 elements per wavelength: pmax within 1 %, contact width
+    !! 2a within one element per side.
+    subroutine test_driver_wavy(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: err
+        real(dp) :: pstar, pbar, a, lam, pmax, ncon
+        integer :: code
+        lam = 2.0_dp
+        pstar = pi*82000.0_dp/(1 - 0.28_dp)*2.0e-4_dp/lam
+        pbar = 4.0_dp/(lam*0.125_dp)
+        call drive("&case name = 'wavy_cell' / &material g1 = 82000.0, g2 = 82000.0, nu1 = 0.28, nu2 = 0.28 / "// &
+            "&grid nx = 64, ny = 4, xmin = 0.0, xmax = 2.0, ymin = 0.0, ymax = 0.125, periodic = .true. / "// &
+            "&geometry kind = 'wavy', amplitude = 2.0e-4, wavelength_x = 2.0 / &normal fn = 4.0 / "// &
+            "&solver tol = 1.0e-10 /", code, err)
+        call check(error, code == 0, 'driver exit status 0: '//err)
+        if (allocated(error)) return
+        pmax = json_value('wavy_cell', 'pmax')
+        ncon = json_value('wavy_cell', 'ncon')
+        a = lam/pi*asin(sqrt(pbar/pstar))
+        call check(error, pmax, 2*sqrt(pbar*pstar), 'pmax vs Johnson 2 sqrt(pbar p*)', rel=0.01_dp)
+        call check(error, abs(ncon/4 - 2*a/(lam/64)) <= 2, 'contact width 2a within one element per side')
+    end subroutine test_driver_wavy
+
+    subroutine test_driver_periodic_errors(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: err
+        character(len=*), parameter :: base = "&case name = 'cell' / &material g1 = 82000.0, g2 = 82000.0 / "// &
+            "&geometry kind = 'wavy', amplitude = 2.0e-4, wavelength_x = 2.0 / "
+        integer :: code
+        call drive(base//"&grid nx = 64, ny = 4, xmin = 0.0, xmax = 2.0, ymin = 0.0, ymax = 0.125, periodic = .true. /"// &
+            " &normal approach = 1.0e-4 /", code, err)
+        call check(error, code == 1 .and. index(err, 'periodic') > 0 .and. index(err, 'fn') > 0, &
+            'periodic with approach rejected: '//err)
+        call drive(base//"&grid nx = 63, ny = 4, xmin = 0.0, xmax = 2.0, ymin = 0.0, ymax = 0.125, periodic = .true. /"// &
+            " &normal fn = 4.0 /", code, err)
+        call check(error, code == 1 .and. index(err, 'nx = 63') > 0, 'odd nx rejected naming it: '//err)
+        call drive(base//"&grid nx = 64, ny = 4, xmin = 0.0, xmax = 2.0, ymin = 0.0, ymax = 0.125, periodic = .true. /"// &
+            " &normal fn = 4.0 / &case problem = 'normal+tangential' / &tangential mu = 0.3, xi = 1.0e-4 /", code, err)
+        call check(error, code == 1 .and. index(err, 'normal contact only') > 0, 'periodic tangential rejected: '//err)
+    end subroutine test_driver_periodic_errors
+
+    !> &solver threads: bounds checked; 2 threads give the 1-thread result to round-off.
+    subroutine test_driver_threads(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: err
+        character(len=*), parameter :: base = "&case name = 'hz' / &material g1 = 82000.0, g2 = 82000.0 / "// &
+            "&grid nx = 48, ny = 40, xmin = -2.0, xmax = 2.0, ymin = -1.5, ymax = 1.5 / "// &
+            "&geometry kind = 'quadratic', rx = 30.0, ry = 20.0 / &normal fn = 400.0 / "
+        integer :: code
+        real(dp) :: p1, p2
+        call drive(base//"&solver threads = -1 /", code, err)
+        call check(error, code == 1 .and. index(err, 'threads = -1') > 0, 'threads = -1 rejected: '//err)
+        call drive(base//"&solver threads = 1 /", code, err)
+        p1 = json_value('hz', 'pmax')
+        call drive(base//"&solver threads = 2 /", code, err)
+        p2 = json_value('hz', 'pmax')
+        call fc_set_threads(0)
+        call check(error, code == 0, 'threads = 2 runs: '//err)
+        call check(error, p2, p1, 'pmax with 2 threads', rel=1e-12_dp)
+    end subroutine test_driver_threads
 
 end module test_parallel
