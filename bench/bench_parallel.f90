@@ -1,6 +1,6 @@
 !> fastcontact-bench-parallel: the same cases with 1 and with N threads, alternating
 !! (doc/parallel.md).  Each run is one batch-driver run of a one-case namelist (operator
-!! set-up, solve and JSON included; no CSV table), after [[fc_set_threads]].
+!! set-up, solve and JSON included; no CSV table), after [[set_thread_count]].
 !!
 !!   fastcontact-bench-parallel [--threads N] [--repeats R] [--quick] [--out FILE]
 !!
@@ -13,7 +13,7 @@ program bench_parallel
     use, intrinsic :: iso_fortran_env, only: int64, output_unit
     use fc_kinds, only: dp
     use fc_driver, only: run_driver
-    use fc_threads, only: fc_set_threads, fc_thread_count, fc_openmp_enabled
+    use fc_threads, only: set_thread_count, fc_thread_count, fc_openmp_enabled
     implicit none
     integer :: nthreads, repeats, i, r, c, t, u, code, nul
     logical :: quick
@@ -53,7 +53,7 @@ program bench_parallel
     do r = 1, repeats
         do c = 1, 2
             do t = 1, 2
-                call fc_set_threads(merge(1, nthreads, t == 1))
+                call set_thread_count(merge(1, nthreads, t == 1))
                 call system_clock(t0, rate); call cpu_time(c0)
                 args(1) = dir//'/'//trim(cases(c))//'.nml'; args(2) = '--out'; args(3) = dir//'/out'
                 call run_driver(args, code, nul, nul)

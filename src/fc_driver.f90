@@ -32,7 +32,7 @@ module fc_driver
         is_tangential, tangential_loading, strip_model_index, is_given
     use fc_output, only: fc_case_summary, write_case_json, write_case_csv, write_case_report
     use fc_auto, only: fc_auto_outcome, solve_case_auto
-    use fc_threads, only: fc_set_threads
+    use fc_threads, only: set_thread_count
     implicit none
     private
 
@@ -208,7 +208,7 @@ contains
             end if
             ! ---- solve: model choice, potential area, accuracy target (fc_auto); operators reused
             call system_clock(t1)
-            call fc_set_threads(state%threads)   ! before any plan of this case is made
+            call set_thread_count(state%threads)   ! before any plan of this case is made
             call solve_case_auto(state, ops, auto, stat, errmsg)
             call system_clock(t2)
             if (stat /= 0) then

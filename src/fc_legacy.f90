@@ -22,6 +22,13 @@
 !!
 !! The registry of handles is the only mutable module state.  Slots hold pointers, so
 !! growing the registry never copies an operator (FFTW plans stay with their buffers).
+!!
+!! Threads: different handles may be used from different threads at the same time (the
+!! registry is changed and read under a lock, FFTW's planner is made thread-safe at the
+!! first fc_init).  One handle belongs to one thread at a time: a second fc_calculate on a
+!! handle that is still calculating returns FCL_ORDER.  fc_set_threads sets the threads of
+!! one handle's solves; the FFT thread count is process-wide, so hosts that calculate
+!! several handles concurrently keep 1 (doc/legacy_api.md, doc/parallel.md).
 module fc_legacy
     use, intrinsic :: iso_c_binding, only: c_int, c_double, c_char, c_null_char
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
@@ -31,6 +38,7 @@ module fc_legacy
     use fc_norm
     use fc_tangcg
     use fc_contact
+    use fc_threads, only: set_threads => set_thread_count, check_thread_count
     implicit none
     private
 
@@ -66,6 +74,8 @@ module fc_legacy
         type(fc_contact_operators) :: ops
         type(fc_contact_state) :: prev
         integer :: calculations = 0
+        integer :: threads = 0                     !! threads of the solves (0: OMP_NUM_THREADS, else 1)
+        logical :: busy = .false.                  !! fc_calculate running (guards against a second caller)
         ! --- result of the last calculation ---
         logical :: has_result = .false.
         type(fc_contact_result) :: result
@@ -86,6 +96,7 @@ module fc_legacy
     public :: fc_get_forces, fc_get_approach, fc_get_pmax, fc_get_shifts, fc_get_contact_stats
     public :: fc_get_tractions, fc_get_slip, fc_get_gap, fc_get_status_array, fc_get_iterations
     public :: fc_get_rebuilds, fc_get_grid_size, fc_get_error_message, fc_get_nhandles
+    public :: fc_set_periodic, fc_set_threads
     public :: shift_along_x
 
 contains
@@ -108,6 +119,7 @@ contains
         character(len=*), intent(in) :: caller
         type(legacy_state), pointer, intent(out) :: s
         integer(c_int), intent(out) :: ierr
+        !$omp critical (fc_legacy_registry)
         call ensure_registry()
         s => null()
         ierr = FCL_OK
@@ -117,6 +129,7 @@ contains
             write (registry(0)%s%message, '(a,i0,a)') trim(caller)//': invalid handle ', handle, &
                 ' (not initialised by fc_init or already finalised)'
         end if
+        !$omp end critical (fc_legacy_registry)
     end subroutine lookup
 
     !> Record an error on a state.
@@ -163,6 +176,8 @@ contains
         integer(c_int), intent(out) :: ierr     !! error code
         type(state_slot), allocatable :: bigger(:)
         integer :: i, n
+        !$omp critical (fc_legacy_registry)
+        call set_threads(0)   ! first call: FFTW's planner made thread-safe
         call ensure_registry()
         handle = 0
         do i = 1, ubound(registry, 1)
@@ -178,6 +193,7 @@ contains
             handle = n + 1
         end if
         allocate (registry(handle)%s)
+        !$omp end critical (fc_legacy_registry)
         ierr = FCL_OK
     end subroutine fc_init
 
@@ -188,9 +204,15 @@ contains
         type(legacy_state), pointer :: s
         call lookup(handle, 'fc_finalize', s, ierr)
         if (ierr /= FCL_OK) return
+        if (s%busy) then
+            call fail(s, ierr, FCL_ORDER, 'fc_finalize: handle '//inum(handle)//' is calculating in another thread')
+            return
+        end if
         call s%ops%destroy()
+        !$omp critical (fc_legacy_registry)
         deallocate (registry(handle)%s)
         registry(handle)%s => null()
+        !$omp end critical (fc_legacy_registry)
         handle = 0
     end subroutine fc_finalize
 
@@ -505,6 +527,40 @@ contains
         s%prev%warm_start = warm_start == 1
     end subroutine fc_set_reuse
 
+    !> Periodic half-space (1) or not (0, default): the grid is one cell of a surface repeated
+    !! in x and y (even nx, ny; normal contact with a prescribed force).
+    subroutine fc_set_periodic(handle, periodic, ierr) bind(C, name='fc_set_periodic')
+        integer(c_int), intent(in) :: handle
+        integer(c_int), intent(in) :: periodic   !! 0 or 1
+        integer(c_int), intent(out) :: ierr
+        type(legacy_state), pointer :: s
+        call lookup(handle, 'fc_set_periodic', s, ierr)
+        if (ierr /= FCL_OK) return
+        if (periodic /= 0 .and. periodic /= 1) then
+            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_periodic: periodic = '//inum(periodic)//' must be 0 or 1')
+            return
+        end if
+        s%ops%periodic = periodic == 1
+    end subroutine fc_set_periodic
+
+    !> Threads of this handle's solves: 0 (default: OMP_NUM_THREADS if set, else 1) … 1024.
+    subroutine fc_set_threads(handle, nthreads, ierr) bind(C, name='fc_set_threads')
+        integer(c_int), intent(in) :: handle
+        integer(c_int), intent(in) :: nthreads
+        integer(c_int), intent(out) :: ierr
+        type(legacy_state), pointer :: s
+        integer :: stat
+        character(len=msg_len) :: msg
+        call lookup(handle, 'fc_set_threads', s, ierr)
+        if (ierr /= FCL_OK) return
+        call check_thread_count(nthreads, stat, msg)
+        if (stat /= 0) then
+            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_threads: nthreads = '//inum(nthreads)// &
+                ' must lie in [0, 1024] (0: OMP_NUM_THREADS, else 1)'); return
+        end if
+        s%threads = nthreads
+    end subroutine fc_set_threads
+
     ! =====================================================================================
     ! calculation
     ! =====================================================================================
@@ -516,9 +572,19 @@ contains
         integer(c_int), intent(in) :: handle
         integer(c_int), intent(out) :: ierr
         type(legacy_state), pointer :: s
+        logical :: taken
         call lookup(handle, 'fc_calculate', s, ierr)
         if (ierr /= FCL_OK) return
+        !$omp critical (fc_legacy_busy)
+        taken = s%busy
+        s%busy = .true.
+        !$omp end critical (fc_legacy_busy)
+        if (taken) then
+            ierr = FCL_ORDER   ! the message belongs to the running calculation: leave it
+            return
+        end if
         call calculate(s, ierr)
+        s%busy = .false.
     end subroutine fc_calculate
 
     subroutine calculate(s, ierr)
@@ -547,7 +613,12 @@ contains
             call fail(s, ierr, FCL_ORDER, 'fc_calculate: shifts or forces set but no friction (call fc_set_friction)')
             return
         end if
+        if (s%ops%periodic .and. .not. s%load%normal%force_prescribed) then
+            call fail(s, ierr, FCL_ORDER, 'fc_calculate: the periodic half-space needs the normal force (mean '// &
+                'pressure x cell area, fc_set_normal_force)'); return
+        end if
         s%has_result = .false.
+        call set_threads(s%threads)
         if (s%gap_kind == GAP_QUADRATIC) then
             h0 = quadratic_gap(s%grid, s%rx, s%ry)
         else
@@ -941,6 +1012,18 @@ contains
         integer(c_int), intent(out) :: ierr
         call fc_set_reuse(handle, reuse_operators, warm_start, ierr)
     end subroutine fc_set_reuse_f77
+
+    subroutine fc_set_periodic_f77(handle, periodic, ierr) bind(C, name='fc_set_periodic_')
+        integer(c_int), intent(in) :: handle, periodic
+        integer(c_int), intent(out) :: ierr
+        call fc_set_periodic(handle, periodic, ierr)
+    end subroutine fc_set_periodic_f77
+
+    subroutine fc_set_threads_f77(handle, nthreads, ierr) bind(C, name='fc_set_threads_')
+        integer(c_int), intent(in) :: handle, nthreads
+        integer(c_int), intent(out) :: ierr
+        call fc_set_threads(handle, nthreads, ierr)
+    end subroutine fc_set_threads_f77
 
     subroutine fc_calculate_f77(handle, ierr) bind(C, name='fc_calculate_')
         integer(c_int), intent(in) :: handle

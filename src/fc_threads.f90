@@ -1,10 +1,10 @@
 !> Threads: the OpenMP thread count and FFTW's threaded planner.
 !!
 !! The count is a positive `threads` when one is given (`&solver threads`, the flat API,
-!! [[fc_set_threads]]), else `OMP_NUM_THREADS` when it is set, else 1 ([[fc_default_threads]]):
+!! [[set_thread_count]]), else `OMP_NUM_THREADS` when it is set, else 1 ([[fc_default_threads]]):
 !! without either a run is serial, as before threads existed (OpenMP's own default, one
 !! thread per core, would also apply to machines shared with other jobs).
-!! FFTW plans made after [[fc_set_threads]] split each transform over that many threads
+!! FFTW plans made after [[set_thread_count]] split each transform over that many threads
 !! (FFTW's threaded library, `fftw3_omp`); plans made before keep their count, so the
 !! driver sets the count before it builds the operators of a case.  The planner is made
 !! thread-safe once (`fftw_make_planner_thread_safe`), so handles of the flat API may be
@@ -35,7 +35,7 @@ module fc_threads
 
     logical, save :: fftw_threads_ready = .false.   ! set once, before any threaded plan
 
-    public :: fc_set_threads, fc_thread_count, fc_openmp_enabled, check_thread_count, fc_default_threads
+    public :: set_thread_count, fc_thread_count, fc_openmp_enabled, check_thread_count, fc_default_threads
 
 contains
 
@@ -80,7 +80,7 @@ contains
 
     !> Use `n` threads (n ≤ 0: [[fc_default_threads]]) for OpenMP regions and for FFTW plans
     !! made from now on.  Call it outside parallel regions.
-    subroutine fc_set_threads(n)
+    subroutine set_thread_count(n)
         integer, intent(in) :: n
         integer(c_int) :: ok
         integer :: m
@@ -96,6 +96,6 @@ contains
         !$omp end critical (fc_threads_init)
         !$ if (fftw_threads_ready) call fftw_plan_with_nthreads(int(omp_get_max_threads(), c_int))
         ok = 0
-    end subroutine fc_set_threads
+    end subroutine set_thread_count
 
 end module fc_threads

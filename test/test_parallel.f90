@@ -9,8 +9,12 @@ module test_parallel
     use fc_influence, only: fc_material, combine_material
     use fc_norm, only: fc_normal_operator, fc_normal_settings, fc_normal_result, build_normal_operator, solve_normal
     use fc_periodic, only: build_periodic_normal_operator
-    use fc_threads, only: fc_set_threads, fc_thread_count, check_thread_count, fc_openmp_enabled
+    use fc_threads, only: set_thread_count, fc_thread_count, check_thread_count, fc_openmp_enabled
     use fc_driver, only: run_driver
+    use, intrinsic :: iso_c_binding, only: c_int, c_double
+    use fc_legacy, only: fc_init, fc_finalize, fc_set_material, fc_set_grid, fc_set_gap_quadratic, fc_set_gap_array, &
+        fc_set_normal_force, fc_calculate, fc_get_pmax, fc_set_periodic, fc_set_threads, fc_get_error_message, FCL_OK, &
+        FCL_ORDER, FCL_INVALID_VALUE
     use fc_testing
     implicit none
     private
@@ -29,7 +33,9 @@ contains
             new_unittest('rough_rows_equal_whole_surface', test_rough_rows), &
             new_unittest('driver_periodic_wavy_partial_contact', test_driver_wavy), &
             new_unittest('driver_periodic_input_errors', test_driver_periodic_errors), &
-            new_unittest('driver_threads_key', test_driver_threads) ]
+            new_unittest('driver_threads_key', test_driver_threads), &
+            new_unittest('api_handles_from_threads', test_api_threads), &
+            new_unittest('api_periodic_wavy', test_api_periodic) ]
     end subroutine collect_parallel
 
     subroutine steel(mat)
@@ -55,21 +61,21 @@ contains
         nt0 = fc_thread_count()
         call steel(mat)
         call make_grid(grid, 64, 48, -2.0_dp, 2.0_dp, -1.5_dp, 1.5_dp, stat, em)
-        call fc_set_threads(1)
+        call set_thread_count(1)
         call build_normal_operator(nop, mat, grid)
         call solve_normal(nop, quadratic_gap(grid, 30.0_dp, 20.0_dp), set, r1, stat, em, fn=400.0_dp)
-        call fc_set_threads(2)
+        call set_thread_count(2)
         call build_normal_operator(nop, mat, grid)
         call solve_normal(nop, quadratic_gap(grid, 30.0_dp, 20.0_dp), set, r2, stat, em, fn=400.0_dp)
-        call fc_set_threads(nt0)
+        call set_thread_count(nt0)
         call check(error, r1%status == FC_CONVERGED .and. r2%status == FC_CONVERGED, 'both runs converge')
         call check(error, r1%iterations == r2%iterations, 'same iteration count')
         call check(error, maxval(abs(r1%pn - r2%pn)), 0.0_dp, '1 vs 2 threads: pressure', abs=1e-12_dp*r1%pmax)
         call check(error, r2%fn, r1%fn, '1 vs 2 threads: force', rel=1e-13_dp)
         if (fc_openmp_enabled()) then
-            call fc_set_threads(2)
-            call check(error, fc_thread_count() == 2, 'fc_set_threads(2) gives 2 threads')
-            call fc_set_threads(nt0)
+            call set_thread_count(2)
+            call check(error, fc_thread_count() == 2, 'set_thread_count(2) gives 2 threads')
+            call set_thread_count(nt0)
         end if
     end subroutine test_threads_same
 
@@ -289,9 +295,76 @@ contains
         p1 = json_value('hz', 'pmax')
         call drive(base//"&solver threads = 2 /", code, err)
         p2 = json_value('hz', 'pmax')
-        call fc_set_threads(0)
+        call set_thread_count(0)
         call check(error, code == 0, 'threads = 2 runs: '//err)
         call check(error, p2, p1, 'pmax with 2 threads', rel=1e-12_dp)
     end subroutine test_driver_threads
+
+    !> Four handles calculated at the same time from four OpenMP threads (creation, solve
+    !! and release in the threads) give the pressures of the same handles calculated one
+    !! after the other.
+    subroutine test_api_threads(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(c_double) :: pseq(4), ppar(4)
+        integer :: k, ok_count
+        ok_count = 0
+        do k = 1, 4
+            call one_handle(k, pseq(k))
+        end do
+        !$omp parallel do num_threads(4) default(shared) reduction(+:ok_count)
+        do k = 1, 4
+            call one_handle(k, ppar(k))
+            if (ppar(k) > 0) ok_count = ok_count + 1
+        end do
+        !$omp end parallel do
+        call check(error, ok_count == 4, 'every concurrent calculation succeeded')
+        call check(error, maxval(abs(ppar - pseq)), 0.0_dp, 'concurrent = sequential pmax', abs=1e-12_dp*maxval(pseq))
+    contains
+        subroutine one_handle(k, pmax)
+            integer, intent(in) :: k
+            real(c_double), intent(out) :: pmax
+            integer(c_int) :: h, ierr
+            pmax = -1
+            call fc_init(h, ierr)
+            if (ierr /= FCL_OK) return
+            call fc_set_material(h, 82000.0_c_double, 82000.0_c_double, 0.28_c_double, 0.28_c_double, ierr)
+            call fc_set_grid(h, 40_c_int + 8*k, 36_c_int, -2.0_c_double, 2.0_c_double, -1.5_c_double, 1.5_c_double, ierr)
+            call fc_set_gap_quadratic(h, 30.0_c_double, 20.0_c_double, ierr)
+            call fc_set_normal_force(h, 100.0_c_double*k, ierr)
+            call fc_set_threads(h, 1_c_int, ierr)
+            call fc_calculate(h, ierr)
+            if (ierr == FCL_OK) call fc_get_pmax(h, pmax, ierr)
+            call fc_finalize(h, ierr)
+        end subroutine one_handle
+    end subroutine test_api_threads
+
+    !> The flat API's periodic cell: Johnson's partial contact pmax = 2 sqrt(p̄ p*) as in the
+    !! driver test; without a force it is refused; a bad flag is refused.
+    subroutine test_api_periodic(error)
+        type(error_type), allocatable, intent(out) :: error
+        integer(c_int) :: h, ierr
+        real(c_double) :: pmax, h0(64*4)
+        real(dp) :: pstar, pbar, lam
+        integer :: i
+        lam = 2.0_dp
+        pstar = pi*82000.0_dp/(1 - 0.28_dp)*2.0e-4_dp/lam
+        pbar = 4.0_dp/(lam*0.125_dp)
+        do i = 1, 64
+            h0(i:256:64) = 2.0e-4_dp*(1 - cos(2*pi*(i - 0.5_dp)*lam/64/lam))
+        end do
+        call fc_init(h, ierr)
+        call fc_set_material(h, 82000.0_c_double, 82000.0_c_double, 0.28_c_double, 0.28_c_double, ierr)
+        call fc_set_grid(h, 64_c_int, 4_c_int, 0.0_c_double, 2.0_c_double, 0.0_c_double, 0.125_c_double, ierr)
+        call fc_set_gap_array(h, 256_c_int, h0, ierr)
+        call fc_set_periodic(h, 2_c_int, ierr)
+        call check(error, ierr == FCL_INVALID_VALUE, 'periodic = 2 refused')
+        call fc_set_periodic(h, 1_c_int, ierr)
+        call fc_set_normal_force(h, 4.0_c_double, ierr)
+        call fc_calculate(h, ierr)
+        call check(error, ierr == FCL_OK, 'periodic calculation')
+        call fc_get_pmax(h, pmax, ierr)
+        call check(error, real(pmax, dp), 2*sqrt(pbar*pstar), 'API periodic pmax vs Johnson', rel=0.01_dp)
+        call fc_finalize(h, ierr)
+    end subroutine test_api_periodic
 
 end module test_parallel
