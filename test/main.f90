@@ -13,6 +13,7 @@ program tester
     use test_auto, only: collect_auto
     use test_stability, only: collect_stability
     use test_legacy, only: collect_legacy
+    use test_operators, only: collect_operators
     use test_parallel, only: collect_parallel
     implicit none
     character(len=64) :: suite, only
@@ -54,6 +55,9 @@ program tester
     end if
     if (want('auto')) then
         call collect_auto(tests); call run_suite('auto', tests, only, npass, nfail)
+    end if
+    if (want('operators')) then
+        call collect_operators(tests); call run_suite('operators', tests, only, npass, nfail)
     end if
     if (want('parallel')) then
         call collect_parallel(tests); call run_suite('parallel', tests, only, npass, nfail)
