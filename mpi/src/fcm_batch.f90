@@ -24,7 +24,7 @@ module fcm_batch
     use, intrinsic :: iso_c_binding, only: c_int
     use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
     use fc_kinds, only: msg_len
-    use fc_input, only: fc_case_chunk, read_case_file
+    use fc_namelist, only: fc_case_chunk, read_case_file
     use fc_driver, only: run_driver, EXIT_OK, EXIT_INPUT_ERROR, EXIT_NOT_CONVERGED
     implicit none
     private
