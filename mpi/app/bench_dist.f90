@@ -18,10 +18,11 @@ program bench_dist
     use fc_norm, only: fc_normal_operator, fc_normal_settings, fc_normal_result, build_normal_operator, solve_normal
     use fc_periodic, only: build_periodic_normal_operator
     use fcm_fftw_mpi, only: fftw_mpi_init
+    use fc_threads, only: set_thread_count
     use fcm_norm
     use fcm_geometry
     implicit none
-    integer :: ierr, rank, nprocs, n, stat, i, u, nthreads, j0, j1
+    integer :: provided, ierr, rank, nprocs, n, stat, i, u, nthreads, j0, j1
     character(len=256) :: arg, kind, save_file, compare_file, csv_file, em
     logical :: serial
     real(dp) :: tol, t0, t1, t2, fn_target, fn_other, dpmax, dfn, c1, c2, cpu_solve, load1
@@ -35,7 +36,8 @@ program bench_dist
     type(fc_rough_params) :: par
     integer(int64) :: hwm, hwm_max
     integer :: iters, products
-    call mpi_init(ierr)
+    call mpi_init_thread(MPI_THREAD_FUNNELED, provided, ierr)   ! OpenMP regions make no MPI calls
+    call set_thread_count(0)   ! OMP_NUM_THREADS if set, else 1 thread per rank
     call fftw_mpi_init()
     call mpi_comm_rank(MPI_COMM_WORLD, rank, ierr)
     call mpi_comm_size(MPI_COMM_WORLD, nprocs, ierr)

@@ -6,8 +6,8 @@ program fastcontact_mpi_main
     use fcm_batch, only: run_mpi_batch
     implicit none
     character(len=4096), allocatable :: args(:)
-    integer :: i, exit_code, ierr
-    call mpi_init(ierr)
+    integer :: i, exit_code, ierr, provided
+    call mpi_init_thread(MPI_THREAD_FUNNELED, provided, ierr)   ! OpenMP regions make no MPI calls
     allocate (args(command_argument_count()))
     do i = 1, size(args)
         call get_command_argument(i, args(i))

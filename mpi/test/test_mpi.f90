@@ -12,13 +12,15 @@ program test_mpi
     use fc_norm, only: fc_normal_operator, fc_normal_settings, fc_normal_result, build_normal_operator, solve_normal
     use fc_periodic, only: build_periodic_normal_operator
     use fcm_fftw_mpi, only: fftw_mpi_init
+    use fc_threads, only: set_thread_count
     use fcm_norm
     use fcm_geometry
 use fcm_batch_tests, only: batch_tests
     implicit none
-    integer :: ierr, rank, nprocs, npass, nfail, tot(2)
+    integer :: provided, ierr, rank, nprocs, npass, nfail, tot(2)
     character(len=32) :: only
-    call mpi_init(ierr)
+    call mpi_init_thread(MPI_THREAD_FUNNELED, provided, ierr)   ! OpenMP regions make no MPI calls
+    call set_thread_count(0)   ! OMP_NUM_THREADS if set, else 1 thread per rank
     call fftw_mpi_init()
     call mpi_comm_rank(MPI_COMM_WORLD, rank, ierr)
     call mpi_comm_size(MPI_COMM_WORLD, nprocs, ierr)
