@@ -14,6 +14,7 @@ program tester
     use test_stability, only: collect_stability
     use test_legacy, only: collect_legacy
     use test_operators, only: collect_operators
+    use test_fem_ic, only: collect_fem_ic
     use test_parallel, only: collect_parallel
     implicit none
     character(len=64) :: suite, only
@@ -58,6 +59,9 @@ program tester
     end if
     if (want('operators')) then
         call collect_operators(tests); call run_suite('operators', tests, only, npass, nfail)
+    end if
+    if (want('fem_ic')) then
+        call collect_fem_ic(tests); call run_suite('fem_ic', tests, only, npass, nfail)
     end if
     if (want('parallel')) then
         call collect_parallel(tests); call run_suite('parallel', tests, only, npass, nfail)
