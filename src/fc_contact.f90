@@ -36,6 +36,7 @@ module fc_contact
     use fc_contact_types, only: FC_PROBLEM_NORMAL, FC_PROBLEM_TANGENTIAL, fc_normal_loading, fc_contact_settings, &
         fc_contact_result
     use fc_icfile, only: fc_ic_set, ic_set_kernel
+    use fc_periodic, only: build_periodic_normal_operator, check_periodic_grid, periodic_images_default
     implicit none
     private
 
@@ -61,6 +62,8 @@ module fc_contact
         type(fc_normal_operator) :: normal          !! A^zz and its preconditioner
         type(fc_tangential_operator) :: tangential  !! tangential (and coupling) blocks
         logical :: reuse = .true.                   !! .false.: rebuild at every solve (checks, benchmarks)
+        logical :: periodic = .false.               !! normal operator of the periodic half-space ([[fc_periodic]])
+        logical :: built_periodic = .false.         !! the normal operator held is the periodic one
         integer :: builds_normal = 0                !! normal operator builds so far
         integer :: builds_tangential = 0            !! tangential operator builds so far
         real(dp) :: setup_seconds_normal = 0        !! set-up time of the last [[ensure_operators]] (0: reused)
@@ -100,14 +103,19 @@ contains
         type(fc_grid), intent(in) :: grid
         type(fc_material), intent(in) :: material
         logical, intent(in) :: normal, tangential   !! which operators are needed
+        integer :: stat
+        character(len=256) :: errmsg   ! a periodic grid is checked by the callers ([[solve_contact]])
         ops%setup_seconds_normal = 0; ops%setup_seconds_tangential = 0
         if (normal) then
-            if (.not. (ops%reuse .and. ops%normal%matches(grid, material))) then
-                if (allocated(ops%ic%a)) then
+            if (.not. (ops%reuse .and. ops%normal%matches(grid, material) .and. (ops%built_periodic .eqv. ops%periodic))) then
+                if (ops%periodic) then
+                    call build_periodic_normal_operator(ops%normal, material, grid, stat, errmsg)
+                else if (allocated(ops%ic%a)) then
                     call build_normal_operator(ops%normal, material, grid, ops%ic)
                 else
                     call build_normal_operator(ops%normal, material, grid)
                 end if
+                ops%built_periodic = ops%periodic
                 ops%builds_normal = ops%builds_normal + 1
                 ops%setup_seconds_normal = ops%normal%setup_seconds
             end if
@@ -196,6 +204,18 @@ contains
                 'normal and tangential solves; use BCCG'
             return
         end if
+        if (ops%periodic) then
+            if (allocated(ops%ic%a)) then
+                stat = 1; errmsg = 'solve_contact: the periodic half-space and an influence-coefficient file exclude '// &
+                    'each other'; return
+            end if
+            call check_periodic_grid(grid, periodic_images_default, stat, errmsg)
+            if (stat == 0 .and. (tangential .or. use_fmg)) then
+                stat = 1; errmsg = 'solve_contact: the periodic half-space is available for normal contact with '// &
+                    "'bccg' or 'norm'"
+            end if
+            if (stat /= 0) return
+        end if
         if (allocated(ops%ic%a)) then
             if (use_fmg) then
                 stat = 1
@@ -212,6 +232,11 @@ contains
         call ensure_operators(ops, grid, material, normal=.not. use_fmg, tangential=tangential)
         call contact_rounds(ops%normal, ops%tangential, grid, material, h0, load, settings, res, stat, errmsg, &
                             state, surface)
+        if (ops%periodic) then
+            ! a periodic cell has no edge: the area cannot clip the contact
+            res%normal%touches_boundary = .false.
+            if (res%normal%status == FC_CONVERGED) res%normal%message = 'converged'
+        end if
         res%setup_seconds_normal = ops%setup_seconds_normal
         res%setup_seconds_tangential = ops%setup_seconds_tangential
     end subroutine solve_contact
