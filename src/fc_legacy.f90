@@ -21,7 +21,9 @@
 !! grid size/spacing and the material are unchanged; the previous solution warm-starts the
 !! next call and, in the transient modes, is the previous state (u', p') of the step.
 !!
-!! The handles live in [[fc_legacy_registry]]; every calculation goes through the library's
+!! Size: one bind(C) routine with its argument checks per entry of the documented API (30
+!! entries, ~650 lines), kept together so that this module, include/fc_legacy.h and
+!! doc/legacy_api.md list the same surface.  The handles live in [[fc_legacy_registry]]; every calculation goes through the library's
 !! orchestrator [[solve_contact]].  Fortran-77 callers link through [[fc_legacy_f77]].
 module fc_legacy
     use, intrinsic :: iso_c_binding, only: c_int, c_double, c_char, c_null_char
