@@ -214,7 +214,7 @@ contains
         do k = 1, 4
             p = fc_fem_params()
             p%mesh = meshes(k); p%load = loads(k); p%order = orders(k); p%stretch = 2
-            call fem_defaults(p, 4, 4)
+            call fem_defaults(p, 4, 4, dx, dy)
             call fem_validate(p, 4, 4, dx, dy, stat, msg)
             call check(error, stat == 0, msg); if (allocated(error)) return
             call build_fem_mesh(p, 4, 4, dx, dy, mesh, stat, msg)
