@@ -151,7 +151,7 @@ contains
         character(len=*), intent(out) :: errmsg
         stat = 0; errmsg = ''
         if (ic%content /= 'combined' .or. .not. allocated(ic%a)) then
-            stat = 1; errmsg = "influence coefficients: a set of content 'combined' is needed (combine the bodies first)"
+            stat = FC_ERR_VALUE; errmsg = "influence coefficients: a set of content 'combined' is needed (combine the bodies first)"
             return
         end if
         ops%ic = ic
@@ -206,19 +206,20 @@ contains
         end if
         if (ops%periodic) then
             if (allocated(ops%ic%a)) then
-                stat = 1; errmsg = 'solve_contact: the periodic half-space and an influence-coefficient file exclude '// &
-                    'each other'; return
+                stat = FC_ERR_UNSUPPORTED
+                errmsg = 'solve_contact: the periodic half-space and an influence-coefficient file exclude each other'
+                return
             end if
             call check_periodic_grid(grid, periodic_images_default, stat, errmsg)
             if (stat == 0 .and. (tangential .or. use_fmg)) then
-                stat = 1; errmsg = 'solve_contact: the periodic half-space is available for normal contact with '// &
-                    "'bccg' or 'norm'"
+                stat = FC_ERR_UNSUPPORTED
+                errmsg = "solve_contact: the periodic half-space is available for normal contact with 'bccg' or 'norm'"
             end if
             if (stat /= 0) return
         end if
         if (allocated(ops%ic%a)) then
             if (use_fmg) then
-                stat = 1
+                stat = FC_ERR_UNSUPPORTED
                 errmsg = 'solve_contact: FMG needs influence coefficients on every coarser grid, an influence-'// &
                     'coefficient file holds them for one grid: use BCCG or NORM'
                 return
