@@ -89,6 +89,7 @@ module fc_tangcg
 
     public :: build_tangential_operator, solve_tangential, coupling_displacements
     public :: solve_tangential_loading, solve_normal_tangential
+    public :: circle_newton   ! shared with the steady rolling solver (fc_rolling)
 
 contains
 
