@@ -179,8 +179,9 @@ contains
     end subroutine test_transient
 
     !> Carter's 2D solution on a strip (nx × 1 elements, width 2000a ≫ a), pressure
-    !! p0·√(1 − x²/a²), stick ratio c/a = 0.5: RMS traction error / (μ p0) ≤ 0.02 at
-    !! nx = 200 and first order (error ratio ≥ 1.6 per halving of h); creep force within 2 %.
+    !! p0·√(1 − x²/a²), stick ratio c/a = 0.5: RMS traction error / (μ p0) ≤ 0.005 at
+    !! nx = 200 (measured 0.0026) and first order (error ratio ≥ 1.6 per halving of h,
+    !! measured 1.9); creep force within 0.5 % (measured 0.2 %).
     subroutine test_carter(error)
         type(error_type), allocatable, intent(out) :: error
         integer, parameter :: ns(3) = [50, 100, 200]
@@ -216,14 +217,15 @@ contains
             call top%destroy()
             deallocate (pn, q)
         end do
-        call check(error, errs(3) <= 0.02_dp, 'Carter traction error at nx = 200')
+        call check(error, errs(3) <= 0.005_dp, 'Carter traction error at nx = 200')
         call check(error, errs(1)/errs(2) >= 1.6_dp .and. errs(2)/errs(3) >= 1.6_dp, 'Carter error O(h)')
-        call check(error, ratio, carter_force_ratio(xi, p0, mu, mat%g, mat%nu), 'Carter Fx/(mu Fn)', rel=0.02_dp)
+        call check(error, ratio, carter_force_ratio(xi, p0, mu, mat%g, mat%nu), 'Carter Fx/(mu Fn)', rel=0.005_dp)
     end subroutine test_carter
 
     !> Kalker's C11, C22, C23 (circle, ν = 0.25: 4.12, 3.67, 1.47) from full adhesion on a
-    !! 40² grid, with ab taken from the discrete area: within 4 % (the discretisation error
-    !! of this grid; the grid-convergence study in bench-rolling reaches 1 %).
+    !! 40² grid, with ab taken from the discrete area: C11, C22 within 2 %, C23 within 3 %
+    !! (measured +0.4 %, +0.8 %, −2.0 %: the discretisation error of this grid; the
+    !! grid-convergence study of bench-rolling goes further).
     subroutine test_kalker(error)
         type(error_type), allocatable, intent(out) :: error
         type(fc_grid) :: grid
@@ -249,9 +251,9 @@ contains
         call solve_rolling(top, pn, rl, rs, res, stat, msg)
         c23 = -res%fy/(ab**1.5_dp*rl%phi)
         call check(error, k11, 4.12_dp, 'table C11', rel=1e-12_dp)
-        call check(error, c11, k11, 'C11', rel=0.04_dp)
-        call check(error, c22, k22, 'C22', rel=0.04_dp)
-        call check(error, c23, k23, 'C23', rel=0.04_dp)
+        call check(error, c11, k11, 'C11', rel=0.02_dp)
+        call check(error, c22, k22, 'C22', rel=0.02_dp)
+        call check(error, c23, k23, 'C23', rel=0.03_dp)
         call check(error, res%nslip == 0, 'full adhesion')
         call top%destroy()
     end subroutine test_kalker
