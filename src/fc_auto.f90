@@ -47,10 +47,11 @@ module fc_auto
     use fc_norm, only: fc_normal_result
     use fc_tangcg, only: fc_tangential_result
     use fc_contact, only: fc_contact_operators, fc_contact_loading, fc_contact_settings, fc_contact_result, &
-        solve_contact, FC_PROBLEM_TANGENTIAL
+        solve_contact, FC_PROBLEM_TANGENTIAL, FC_PROBLEM_ROLLING
     use fc_hertz, only: fc_hertz_solution, fc_cattaneo_solution, hertz_from_approach, hertz_from_force, &
         cattaneo_mindlin
     use fc_fmg, only: fc_quadratic_surface, fc_punch_rough_surface, fc_wavy_surface
+    use fc_rolling_batch, only: is_rolling_sequence, rolling_sequence
     use fc_input, only: fc_case_input, setup_case, is_tangential, tangential_loading, fmt_real, grid_is_auto, &
         is_line_contact, is_given
     implicit none
@@ -97,6 +98,7 @@ module fc_auto
         real(dp), allocatable :: h0(:, :)                  !! final undeformed distance
         type(fc_normal_result) :: res                      !! final normal solution
         type(fc_tangential_result) :: tres                 !! final tangential solution
+        real(dp), allocatable :: sequence(:, :)            !! rolling sweep / transient steps: one row each
         logical :: tangential = .false.                    !! a tangential solve was done
         logical :: tangential_run = .false.                !! the final grid's tangential stage ran
         integer :: rounds = 0                              !! Panagiotopoulos rounds (final grid)
@@ -156,7 +158,8 @@ contains
                 tang = .false.
                 call add(out%reductions, 'mu = 0: frictionless, no tangential solve (tractions are zero)')
             else if (out%material%k == 0 .and. s%phi == 0 .and. merge(s%fx == 0 .and. s%fy == 0, &
-                                                                        s%xi == 0 .and. s%eta == 0, s%tforce_prescribed)) then
+                                                                        s%xi == 0 .and. s%eta == 0, s%tforce_prescribed) &
+                     .and. .not. is_rolling_sequence(s)) then
                 tang = .false.
                 call add(out%reductions, 'no tangential loading (zero shifts or forces, K = 0): no tangential solve '// &
                     '(tractions are zero)')
@@ -351,6 +354,11 @@ contains
         if (tang) then
             load%problem = FC_PROBLEM_TANGENTIAL
             load%tangential = tangential_loading(sl)
+            if (sl%problem == 'rolling') then
+                load%problem = FC_PROBLEM_ROLLING
+                load%mu_kinetic = sl%mu_kinetic
+            end if
+            settings%rolling = sl%rsettings
         end if
         ! warm starts from the previous grid: the normal stage (not FMG, which starts from its
         ! own nested iteration) of normal and decoupled problems, the tangential stage of
@@ -360,7 +368,9 @@ contains
         if (decoupled .and. allocated(px0) .and. allocated(py0)) then
             load%px_start = px0; load%py_start = py0
         end if
-        if (use_fmg) then
+        if (tang .and. is_rolling_sequence(sl)) then
+            call rolling_sequence(sl, ops, out%grid, mat, out%h0, load, settings, res, out%sequence, stat, errmsg)
+        else if (use_fmg) then
             call fmg_solve()
         else
             call solve_contact(ops, out%grid, mat, out%h0, load, settings, res, stat, errmsg)

@@ -28,12 +28,15 @@ module fc_contact
     use fc_tangcg, only: fc_tangential_operator, fc_tangential_settings, fc_tangential_result, fc_tangential_loading, &
         build_tangential_operator, solve_tangential_loading, coupling_displacements, EL_EXTERIOR, EL_ADHESION, EL_SLIP
     use fc_fmg, only: fc_fmg_settings, fc_fmg_stats, fc_surface, solve_normal_fmg
+    use fc_rolling, only: fc_rolling_settings, fc_rolling_loading, solve_rolling_loading
     implicit none
     private
 
     !> Problem kinds: what the tangential stage solves (one dispatch point in [[tangential_stage]]).
     integer, parameter, public :: FC_PROBLEM_NORMAL = 1      !! normal contact only
     integer, parameter, public :: FC_PROBLEM_TANGENTIAL = 2  !! normal, then tangential (shifts or forces)
+    !> normal, then steady-state rolling in +x (`tangential%xi, eta, phi` are creepages [-, -, 1/mm])
+    integer, parameter, public :: FC_PROBLEM_ROLLING = 3
 
     !> Transient modes: how the previous state of a sequence enters the step.
     integer, parameter, public :: FC_FROM_REST = 0          !! u' = 0: a steady (static) problem; warm start only
@@ -58,6 +61,7 @@ module fc_contact
         real(dp), allocatable :: px_start(:, :), py_start(:, :)  !! tangential warm start [N/mm²] (both or none)
         integer :: transient = FC_FROM_REST               !! how a [[fc_contact_state]] enters the step
         real(dp) :: dq = 0                                !! rolling step [mm] (FC_TRANSIENT_ROLLING)
+        real(dp) :: mu_kinetic = -1                       !! FC_PROBLEM_ROLLING: kinetic friction (< 0: = mu)
     end type fc_contact_loading
 
     !> Solver settings of both stages.
@@ -65,6 +69,7 @@ module fc_contact
         type(fc_normal_settings) :: normal          !! solver 'bccg', 'norm' or 'fmg'
         type(fc_tangential_settings) :: tangential  !! solver 'tangcg' or 'convexgs'
         type(fc_fmg_settings) :: fmg                !! used when normal%solver = 'fmg'
+        type(fc_rolling_settings) :: rolling        !! FC_PROBLEM_ROLLING: 'gmres', 'march' or 'steadygs'
     end type fc_contact_settings
 
     !> Influence operators of one grid and material, reused while they match.
@@ -180,6 +185,12 @@ contains
         end if
         tangential = load%problem /= FC_PROBLEM_NORMAL
         use_fmg = settings%normal%solver == 'fmg'
+        if (load%problem == FC_PROBLEM_ROLLING .and. load%transient /= FC_FROM_REST) then
+            stat = 1
+            errmsg = 'solve_contact: steady rolling has no transient mode (use FC_PROBLEM_TANGENTIAL with '// &
+                'FC_TRANSIENT_ROLLING for transient rolling)'
+            return
+        end if
         if (use_fmg .and. tangential .and. material%k /= 0) then
             stat = 1
             errmsg = 'solve_contact: FMG is not available for dissimilar materials (K /= 0): the coupling alternates '// &
@@ -421,11 +432,32 @@ contains
                         res%tangential, stat, errmsg, ux_prev=uxp, uy_prev=uyp, px_start=pxs, py_start=pys, &
                         offset_x=uxn, offset_y=uyn)
                 end if
+            case (FC_PROBLEM_ROLLING)
+                call rolling_stage(pn)
             case default
                 stat = 1
                 write (errmsg, '(a,i0,a)') 'solve_contact: problem kind ', load%problem, ' has no tangential stage'
             end select
         end subroutine tangential_stage
+
+        !> Steady rolling (creepages or creep forces); a warm start from the state also
+        !! starts the creep-force loop from the previous creepages.
+        subroutine rolling_stage(pn)
+            real(dp), intent(in) :: pn(:, :)
+            type(fc_rolling_loading) :: rl
+            rl%mu = load%tangential%mu; rl%mu_kinetic = load%mu_kinetic
+            rl%xi = load%tangential%xi; rl%eta = load%tangential%eta; rl%phi = load%tangential%phi
+            rl%fx = load%tangential%fx; rl%fy = load%tangential%fy
+            rl%force_prescribed = load%tangential%force_prescribed
+            if (has_guess) then
+                call solve_rolling_loading(top, pn, rl, settings%rolling, res%tangential, stat, errmsg, &
+                    px_start=pxs, py_start=pys, offset_x=uxn, offset_y=uyn, xi_start=guess_base(1), &
+                    eta_start=guess_base(2))
+            else
+                call solve_rolling_loading(top, pn, rl, settings%rolling, res%tangential, stat, errmsg, &
+                    px_start=pxs, py_start=pys, offset_x=uxn, offset_y=uyn)
+            end if
+        end subroutine rolling_stage
 
         !> Warm start: elements that slipped in the previous state start on the new traction
         !! bound (slightly outside, so that TangCG starts them in slip) in their previous

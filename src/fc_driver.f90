@@ -25,6 +25,7 @@ module fc_driver
     use fc_norm, only: fc_normal_result
     use fc_tangcg, only: fc_tangential_result, EL_EXTERIOR, EL_ADHESION
     use fc_contact, only: fc_contact_operators
+    use fc_rolling_batch, only: write_sequence_csv, sweep_header, steps_header
     use fc_mg2d, only: fc_strip_problem, fc_mg2d_settings, fc_mg2d_result, strip_model_problem, solve_strip_mg, &
         solve_strip_fft_rsm
     use fc_hertz, only: hertz_from_approach, hertz_from_force
@@ -288,6 +289,19 @@ contains
                 end if
             else
                 call remove_file(dir//'/'//trim(state%name)//'.csv')
+            end if
+            if (allocated(auto%sequence)) then
+                ! rolling: creep-force curve or transient steps, one row each
+                if (state%problem == 'transient_rolling') then
+                    call write_sequence_csv(dir//'/'//trim(state%name)//'_steps.csv', steps_header, auto%sequence, &
+                                            stat, errmsg)
+                else
+                    call write_sequence_csv(dir//'/'//trim(state%name)//'_creep.csv', sweep_header, auto%sequence, &
+                                            stat, errmsg)
+                end if
+                if (stat /= 0) then
+                    call case_error(); return
+                end if
             end if
             call system_clock(t2)
             s%cpu_seconds = real(t2 - t0, dp)/rate

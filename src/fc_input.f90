@@ -39,6 +39,15 @@
 !!   MP1–MP3 of thesis §3.2.5 (A^xx p = u on an nx×1 grid of [−4,4]×[−50,50] mm) with
 !!   `&geometry kind = 'strip2d'` and `&grid nx` (power of 2, ≥ 4); the model problem fixes
 !!   material, area and loading; tol defaults to 1e-8 (thesis) unless given.
+!! * `&case problem = 'rolling' | 'transient_rolling'` — body 1 rolls in +x (doc/rolling.md):
+!!   `&tangential xi, eta` are creepages [-] and phi the spin creepage [1/mm] (or fx, fy
+!!   prescribed, steady only); mu_kinetic (≤ mu, default mu) in slip; `&solver rolling =
+!!   'gmres'` ('march', 'steadygs': references).  'rolling' may sweep one loading value:
+!!   `&tangential sweep = 'xi' | 'eta' | 'phi' | 'fx' | 'fy', sweep_from, sweep_to,
+!!   sweep_n = 20` (2 … 1000 points, warm-started, one CSV row each in NAME_creep.csv).
+!!   'transient_rolling': dq (travelled distance per step, default dx) and nsteps (default:
+!!   four times the area length travelled, ≤ 100000); per step the shift is creepage·dq; one
+!!   CSV row per step in NAME_steps.csv.
 !! * `&output dir, table` — dir = 'out' (the command line `--out` wins), table = .true.
 !!
 !! Every value persists from case to case except `name`.  A case with an input error does
@@ -52,6 +61,7 @@ module fc_input
     use fc_norm, only: fc_normal_settings
     use fc_fmg, only: fc_fmg_settings, fmg_cycle_from_name
     use fc_tangcg, only: fc_tangential_settings, fc_tangential_loading
+    use fc_rolling, only: fc_rolling_settings
     implicit none
     private
 
@@ -119,6 +129,14 @@ module fc_input
         real(dp) :: phi = 0                        !! spin shift [rad]
         real(dp) :: fx = 0, fy = 0                 !! prescribed tangential forces [N] (tforce_prescribed)
         logical :: tforce_prescribed = .false.     !! fx or fy given (else xi, eta)
+        real(dp) :: mu_kinetic = -1                !! rolling: kinetic friction (< 0: = mu)
+        real(dp) :: dq = 0                         !! transient rolling: distance per step [mm] (0: dx)
+        integer :: nsteps = 0                      !! transient rolling: steps (0: area length travelled 4 times)
+        character(len=8) :: sweep = ''             !! rolling: swept value 'xi', 'eta', 'phi', 'fx', 'fy' ('' none)
+        real(dp) :: sweep_from = 0, sweep_to = 0   !! rolling: range of the swept value
+        integer :: sweep_n = 20                    !! rolling: points of the sweep
+        character(len=16) :: rolling = 'gmres'     !! &solver rolling as given (checked, then copied)
+        type(fc_rolling_settings) :: rsettings     !! steady rolling solver settings
         ! &solver
         type(fc_normal_settings) :: settings       !! normal solver settings
         character(len=32) :: normal_solver = 'bccg'  !! &solver normal as given (checked, then copied)
@@ -542,7 +560,8 @@ contains
     !> Whether the case solves the tangential problem too.
     pure logical function is_tangential(s)
         type(fc_case_input), intent(in) :: s
-        is_tangential = s%problem == 'tangential' .or. s%problem == 'normal+tangential'
+        is_tangential = s%problem == 'tangential' .or. s%problem == 'normal+tangential' .or. &
+            s%problem == 'rolling' .or. s%problem == 'transient_rolling'
     end function is_tangential
 
     !> The tangential loading of a validated case.
@@ -700,12 +719,18 @@ contains
         type(fc_case_input), intent(inout) :: s
         integer, intent(out) :: ios
         character(len=*), intent(out) :: iomsg
-        real(dp) :: mu, xi, eta, phi, fx, fy
-        namelist /tangential/ mu, xi, eta, phi, fx, fy
+        real(dp) :: mu, xi, eta, phi, fx, fy, mu_kinetic, dq, sweep_from, sweep_to
+        integer :: nsteps, sweep_n
+        character(len=8) :: sweep
+        namelist /tangential/ mu, xi, eta, phi, fx, fy, mu_kinetic, dq, nsteps, sweep, sweep_from, sweep_to, sweep_n
         mu = s%mu; xi = s%xi; eta = s%eta; phi = s%phi; fx = s%fx; fy = s%fy
+        mu_kinetic = s%mu_kinetic; dq = s%dq; nsteps = s%nsteps; sweep = s%sweep; sweep_from = s%sweep_from
+        sweep_to = s%sweep_to; sweep_n = s%sweep_n
         read (text, nml=tangential, iostat=ios, iomsg=iomsg)
         if (ios /= 0) return
         s%mu = mu; s%xi = xi; s%eta = eta; s%phi = phi; s%fx = fx; s%fy = fy
+        s%mu_kinetic = mu_kinetic; s%dq = dq; s%nsteps = nsteps; s%sweep = lower(sweep); s%sweep_from = sweep_from
+        s%sweep_to = sweep_to; s%sweep_n = sweep_n
     end subroutine read_tangential_group
 
     subroutine read_solver_group(text, s, ios, iomsg)
@@ -721,15 +746,15 @@ contains
         real(dp) :: tol, omega, beta, target
         integer :: maxit, inner_maxit, inner_k, max_levels
         logical :: precondition, precondition_tangential, deflation, target_pmax
-        character(len=16) :: model
+        character(len=16) :: model, rolling
         namelist /solver/ normal, tangential, tol, maxit, inner_maxit, precondition, precondition_tangential, &
-            deflation, inner_k, cycle, omega, beta, target, target_pmax, max_levels, model, smoother, strip
+            deflation, inner_k, cycle, omega, beta, target, target_pmax, max_levels, model, smoother, strip, rolling
         normal = s%normal_solver; tangential = s%tangential; tol = s%settings%tol; maxit = s%settings%maxit
         inner_maxit = s%settings%inner_maxit; precondition = s%settings%precondition
         precondition_tangential = s%precondition_tangential
         deflation = s%settings%deflation; inner_k = s%inner_k; cycle = s%cycle; omega = s%omega; beta = s%beta
         target = s%target; target_pmax = s%target_pmax; max_levels = s%max_levels; model = s%model
-        smoother = s%smoother; strip = s%strip
+        smoother = s%smoother; strip = s%strip; rolling = s%rolling
         read (text, nml=solver, iostat=ios, iomsg=iomsg)
         if (ios /= 0) return
         s%normal_solver = lower(normal); s%tangential = lower(tangential); s%settings%tol = tol
@@ -737,7 +762,7 @@ contains
         s%precondition_tangential = precondition_tangential
         s%settings%deflation = deflation; s%inner_k = inner_k; s%cycle = cycle; s%omega = omega; s%beta = beta
         s%target = target; s%target_pmax = target_pmax; s%max_levels = max_levels; s%model = lower(model)
-        s%smoother = lower(smoother); s%strip = lower(strip)
+        s%smoother = lower(smoother); s%strip = lower(strip); s%rolling = lower(rolling)
     end subroutine read_solver_group
 
     subroutine read_output_group(text, s, ios, iomsg)
@@ -765,10 +790,10 @@ contains
         case ('geometry')
             keys = 'kind rx ry diameter sigma gamma m_modes n_modes seed amplitude wavelength_x wavelength_y file length'
         case ('normal');     keys = 'approach fn'
-        case ('tangential'); keys = 'mu xi eta phi fx fy'
+        case ('tangential'); keys = 'mu xi eta phi fx fy mu_kinetic dq nsteps sweep sweep_from sweep_to sweep_n'
         case ('solver')
             keys = 'normal tangential tol maxit inner_maxit inner_k precondition precondition_tangential deflation '// &
-                'cycle omega beta smoother strip target target_pmax max_levels model'
+                'cycle omega beta smoother strip target target_pmax max_levels model rolling'
         case ('output');     keys = 'dir table'
         case default;        keys = ''
         end select
@@ -889,10 +914,11 @@ contains
             return
         end if
         select case (s%problem)
-        case ('normal', 'tangential', 'normal+tangential', 'hertz', 'strip_mp1', 'strip_mp2', 'strip_mp3')
+        case ('normal', 'tangential', 'normal+tangential', 'hertz', 'strip_mp1', 'strip_mp2', 'strip_mp3', 'rolling', &
+              'transient_rolling')
         case default
             errmsg = "&case problem = '"//trim(s%problem)//"': unknown problem; use 'normal', 'normal+tangential', "// &
-                "'tangential', 'hertz' or 'strip_mp1', 'strip_mp2', 'strip_mp3'"
+                "'tangential', 'rolling', 'transient_rolling', 'hertz' or 'strip_mp1', 'strip_mp2', 'strip_mp3'"
             return
         end select
         if (strip_model_index(s) > 0) then
@@ -1152,6 +1178,8 @@ contains
         s%tsettings%tol = s%settings%tol
         s%tsettings%maxit = s%settings%maxit
         s%tsettings%precondition = s%precondition_tangential
+        call validate_rolling(s, errmsg)
+        if (len_trim(errmsg) > 0) return
         ! &output
         if (len_trim(s%dir) == 0) then
             errmsg = "&output dir = '': must not be empty"; return
@@ -1168,6 +1196,83 @@ contains
 
     !> Check the multigrid keys of `&solver` (cycle, omega, beta, smoother, strip) whenever
     !! given and copy them into `s%fmg`; errmsg ≠ '' on a bad value.
+    !> Rolling keys: &tangential mu_kinetic, dq, nsteps, sweep*, &solver rolling (checked
+    !! whenever given; noted when the problem does not use them); fills s%rsettings.
+    subroutine validate_rolling(s, errmsg)
+        type(fc_case_input), intent(inout) :: s
+        character(len=*), intent(out) :: errmsg
+        logical :: steady, transient
+        errmsg = ''
+        steady = s%problem == 'rolling'
+        transient = s%problem == 'transient_rolling'
+        select case (s%rolling)
+        case ('gmres', 'march', 'steadygs')
+            s%rsettings%solver = trim(s%rolling)
+        case default
+            errmsg = "&solver rolling = '"//trim(s%rolling)//"': unknown solver; use 'gmres', 'march' or 'steadygs'"
+            return
+        end select
+        s%rsettings%tol = s%settings%tol
+        s%rsettings%maxit = s%settings%maxit
+        if (is_given(s, 'tangential', 'mu_kinetic')) then
+            if (.not. (s%mu_kinetic >= 0 .and. s%mu_kinetic <= s%mu)) then
+                errmsg = '&tangential mu_kinetic = '//fmt_real(s%mu_kinetic)//': must be in [0, mu = '//fmt_real(s%mu)// &
+                    '] (kinetic friction in slip)'
+                return
+            end if
+            if (.not. steady) s%notes = s%notes//"&tangential mu_kinetic: used only by problem = 'rolling'. "
+        end if
+        if (is_given(s, 'tangential', 'dq')) then
+            if (.not. (s%dq > 0 .and. s%dq < huge(1.0_dp))) then
+                errmsg = '&tangential dq = '//fmt_real(s%dq)//': must be > 0 (travelled distance per step, mm)'; return
+            end if
+            if (.not. transient) s%notes = s%notes//"&tangential dq: used only by problem = 'transient_rolling'. "
+        end if
+        if (is_given(s, 'tangential', 'nsteps')) then
+            if (s%nsteps < 0 .or. s%nsteps > 100000) then
+                errmsg = '&tangential nsteps = '//fmt_int(s%nsteps)//': must be in [0, 100000] (0: automatic)'; return
+            end if
+            if (.not. transient) s%notes = s%notes//"&tangential nsteps: used only by problem = 'transient_rolling'. "
+        end if
+        if (transient .and. s%tforce_prescribed) then
+            errmsg = "&tangential fx, fy: problem = 'transient_rolling' takes creepages xi, eta, phi"; return
+        end if
+        if ((transient .or. (steady .and. len_trim(s%sweep) > 0)) .and. s%target > 0) then
+            errmsg = '&solver target = '//fmt_real(s%target)//": not available for a creep-force sweep or "// &
+                "problem = 'transient_rolling' (give a fixed grid)"
+            return
+        end if
+        if (len_trim(s%sweep) > 0) then
+            select case (s%sweep)
+            case ('xi', 'eta', 'phi', 'fx', 'fy')
+            case default
+                errmsg = "&tangential sweep = '"//trim(s%sweep)//"': use 'xi', 'eta', 'phi', 'fx' or 'fy' "// &
+                    "(or '' for none)"
+                return
+            end select
+            if (.not. steady) then
+                errmsg = "&tangential sweep = '"//trim(s%sweep)//"': only for problem = 'rolling'"; return
+            end if
+            if (.not. (is_given(s, 'tangential', 'sweep_from') .and. is_given(s, 'tangential', 'sweep_to'))) then
+                errmsg = "&tangential sweep = '"//trim(s%sweep)//"': sweep_from and sweep_to are required"; return
+            end if
+            if (.not. (abs(s%sweep_from) < 1e6_dp .and. abs(s%sweep_to) < 1e6_dp)) then
+                errmsg = '&tangential sweep_from = '//fmt_real(s%sweep_from)//', sweep_to = '//fmt_real(s%sweep_to)// &
+                    ': must be finite, |value| < 1e6'
+                return
+            end if
+            if (s%sweep_n < 2 .or. s%sweep_n > 1000) then
+                errmsg = '&tangential sweep_n = '//fmt_int(s%sweep_n)//': must be in [2, 1000]'; return
+            end if
+            if ((s%sweep == 'fx' .or. s%sweep == 'fy') .neqv. s%tforce_prescribed) then
+                errmsg = "&tangential sweep = '"//trim(s%sweep)//"': sweep 'fx'/'fy' with prescribed forces (give fx "// &
+                    "or fy), 'xi'/'eta' with creepages"
+                if (s%sweep == 'phi') errmsg = ''
+                if (len_trim(errmsg) > 0) return
+            end if
+        end if
+    end subroutine validate_rolling
+
     !> &solver tol > 0 and maxit >= 1 (shared by every problem kind).
     subroutine validate_iteration_keys(s, errmsg)
         type(fc_case_input), intent(in) :: s
