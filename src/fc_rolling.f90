@@ -55,6 +55,18 @@ module fc_rolling
         logical :: force_prescribed = .false.
     end type fc_rolling_loading
 
+    !> What a rolling case adds to a contact case: the kinetic friction of steady rolling,
+    !! and a sequence — a creep-force sweep of one loading value, or transient rolling steps.
+    type, public :: fc_rolling_case
+        real(dp) :: mu_kinetic = -1        !! steady rolling: kinetic friction in slip (< 0: = mu)
+        logical :: transient = .false.     !! transient rolling: steps of dq from rest
+        real(dp) :: dq = 0                 !! transient: distance per step [mm] (0: dx)
+        integer :: nsteps = 0              !! transient: steps (0: the area length travelled 4 times)
+        character(len=8) :: sweep = ''     !! steady: swept value 'xi', 'eta', 'phi', 'fx', 'fy' ('': none)
+        real(dp) :: sweep_from = 0, sweep_to = 0  !! range of the swept value (ends included)
+        integer :: sweep_n = 20            !! points of the sweep
+    end type fc_rolling_case
+
     real(dp), parameter :: relax = 0.5_dp   !! SteadyGS under-relaxation factor
 
     public :: solve_rolling, solve_rolling_loading, convective_difference, rolling_slip

@@ -8,7 +8,7 @@ module fc_rolling_batch
     use fc_influence, only: fc_material
     use fc_contact, only: fc_contact_operators, fc_contact_loading, fc_contact_settings, fc_contact_result, &
         fc_contact_state, solve_contact, FC_PROBLEM_ROLLING, FC_PROBLEM_TANGENTIAL, FC_TRANSIENT_ROLLING
-    use fc_input, only: fc_case_input
+    use fc_scene, only: fc_case
     implicit none
     private
 
@@ -24,8 +24,8 @@ contains
 
     !> Whether the case is a sequence (creep-force sweep or transient rolling).
     pure logical function is_rolling_sequence(s)
-        type(fc_case_input), intent(in) :: s
-        is_rolling_sequence = s%problem == 'transient_rolling' .or. (s%problem == 'rolling' .and. len_trim(s%sweep) > 0)
+        type(fc_case), intent(in) :: s
+        is_rolling_sequence = s%rolling%transient .or. (s%problem == FC_PROBLEM_ROLLING .and. len_trim(s%rolling%sweep) > 0)
     end function is_rolling_sequence
 
     !> Run the sequence of case `s` with the loading and settings prepared for one solve
@@ -34,7 +34,7 @@ contains
     !! (last column: the status code; written as its name).  The sequence
     !! stops at the first point or step that does not converge.
     subroutine rolling_sequence(s, ops, grid, mat, h0, load_in, settings, res, rows, stat, errmsg)
-        type(fc_case_input), intent(in) :: s
+        type(fc_case), intent(in) :: s
         type(fc_contact_operators), intent(inout) :: ops
         type(fc_grid), intent(in) :: grid
         type(fc_material), intent(in) :: mat
@@ -53,26 +53,27 @@ contains
         stat = 0; errmsg = ''
         load = load_in
         state%warm_start = .true.
-        if (s%problem == 'transient_rolling') then
-            dq = s%dq
+        if (s%rolling%transient) then
+            dq = s%rolling%dq
             if (dq == 0) dq = grid%dx
-            n = s%nsteps
+            n = s%rolling%nsteps
             if (n == 0) n = max(1, ceiling(4*(grid%xmax - grid%xmin)/dq))
             load%problem = FC_PROBLEM_TANGENTIAL
             load%transient = FC_TRANSIENT_ROLLING
             load%dq = dq
             load%tangential%force_prescribed = .false.
-            load%tangential%xi = s%xi*dq; load%tangential%eta = s%eta*dq; load%tangential%phi = s%phi*dq
+            load%tangential%xi = s%tangential%xi*dq; load%tangential%eta = s%tangential%eta*dq
+            load%tangential%phi = s%tangential%phi*dq
             allocate (rows(n, 12))
         else
-            n = s%sweep_n
+            n = s%rolling%sweep_n
             allocate (rows(n, 14))
         end if
         rows = 0
         do k = 1, n
-            if (s%problem /= 'transient_rolling') then
-                value = s%sweep_from + (s%sweep_to - s%sweep_from)*(k - 1)/real(n - 1, dp)
-                select case (s%sweep)
+            if (.not. s%rolling%transient) then
+                value = s%rolling%sweep_from + (s%rolling%sweep_to - s%rolling%sweep_from)*(k - 1)/real(n - 1, dp)
+                select case (s%rolling%sweep)
                 case ('xi'); load%tangential%xi = value
                 case ('eta'); load%tangential%eta = value
                 case ('phi'); load%tangential%phi = value
@@ -91,7 +92,7 @@ contains
             mufn = load%tangential%mu*res%normal%fn
             if (.not. mufn > 0) mufn = 1
             associate (t => res%tangential)
-                if (s%problem == 'transient_rolling') then
+                if (s%rolling%transient) then
                     rows(k, :) = [real(k, dp), k*dq, t%fx, t%fy, t%mz, t%fx/mufn, t%fy/mufn, real(t%nadh, dp), &
                                   real(t%nslip, dp), real(t%iterations, dp), secs, real(res%status, dp)]
                 else
@@ -104,9 +105,10 @@ contains
                 exit
             end if
         end do
-        if (s%problem == 'transient_rolling') then
+        if (s%rolling%transient) then
             ! report the creepages (the steps used creepage·dq as shifts)
-            res%tangential%xi = s%xi; res%tangential%eta = s%eta; res%tangential%phi = s%phi
+            res%tangential%xi = s%tangential%xi; res%tangential%eta = s%tangential%eta
+            res%tangential%phi = s%tangential%phi
         end if
     end subroutine rolling_sequence
 

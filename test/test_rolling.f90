@@ -9,6 +9,7 @@ module test_rolling
     use fc_rolling
     use fc_rolling_ref
     use fc_legacy
+    use fc_driver, only: run_driver
     use fc_testing
     implicit none
     private
@@ -29,7 +30,10 @@ contains
             new_unittest('full_slip', test_full_slip), &
             new_unittest('symmetry_and_signs', test_symmetry), &
             new_unittest('prescribed_creep_force', test_force), &
-            new_unittest('status_and_input_errors', test_status) &
+            new_unittest('status_and_input_errors', test_status), &
+            new_unittest('driver_rolling_sweep_transient', test_driver_cases), &
+            new_unittest('driver_rolling_input_errors', test_driver_errors), &
+            new_unittest('flat_api_rolling', test_flat_api) &
             ]
     end subroutine collect_rolling
 
@@ -390,5 +394,219 @@ contains
                    'adhesion within the static bound')
         call top%destroy()
     end subroutine test_status
+
+    ! ------------------------------------------------------------ driver and flat API ----
+
+    !> Cattaneo scene as a case file, problem and tangential group given.
+    function scene(name, problem, tangential) result(text)
+        character(len=*), intent(in) :: name, problem, tangential
+        character(len=:), allocatable :: text
+        character(len=*), parameter :: nl = new_line('a')
+        text = "&case name = '"//name//"', problem = '"//problem//"' /"//nl// &
+            '&material g1 = 200.0, g2 = 200.0, nu1 = 0.42, nu2 = 0.42 /'//nl// &
+            '&grid nx = 30, ny = 25, xmin = -1.2857, xmax = 1.2857, ymin = -1.2857, ymax = 1.2857 /'//nl// &
+            "&geometry kind = 'quadratic', rx = 50.0, ry = 50.0 /"//nl// &
+            '&normal fn = 9.1954 /'//nl//'&tangential '//tangential//' /'//nl
+    end function scene
+
+    !> Run the driver on `text` in a fresh directory; exit code and the error text.
+    subroutine drive(text, dir, code, errors)
+        character(len=*), intent(in) :: text
+        character(len=:), allocatable, intent(out) :: dir, errors
+        integer, intent(out) :: code
+        integer :: u, uerr, urep, count, ios
+        character(len=32) :: tag
+        character(len=256) :: args(3), line
+        call system_clock(count)
+        write (tag, '(i0)') count
+        dir = '/tmp/fc_test_rolling_'//trim(tag)
+        call execute_command_line("mkdir -p '"//dir//"'")
+        open (newunit=u, file=dir//'/cases.nml', status='replace', action='write')
+        write (u, '(a)') text
+        close (u)
+        open (newunit=urep, file=dir//'/report.txt', status='replace', action='write')
+        open (newunit=uerr, file=dir//'/errors.txt', status='replace', action='write')
+        args(1) = dir//'/cases.nml'; args(2) = '--out'; args(3) = dir
+        call run_driver(args, code, report_unit=urep, error_unit=uerr)
+        close (urep); close (uerr)
+        errors = ''
+        open (newunit=u, file=dir//'/errors.txt', status='old', action='read')
+        do
+            read (u, '(a)', iostat=ios) line
+            if (ios /= 0) exit
+            errors = errors//trim(line)//' '
+        end do
+        close (u)
+    end subroutine drive
+
+    !> Lines of a text file (0 if missing) and the value of column `col` in its last line.
+    subroutine csv_last(path, col, nlines, value)
+        character(len=*), intent(in) :: path
+        integer, intent(in) :: col
+        integer, intent(out) :: nlines
+        real(dp), intent(out) :: value
+        character(len=1024) :: line, last
+        integer :: u, ios, k, p
+        nlines = 0; value = huge(1.0_dp); last = ''
+        open (newunit=u, file=path, status='old', action='read', iostat=ios)
+        if (ios /= 0) return
+        do
+            read (u, '(a)', iostat=ios) line
+            if (ios /= 0) exit
+            nlines = nlines + 1; last = line
+        end do
+        close (u)
+        do k = 1, col - 1
+            p = index(last, ',')
+            last = last(p + 1:)
+        end do
+        p = index(last, ',')
+        if (p > 0) last = last(1:p - 1)
+        read (last, *, iostat=ios) value
+    end subroutine csv_last
+
+    !> Driver: a steady case equals the library's solve_rolling (Fx to 1e−4·μFn: the driver's
+    !! normal solve stops at tol 1e−5, the test's at 1e−10) and its JSON
+    !! has fx_over_mu_fn; a 5-point ξ sweep writes 5 rows ending at the steady Fx of its
+    !! last creepage; a transient run of 8 contact lengths ends within 1e−3·μFn of the
+    !! steady Fx and writes one row per step.
+    subroutine test_driver_cases(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_grid) :: grid
+        real(dp), allocatable :: pn(:, :)
+        type(fc_tangential_operator) :: top
+        type(fc_rolling_settings) :: rs
+        type(fc_rolling_loading) :: rl
+        type(fc_tangential_result) :: r1, r2
+        character(len=:), allocatable :: dir, errors, text
+        integer :: code, stat, n
+        real(dp) :: v, ftol
+        character(len=msg_len) :: msg
+        call cattaneo_setup(30, 25, grid, pn, top)
+        ftol = mu_cat*fn_cat
+        rl%mu = mu_cat; rl%xi = 0.0021_dp; rl%eta = 0.001_dp; rl%phi = 0.003_dp
+        call solve_rolling(top, pn, rl, rs, r1, stat, msg)
+        rl%xi = 0.004_dp; rl%eta = 0; rl%phi = 0
+        call solve_rolling(top, pn, rl, rs, r2, stat, msg)
+        text = scene('steady', 'rolling', 'mu = 0.4, xi = 0.0021, eta = 0.001, phi = 0.003')// &
+            scene('curve', 'rolling', "xi = 0, eta = 0, phi = 0, sweep = 'xi', sweep_from = 0.001, "// &
+                  "sweep_to = 0.004, sweep_n = 5")// &
+            scene('trans', 'transient_rolling', "xi = 0.0021, eta = 0.001, phi = 0.003, sweep = '', nsteps = 180")
+        call drive(text, dir, code, errors)
+        call check(error, code == 0, 'driver exit code 0: '//errors)
+        if (allocated(error)) return
+        call json_value(dir//'/steady.json', '"fx"', v)
+        call check(error, v, r1%fx, 'steady Fx = library', abs=1e-4_dp*ftol)
+        call json_value(dir//'/steady.json', '"fx_over_mu_fn"', v)
+        call check(error, v, r1%fx/(mu_cat*fn_cat), 'fx_over_mu_fn', abs=1e-4_dp)
+        call csv_last(dir//'/curve_creep.csv', 5, n, v)
+        call check(error, n == 6, 'sweep: header + 5 rows')
+        call check(error, v, r2%fx, 'sweep: last Fx = steady solve', abs=1e-4_dp*ftol)
+        call csv_last(dir//'/trans_steps.csv', 3, n, v)
+        call check(error, n == 181, 'transient: header + 180 rows')
+        call check(error, v, r1%fx, 'transient Fx -> steady', abs=1e-3_dp*ftol)
+        call execute_command_line("rm -rf '"//dir//"'")
+        call top%destroy()
+    end subroutine test_driver_cases
+
+    !> Value of `key` (with quotes) in a JSON file written by the driver.
+    subroutine json_value(path, key, value)
+        character(len=*), intent(in) :: path, key
+        real(dp), intent(out) :: value
+        character(len=1024) :: line
+        integer :: u, ios, p
+        value = huge(1.0_dp)
+        open (newunit=u, file=path, status='old', action='read', iostat=ios)
+        if (ios /= 0) return
+        do
+            read (u, '(a)', iostat=ios) line
+            if (ios /= 0) exit
+            p = index(line, key//':')
+            if (p > 0 .and. index(adjustl(line), key) == 1) then
+                line = line(p + len(key) + 1:)
+                p = index(line, ',')
+                if (p > 0) line = line(1:p - 1)
+                read (line, *, iostat=ios) value
+                exit
+            end if
+        end do
+        close (u)
+    end subroutine json_value
+
+    !> Bad rolling input: non-zero exit and a message naming group, key and value.
+    subroutine test_driver_errors(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: dir, errors
+        integer :: code
+        call drive(scene('b1', 'rolling', 'mu = 0.4, xi = 0.001, mu_kinetic = 0.5'), dir, code, errors)
+        call check(error, code /= 0 .and. index(errors, '&tangential mu_kinetic = 0.5') > 0, &
+                   'mu_kinetic > mu: '//errors)
+        call drive(scene('b2', 'rolling', "mu = 0.4, sweep = 'xi', sweep_from = 0"), dir, code, errors)
+        call check(error, code /= 0 .and. index(errors, 'sweep_to') > 0, 'sweep without sweep_to: '//errors)
+        call drive(scene('b3', 'transient_rolling', 'mu = 0.4, xi = 0.001, dq = -1'), dir, code, errors)
+        call check(error, code /= 0 .and. index(errors, '&tangential dq = -1') > 0, 'dq < 0: '//errors)
+        call drive(scene('b4', 'rolling', "mu = 0.4, xi = 0.001, sweep = 'xi', sweep_from = 0, sweep_to = 1, "// &
+                   "sweep_n = 5000"), dir, code, errors)
+        call check(error, code /= 0 .and. index(errors, 'sweep_n = 5000') > 0, 'sweep_n bound: '//errors)
+        call drive(scene('b5', 'normal', 'mu = 0.4')//"&solver rolling = 'fast' /", dir, code, errors)
+        call check(error, code /= 0 .and. index(errors, "&solver rolling = 'fast'") > 0, 'unknown solver: '//errors)
+        call drive(scene('b6', 'transient_rolling', 'mu = 0.4, fx = 1.0'), dir, code, errors)
+        call check(error, code /= 0 .and. index(errors, "'transient_rolling' takes creepages") > 0, &
+                   'transient with forces: '//errors)
+    end subroutine test_driver_errors
+
+    !> Flat API: fc_set_rolling gives the library's steady solution; the handle reuses its
+    !! operators over calls (one build) and the warm start needs fewer iterations than a cold
+    !! solve; transient mode ≠ 0 with steady rolling is an error naming the cause.
+    subroutine test_flat_api(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_grid) :: grid
+        real(dp), allocatable :: pn(:, :)
+        type(fc_tangential_operator) :: top
+        type(fc_rolling_settings) :: rs
+        type(fc_rolling_loading) :: rl
+        type(fc_tangential_result) :: r1
+        integer :: h, ierr, stat, itn, itt_cold, itt_warm, nb_n, nb_t, nc
+        real(dp) :: fn, fx, fy, mz, xi, eta, phi
+        character(len=msg_len) :: msg
+        call cattaneo_setup(30, 25, grid, pn, top)
+        rl%mu = mu_cat; rl%xi = 0.0021_dp; rl%eta = 0.001_dp; rl%phi = 0.003_dp
+        call solve_rolling(top, pn, rl, rs, r1, stat, msg)
+        call fc_init(h, ierr)
+        call fc_set_material(h, g_cat, g_cat, nu_cat, nu_cat, ierr)
+        call fc_set_grid(h, 30, 25, -l_cat, l_cat, -l_cat, l_cat, ierr)
+        call fc_set_gap_quadratic(h, r_cat, r_cat, ierr)
+        call fc_set_normal_force(h, fn_cat, ierr)
+        call fc_set_friction(h, mu_cat, ierr)
+        call fc_set_solver(h, 1, 1, 1e-8_dp, 1000, 3, 1, ierr)
+        call fc_set_rolling(h, 0.002_dp, 0.001_dp, 0.003_dp, ierr)
+        call fc_calculate(h, ierr)
+        call fc_get_iterations(h, itn, itt_cold, ierr)
+        call fc_set_rolling(h, rl%xi, rl%eta, rl%phi, ierr)
+        call fc_calculate(h, ierr)
+        call check(error, ierr == FCL_OK, 'fc_calculate rolling')
+        call fc_get_iterations(h, itn, itt_warm, ierr)
+        call fc_get_forces(h, fn, fx, fy, mz, ierr)
+        call fc_get_shifts(h, xi, eta, phi, ierr)
+        call check(error, fx, r1%fx, 'Fx flat API = library', abs=1e-5_dp*mu_cat*fn_cat)
+        call check(error, fy, r1%fy, 'Fy flat API = library', abs=1e-5_dp*mu_cat*fn_cat)
+        call check(error, xi, rl%xi, 'creepage returned', rel=1e-15_dp)
+        call check(error, itt_warm < itt_cold, 'warm start needs fewer iterations')
+        call fc_get_rebuilds(h, nb_n, nb_t, nc, ierr)
+        call check(error, nb_t == 1 .and. nc == 2, 'operators built once')
+        call fc_set_rolling_forces(h, -0.3_dp*mu_cat*fn_cat, 0.0_dp, 0.0_dp, ierr)
+        call fc_calculate(h, ierr)
+        call fc_get_forces(h, fn, fx, fy, mz, ierr)
+        call check(error, ierr == FCL_OK, 'rolling forces')
+        call check(error, fx, -0.3_dp*mu_cat*fn_cat, 'prescribed creep force met', abs=1e-6_dp*mu_cat*fn_cat)
+        call fc_set_rolling_options(h, 7, -1.0_dp, ierr)
+        call check(error, ierr == FCL_INVALID_VALUE, 'bad rolling solver rejected')
+        call fc_set_transient(h, FCL_ROLLING, ierr)
+        call fc_set_rolling(h, rl%xi, rl%eta, rl%phi, ierr)
+        call fc_calculate(h, ierr)
+        call check(error, ierr == FCL_INVALID_VALUE, 'steady rolling in transient mode rejected')
+        call fc_finalize(h, ierr)
+        call top%destroy()
+    end subroutine test_flat_api
 
 end module test_rolling
