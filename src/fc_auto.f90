@@ -49,6 +49,7 @@ module fc_auto
     use fc_contact, only: fc_contact_operators, fc_contact_loading, fc_contact_settings, fc_contact_result, &
         solve_contact, FC_PROBLEM_TANGENTIAL
     use fc_rolling_batch, only: is_rolling_sequence, rolling_sequence
+    use fc_fastsim, only: fastsim, fc_fastsim_result
     use fc_hertz, only: fc_hertz_solution, fc_cattaneo_solution, hertz_from_approach, hertz_from_force, &
         cattaneo_mindlin
     use fc_fmg, only: fc_quadratic_surface, fc_punch_rough_surface, fc_wavy_surface
@@ -108,6 +109,7 @@ module fc_auto
         logical :: has_cattaneo = .false.                  !! Cattaneo–Mindlin part present
         type(fc_cattaneo_solution) :: cattaneo             !! analytic Cattaneo–Mindlin
         real(dp) :: fx = 0, fy = 0                         !! analytic tangential forces [N]
+        real(dp) :: mz = 0                                 !! FASTSIM spin moment [N·mm]
         real(dp) :: work_units = -1                        !! FMG: thesis work units of the final solve (−1: n/a)
         real(dp) :: convergence_factor = -1                !! FMG: target-grid convergence factor (−1: n/a)
         real(dp), allocatable :: sequence(:, :)            !! rolling sweep / transient steps: one row each
@@ -145,7 +147,11 @@ contains
         out%material = s%material
         call combine_material(out%material, stat, errmsg)
         if (stat /= 0) return
-        ! ---- analytic answer: no grid at all
+        ! ---- analytic answer (or FASTSIM on the Hertz ellipse): no grid at all
+        if (s%rolling%fastsim) then
+            call fastsim_answer(s, out, stat, errmsg)
+            return
+        end if
         if (s%analytic) then
             call analytic_answer(s, out, stat, errmsg)
             return
@@ -711,6 +717,40 @@ contains
         end if
         out%estimate = 0
     end subroutine analytic_answer
+
+    !> model = 'fastsim': elliptic Hertz for the normal problem and Kalker's simplified theory
+    !! (FASTSIM, 200 × 200 strips) for the creep forces of steady rolling.
+    subroutine fastsim_answer(s, out, stat, errmsg)
+        type(fc_case), intent(in) :: s
+        type(fc_auto_outcome), intent(inout) :: out
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        type(fc_fastsim_result) :: fr
+        real(dp) :: estar
+        stat = 0; errmsg = ''
+        out%analytic = .true.
+        out%model = 'fastsim'
+        estar = out%material%g/(1 - out%material%nu)
+        if (s%normal%force_prescribed) then
+            out%hertz = hertz_from_force(0.5_dp/s%rx, 0.5_dp/s%ry, estar, s%normal%fn)
+        else
+            out%hertz = hertz_from_approach(0.5_dp/s%rx, 0.5_dp/s%ry, estar, s%normal%approach)
+        end if
+        if (.not. (out%hertz%fn > 0)) then
+            stat = FC_ERR_NO_CONTACT
+            errmsg = 'approach = '//fmt_real(s%normal%approach)//': must be > 0 (no contact)'; return
+        end if
+        call fastsim(out%hertz%a, out%hertz%b, out%hertz%fn, s%tangential%mu, out%material%g, out%material%nu, &
+                     s%tangential%xi, s%tangential%eta, s%tangential%phi, 200, 200, fr, stat, errmsg)
+        if (stat /= 0) then
+            stat = FC_ERR_VALUE; return
+        end if
+        out%fx = fr%fx; out%fy = fr%fy; out%mz = fr%mz
+        call add(out%reductions, "model = 'fastsim': elliptic Hertz and Kalker's simplified theory (FASTSIM), no grid")
+        if (out%material%k /= 0) call add(out%warnings, 'K = '//fmt_real(out%material%k)//' /= 0: FASTSIM and the '// &
+            'analytic Hertz solution neglect the normal-tangential coupling')
+        out%estimate = 0
+    end subroutine fastsim_answer
 
     ! ---------------------------------------------------------------- helpers ----
 

@@ -24,7 +24,7 @@ module fc_driver
     use fc_influence, only: fc_material
     use fc_norm, only: fc_normal_result
     use fc_tangcg, only: fc_tangential_result, EL_EXTERIOR, EL_ADHESION
-    use fc_contact, only: fc_contact_operators
+    use fc_contact, only: fc_contact_operators, FC_PROBLEM_ROLLING
     use fc_rolling_batch, only: write_sequence_csv, sweep_header, steps_header
     use fc_mg2d, only: fc_strip_problem, fc_mg2d_settings, fc_mg2d_result, strip_model_problem, solve_strip_mg, &
         solve_strip_fft_rsm
@@ -484,6 +484,13 @@ contains
         s%fn = auto%hertz%fn; s%approach = auto%hertz%approach; s%pmax = auto%hertz%p0
         s%residual = 0
         s%has_cattaneo = auto%has_cattaneo
+        if (auto%model == 'fastsim') then
+            s%message = "elliptic Hertz and FASTSIM (Kalker's simplified theory)"
+            s%solver = 'hertz+fastsim'; s%tangential = .true.; s%tangential_run = .true.
+            s%solver_tangential = 'fastsim'; s%status_tangential = 'converged'
+            s%fx = auto%fx; s%fy = auto%fy; s%mz = auto%mz; s%mu = state%mu
+            s%xi = state%xi; s%eta = state%eta; s%phi = state%phi
+        end if
         if (auto%has_cattaneo) then
             s%cattaneo = auto%cattaneo
             s%fx = auto%fx; s%fy = auto%fy
@@ -508,7 +515,8 @@ contains
         integer, intent(inout) :: final_status
         s%tangential = .true.
         s%solver_tangential = kase%settings%tangential%solver
-        s%solver = trim(kase%settings%normal%solver)//'+'//trim(kase%settings%tangential%solver)
+        if (kase%problem == FC_PROBLEM_ROLLING) s%solver_tangential = kase%settings%rolling%solver
+        s%solver = trim(kase%settings%normal%solver)//'+'//trim(s%solver_tangential)
         s%mu = state%mu; s%tforce_prescribed = state%tforce_prescribed
         s%fx_prescribed = state%fx; s%fy_prescribed = state%fy
         s%panagiotopoulos_rounds = rounds

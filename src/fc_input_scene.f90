@@ -70,6 +70,7 @@ contains
         c%rolling%dq = s%dq; c%rolling%nsteps = s%nsteps
         if (s%problem == 'rolling') c%rolling%sweep = s%sweep
         c%rolling%sweep_from = s%sweep_from; c%rolling%sweep_to = s%sweep_to; c%rolling%sweep_n = s%sweep_n
+        c%rolling%fastsim = s%model == 'fastsim'
         c%settings%rolling%solver = trim(s%rolling)
         c%settings%rolling%tol = s%tol; c%settings%rolling%maxit = s%maxit
     end function build_case

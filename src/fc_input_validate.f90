@@ -212,8 +212,16 @@ contains
         end if
         select case (s%model)
         case ('auto', 'full')
+        case ('fastsim')
+            if (s%problem /= 'rolling' .or. s%kind /= 'quadratic' .or. .not. (s%rx > 0 .and. s%ry > 0) .or. &
+                s%tforce_prescribed .or. len_trim(s%sweep) > 0) then
+                errmsg = "&solver model = 'fastsim': needs problem = 'rolling' with &geometry kind = 'quadratic', "// &
+                    'rx > 0, ry > 0, creepages xi, eta, phi (no fx, fy) and no sweep'
+                return
+            end if
         case default
-            errmsg = "&solver model = '"//trim(s%model)//"': use 'auto' (reduce the model where possible) or 'full'"
+            errmsg = "&solver model = '"//trim(s%model)//"': use 'auto' (reduce the model where possible), 'full' "// &
+                "or 'fastsim' (steady rolling: Kalker's simplified theory)"
             return
         end select
         if (auto) then

@@ -65,6 +65,7 @@ module fc_rolling
         character(len=8) :: sweep = ''     !! steady: swept value 'xi', 'eta', 'phi', 'fx', 'fy' ('': none)
         real(dp) :: sweep_from = 0, sweep_to = 0  !! range of the swept value (ends included)
         integer :: sweep_n = 20            !! points of the sweep
+        logical :: fastsim = .false.       !! steady: Kalker's simplified theory on the Hertz ellipse, no grid
     end type fc_rolling_case
 
     real(dp), parameter :: relax = 0.5_dp   !! SteadyGS under-relaxation factor

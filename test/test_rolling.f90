@@ -8,6 +8,7 @@ module test_rolling
     use fc_tangcg
     use fc_rolling
     use fc_rolling_ref
+    use fc_fastsim
     use fc_legacy
     use fc_driver, only: run_driver
     use fc_testing
@@ -33,7 +34,9 @@ contains
             new_unittest('status_and_input_errors', test_status), &
             new_unittest('driver_rolling_sweep_transient', test_driver_cases), &
             new_unittest('driver_rolling_input_errors', test_driver_errors), &
-            new_unittest('flat_api_rolling', test_flat_api) &
+            new_unittest('flat_api_rolling', test_flat_api), &
+            new_unittest('fastsim_limits', test_fastsim), &
+            new_unittest('driver_fastsim_model', test_driver_fastsim) &
             ]
     end subroutine collect_rolling
 
@@ -608,5 +611,54 @@ contains
         call fc_finalize(h, ierr)
         call top%destroy()
     end subroutine test_flat_api
+
+    !> FASTSIM: linear limit = Kalker's linear theory within 1 % (by construction of L1, L2,
+    !! L3; the strip quadrature of 200 × 200 elements errs by 0.5 %), full slip |F| = μFn (within
+    !! 1 %: the discrete parabolic bound), signs as the full theory, invalid input rejected.
+    subroutine test_fastsim(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_fastsim_result) :: r
+        real(dp) :: c11, c22, c23
+        integer :: stat
+        character(len=msg_len) :: msg
+        call kalker_coefficients(0.25_dp, 0.5_dp, c11, c22, c23, stat)
+        call fastsim(1.0_dp, 2.0_dp, 10.0_dp, 0.3_dp, 100.0_dp, 0.25_dp, 1e-7_dp, 0.0_dp, 0.0_dp, 200, 200, r, stat, msg)
+        call check(error, stat == 0, 'fastsim ok: '//trim(msg))
+        call check(error, r%fx, -100*1.0_dp*2.0_dp*c11*1e-7_dp, 'Fx = -G ab C11 xi', rel=1e-2_dp)
+        call check(error, r%nslip == 0, 'small creepage: no slip')
+        call fastsim(1.0_dp, 2.0_dp, 10.0_dp, 0.3_dp, 100.0_dp, 0.25_dp, 0.0_dp, 1e-7_dp, 0.0_dp, 200, 200, r, stat, msg)
+        call check(error, r%fy, -100*1.0_dp*2.0_dp*c22*1e-7_dp, 'Fy = -G ab C22 eta', rel=1e-2_dp)
+        call fastsim(1.0_dp, 2.0_dp, 10.0_dp, 0.3_dp, 100.0_dp, 0.25_dp, 0.0_dp, 0.0_dp, 1e-7_dp, 200, 200, r, stat, msg)
+        call check(error, r%fy, -100*2.0_dp**1.5_dp*c23*1e-7_dp, 'Fy = -G (ab)^1.5 C23 phi', rel=1e-2_dp)
+        call check(error, r%mz < 0, 'phi > 0 gives Mz < 0')
+        call fastsim(1.0_dp, 2.0_dp, 10.0_dp, 0.3_dp, 100.0_dp, 0.25_dp, 0.1_dp, 0.05_dp, 0.0_dp, 200, 200, r, stat, msg)
+        call check(error, hypot(r%fx, r%fy), 0.3_dp*10, 'full slip |F| = mu Fn', rel=1e-2_dp)
+        call check(error, r%fx < 0 .and. r%fy < 0, 'forces oppose the creepages')
+        call fastsim(1.0_dp, 20.0_dp, 10.0_dp, 0.3_dp, 100.0_dp, 0.25_dp, 0.1_dp, 0.0_dp, 0.0_dp, 200, 200, r, stat, msg)
+        call check(error, stat /= 0 .and. index(msg, 'a/b = ') > 0, 'a/b outside the table rejected')
+        call fastsim(1.0_dp, 2.0_dp, -1.0_dp, 0.3_dp, 100.0_dp, 0.25_dp, 0.1_dp, 0.0_dp, 0.0_dp, 200, 200, r, stat, msg)
+        call check(error, stat /= 0 .and. index(msg, 'fn = ') > 0, 'fn < 0 rejected')
+    end subroutine test_fastsim
+
+    !> Driver, &solver model = 'fastsim': no grid solve, creep forces of FASTSIM on the Hertz
+    !! ellipse, within 5 % of μFn of the full theory on the Cattaneo scene (measured 1.8 %);
+    !! the model is rejected for a non-rolling problem.
+    subroutine test_driver_fastsim(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: dir, errors, text
+        integer :: code
+        real(dp) :: vf, vg
+        text = scene('full', 'rolling', 'mu = 0.4, xi = 0.0021, eta = 0.001, phi = 0.003')// &
+            "&case name = 'fs' /"//new_line('a')//"&solver model = 'fastsim' /"
+        call drive(text, dir, code, errors)
+        call check(error, code == 0, 'driver exit code 0: '//errors)
+        call json_value(dir//'/full.json', '"fx_over_mu_fn"', vg)
+        call json_value(dir//'/fs.json', '"fx_over_mu_fn"', vf)
+        call check(error, abs(vf) < 1, 'fastsim fx_over_mu_fn present')
+        call check(error, vf, vg, 'FASTSIM Fx vs full theory', abs=0.05_dp)
+        call execute_command_line("rm -rf '"//dir//"'")
+        call drive(scene('nf', 'normal', 'mu = 0.4')//"&solver model = 'fastsim' /", dir, code, errors)
+        call check(error, code /= 0 .and. index(errors, "&solver model = 'fastsim'") > 0, 'fastsim for normal: '//errors)
+    end subroutine test_driver_fastsim
 
 end module test_rolling
