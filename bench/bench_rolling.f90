@@ -25,6 +25,7 @@
 !! Usage: fastcontact-bench-rolling [--grids N] [--gs N] [--kalker | --fastsim | --curve] [--out FILE]
 !!   --grids N  number of grids from 30×25 up (1..4, default 3: up to 120×100)
 !!   --gs N     the reference 'march' on the first N grids only (default 2)
+!!   --case C   only case C of the seven
 program fastcontact_bench_rolling
     use fc_kinds, only: dp, status_name
     use fc_geometry, only: fc_grid, make_grid, quadratic_gap
@@ -52,11 +53,11 @@ program fastcontact_bench_rolling
     type(fc_tangential_result) :: tr
     type(fc_rolling_settings) :: rs
     type(fc_rolling_loading) :: rl
-    integer :: stat, ig, c, ngrids, ngs, u, k
+    integer :: stat, ig, c, ngrids, ngs, u, k, only_case
     character(len=256) :: msg, arg, outfile
     character(len=16) :: mode
     real(dp) :: tsum(3, 4), msum(3, 4), unk(4)
-    ngrids = 3; ngs = 2; outfile = ''; mode = 'perf'
+    ngrids = 3; ngs = 2; outfile = ''; mode = 'perf'; only_case = 0
     tsum = 0; msum = 0; unk = 0
     k = 1
     do while (k <= command_argument_count())
@@ -66,6 +67,7 @@ program fastcontact_bench_rolling
         case ('--gs'); k = k + 1; call get_command_argument(k, arg); read (arg, *) ngs
         case ('--out'); k = k + 1; call get_command_argument(k, outfile)
         case ('--kalker', '--fastsim', '--curve'); mode = arg(3:)
+        case ('--case'); k = k + 1; call get_command_argument(k, arg); read (arg, *) only_case
         case default; write (*, '(a)') 'usage: fastcontact-bench-rolling [--grids N] [--gs N] [--out FILE]'; stop 2
         end select
         k = k + 1
@@ -92,6 +94,7 @@ program fastcontact_bench_rolling
         call nop%destroy()
         call build_tangential_operator(top, mat, grid)
         do c = 1, 7
+            if (only_case > 0 .and. c /= only_case) cycle
             call solve_tangential(top, nr%pn, 0.4_dp, ts, tr, stat, msg, xi(c), eta(c), phi(c))
             call row('tangcg-shift', 1)
             rl%mu = 0.4_dp; rl%xi = xi(c); rl%eta = eta(c); rl%phi = phi(c)
@@ -211,6 +214,7 @@ contains
     subroutine fastsim_study()
         real(dp), parameter :: ratios(5) = [0.2_dp, 0.5_dp, 1.0_dp, 2.0_dp, 5.0_dp]
         real(dp), parameter :: stars(8) = [0.1_dp, 0.2_dp, 0.4_dp, 0.6_dp, 0.8_dp, 1.0_dp, 1.5_dp, 3.0_dp]
+        character(len=3), parameter :: labels(3) = ['xi ', 'eta', 'phi']
         type(fc_material) :: m
         type(fc_hertz_solution) :: hz
         type(fc_fastsim_result) :: fr
@@ -249,7 +253,7 @@ contains
                     call fastsim(a, b, mufn/0.3_dp, 0.3_dp, m%g, m%nu, rl%xi, rl%eta, rl%phi, 100, 100, fr, stat, msg)
                     full = [tr%fx, tr%fy, tr%mz]/mufn; fast = [fr%fx, fr%fy, fr%mz]/mufn
                     write (u, '(f4.1,",",a,",",f5.2,",",es11.4,5(",",f9.5),",",f8.3)') ratios(ir), &
-                        trim(merge('xi ', 'eta', q == 1)//merge('   ', 'phi', q < 3)), stars(is), val, full(1:2), &
+                        trim(labels(q)), stars(is), val, full(1:2), &
                         fast(1:2), hypot(fast(1) - full(1), fast(2) - full(2)), tr%cpu_seconds
                     flush (u)
                 end do
