@@ -56,64 +56,9 @@ module fc_auto
     use fc_errors, only: FC_ERR_VALUE, FC_ERR_UNSUPPORTED, FC_ERR_NO_CONTACT, FC_ERR_FRICTION_BOUND
     use fc_strings, only: fmt_int, fmt_real
     use fc_scene, only: fc_case, case_setup, is_tangential, is_line_contact
+    use fc_case_result, only: fc_level, fc_auto_outcome
     implicit none
     private
-
-    !> One grid visited by the solve.
-    type, public :: fc_level
-        integer :: nx = 0, ny = 0                 !! grid size
-        real(dp) :: fn = 0, approach = 0          !! normal load and approach [N, mm]
-        real(dp) :: fx = 0, fy = 0                !! tangential forces [N]
-        real(dp) :: xi = 0, eta = 0               !! rigid shift used [mm]
-        real(dp) :: pmax = 0                      !! maximum pressure [N/mm²]
-        integer :: ncon = 0                       !! elements in contact
-        integer :: iterations = 0                 !! solver iterations (both stages)
-        real(dp) :: seconds = 0                   !! operator set-up + solve [s]
-        real(dp) :: estimate = -1                 !! estimated relative error (−1: not yet known)
-        real(dp) :: ratio = 0                     !! observed ratio of successive differences (0: n/a)
-        logical :: monotone = .true.              !! successive differences decrease with one sign
-        character(len=16) :: status = ''         !! solver status
-    end type fc_level
-
-    !> Everything the automatic layer decided and computed for one case.
-    type, public :: fc_auto_outcome
-        character(len=32) :: model = 'full'                !! 'full', 'strip2d', 'hertz_analytic'
-        character(len=256), allocatable :: reductions(:)   !! model reductions applied (one line each)
-        character(len=512), allocatable :: warnings(:)     !! warnings (boundary, unreliable estimate, ...)
-        type(fc_level), allocatable :: levels(:)           !! grids visited (coarse to fine)
-        real(dp) :: target = 0                             !! accuracy target (0: none)
-        real(dp) :: estimate = -1                          !! estimated relative error of the final grid
-        logical :: reliable = .true.                       !! convergence was monotone
-        logical :: target_met = .false.                    !! estimate ≤ target
-        character(len=64) :: quantities = ''               !! quantities the estimate covers
-        !> Index in `levels` of the coarsest grid visited that is certified to meet the target
-        !! (0: none): its error bound max_q |q_j − q_n| + estimate uses the finest grid n
-        integer :: sufficient = 0
-        real(dp) :: sufficient_bound = -1                  !! that certified bound (relative)
-        logical :: grid_auto = .false.                     !! potential area sized automatically
-        integer :: enlargements = 0                        !! automatic enlargements of the area
-        logical :: touches_boundary = .false.              !! final contact reaches the area's edge
-        real(dp) :: total_seconds = 0                      !! all solves incl. set-up [s]
-        real(dp) :: tol = 0                                !! solver tolerance used (tightened for a target)
-        type(fc_material) :: material                      !! combined constants
-        type(fc_grid) :: grid                              !! final grid
-        real(dp), allocatable :: h0(:, :)                  !! final undeformed distance
-        type(fc_normal_result) :: res                      !! final normal solution
-        type(fc_tangential_result) :: tres                 !! final tangential solution
-        logical :: tangential = .false.                    !! a tangential solve was done
-        logical :: tangential_run = .false.                !! the final grid's tangential stage ran
-        integer :: rounds = 0                              !! Panagiotopoulos rounds (final grid)
-        real(dp) :: setup_seconds = 0, setup_seconds_tangential = 0  !! final grid's set-up [s]
-        logical :: analytic = .false.                      !! answered by the analytic Hertz solution
-        type(fc_hertz_solution) :: hertz                   !! analytic Hertz (problem = 'hertz')
-        logical :: has_cattaneo = .false.                  !! Cattaneo–Mindlin part present
-        type(fc_cattaneo_solution) :: cattaneo             !! analytic Cattaneo–Mindlin
-        real(dp) :: fx = 0, fy = 0                         !! analytic tangential forces [N]
-        real(dp) :: mz = 0                                 !! FASTSIM spin moment [N·mm]
-        real(dp) :: work_units = -1                        !! FMG: thesis work units of the final solve (−1: n/a)
-        real(dp) :: convergence_factor = -1                !! FMG: target-grid convergence factor (−1: n/a)
-        real(dp), allocatable :: sequence(:, :)            !! rolling sweep / transient steps: one row each
-    end type fc_auto_outcome
 
     real(dp), parameter, public :: enlarge_factor = 1.5_dp   !! growth of a clipped automatic area
     real(dp), parameter, public :: estimate_safety = 2.0_dp  !! safety factor of the Richardson estimate
@@ -123,6 +68,7 @@ module fc_auto
     real(dp), parameter, public :: h2_ratio_low = 3.0_dp, h2_ratio_high = 6.0_dp
     integer, parameter :: max_enlargements = 6
 
+    public :: fc_level, fc_auto_outcome
     public :: solve_case_auto, auto_area, richardson_estimate, prolong_copy, contact_touches_boundary
     public :: plane_strain_hertz, level_estimate, certify_coarsest, target_quantities
 
@@ -222,7 +168,7 @@ contains
         do attempt = 1, max_enlargements + 1
             call solve_levels(s, tang, ops, out, stat, errmsg)
             if (stat /= 0) return
-            out%touches_boundary = contact_touches_boundary(out%res%pn, out%model == 'strip2d' .or. &
+            out%touches_boundary = contact_touches_boundary(out%result%normal%pn, out%model == 'strip2d' .or. &
                 s%kind == 'cylinder' .or. (s%kind == 'quadratic' .and. s%ry == 0))
             if (.not. out%touches_boundary) exit
             if (.not. out%grid_auto .or. attempt == max_enlargements + 1) then
@@ -286,10 +232,10 @@ contains
         do k = 1, nlev
             if (k > 1) then
                 sl%nx = 2*sl%nx; sl%ny = fy*sl%ny
-                call prolong_copy(out%res%pn, 2, fy, p0)
-                if (out%tangential_run) then
-                    call prolong_copy(out%tres%px, 2, fy, px0)
-                    call prolong_copy(out%tres%py, 2, fy, py0)
+                call prolong_copy(out%result%normal%pn, 2, fy, p0)
+                if (out%result%tangential_run) then
+                    call prolong_copy(out%result%tangential%px, 2, fy, px0)
+                    call prolong_copy(out%result%tangential%py, 2, fy, py0)
                 end if
             end if
             if (real(sl%nx, dp)*sl%ny > 4096.0_dp**2) then
@@ -298,9 +244,9 @@ contains
             end if
             call solve_one(sl, tang, ops, out, p0, px0, py0, stat, errmsg)
             if (stat /= 0) return
-            if (out%res%status /= FC_CONVERGED) exit
-            if (out%tangential_run) then
-                if (out%tres%status /= FC_CONVERGED) exit
+            if (out%result%normal%status /= FC_CONVERGED) exit
+            if (out%result%tangential_run) then
+                if (out%result%tangential%status /= FC_CONVERGED) exit
             end if
             if (s%target > 0 .and. k >= 2) then
                 call level_estimate(out%levels, s, tang, noise, est, ratio, monotone, qname)
@@ -369,23 +315,18 @@ contains
             call solve_contact(ops, out%grid, mat, out%h0, load, settings, res, stat, errmsg)
         end if
         if (stat /= 0) return
-        out%setup_seconds = res%setup_seconds_normal; out%setup_seconds_tangential = res%setup_seconds_tangential
-        out%rounds = res%rounds
-        out%tangential_run = res%tangential_run
-        call move_normal(res%normal, out%res)
-        if (tang) out%tres = res%tangential
-        if (use_fmg) then
-            out%work_units = res%work_units; out%convergence_factor = res%convergence_factor
-        end if
+        call move_result(res, out%result)
         call system_clock(t1)
         lev%nx = out%grid%nx; lev%ny = out%grid%ny
-        lev%fn = out%res%fn; lev%approach = out%res%approach; lev%pmax = out%res%pmax; lev%ncon = out%res%ncon
-        lev%iterations = out%res%iterations
-        lev%status = status_name(out%res%status)
-        if (out%tangential_run) then
-            lev%fx = out%tres%fx; lev%fy = out%tres%fy; lev%xi = out%tres%xi; lev%eta = out%tres%eta
-            lev%iterations = lev%iterations + out%tres%iterations
-            lev%status = status_name(max(out%res%status, out%tres%status))
+        lev%fn = out%result%normal%fn; lev%approach = out%result%normal%approach
+        lev%pmax = out%result%normal%pmax; lev%ncon = out%result%normal%ncon
+        lev%iterations = out%result%normal%iterations
+        lev%status = status_name(out%result%normal%status)
+        if (out%result%tangential_run) then
+            lev%fx = out%result%tangential%fx; lev%fy = out%result%tangential%fy
+            lev%xi = out%result%tangential%xi; lev%eta = out%result%tangential%eta
+            lev%iterations = lev%iterations + out%result%tangential%iterations
+            lev%status = status_name(max(out%result%normal%status, out%result%tangential%status))
         end if
         lev%seconds = real(t1 - t0, dp)/rate
         out%total_seconds = out%total_seconds + lev%seconds
@@ -414,11 +355,41 @@ contains
         end subroutine fmg_solve
     end subroutine solve_one
 
+    !> to = from, moving the arrays.
+    subroutine move_result(from, to)
+        type(fc_contact_result), intent(inout) :: from
+        type(fc_contact_result), intent(out) :: to
+        to%tangential_run = from%tangential_run; to%rounds = from%rounds; to%status = from%status
+        to%setup_seconds_normal = from%setup_seconds_normal
+        to%setup_seconds_tangential = from%setup_seconds_tangential
+        to%work_units = from%work_units; to%convergence_factor = from%convergence_factor
+        call move_normal(from%normal, to%normal)
+        call move_tangential(from%tangential, to%tangential)
+    end subroutine move_result
+
     subroutine move_normal(from, to)
         type(fc_normal_result), intent(inout) :: from
-        type(fc_normal_result), intent(inout) :: to
-        to = from
+        type(fc_normal_result), intent(out) :: to
+        call move_alloc(from%pn, to%pn); call move_alloc(from%gap, to%gap); call move_alloc(from%history, to%history)
+        to%approach = from%approach; to%fn = from%fn; to%pmax = from%pmax; to%ncon = from%ncon
+        to%status = from%status; to%iterations = from%iterations; to%outer_iterations = from%outer_iterations
+        to%matvecs = from%matvecs; to%precond_applications = from%precond_applications
+        to%residual = from%residual; to%cpu_seconds = from%cpu_seconds; to%message = from%message
+        to%touches_boundary = from%touches_boundary
     end subroutine move_normal
+
+    subroutine move_tangential(from, to)
+        type(fc_tangential_result), intent(inout) :: from
+        type(fc_tangential_result), intent(out) :: to
+        call move_alloc(from%px, to%px); call move_alloc(from%py, to%py)
+        call move_alloc(from%sx, to%sx); call move_alloc(from%sy, to%sy)
+        call move_alloc(from%ux, to%ux); call move_alloc(from%uy, to%uy)
+        call move_alloc(from%state, to%state); call move_alloc(from%history, to%history)
+        to%xi = from%xi; to%eta = from%eta; to%phi = from%phi; to%fx = from%fx; to%fy = from%fy; to%mz = from%mz
+        to%ncon = from%ncon; to%nadh = from%nadh; to%nslip = from%nslip; to%status = from%status
+        to%iterations = from%iterations; to%outer_iterations = from%outer_iterations; to%matvecs = from%matvecs
+        to%residual = from%residual; to%cpu_seconds = from%cpu_seconds; to%message = from%message
+    end subroutine move_tangential
 
     !> Estimate of the last level's relative error over the target quantities (the largest
     !! over fn or approach, the tangential quantity and, with `target_pmax`, pmax).  Public so

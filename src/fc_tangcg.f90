@@ -1,4 +1,4 @@
-!> Tangential (frictional) contact problem: TangCG(K) and ConvexGS (thesis ch. 4, SPEC §2–§3).
+!> Tangential (frictional) contact problem: TangCG(K) and ConvexGS (thesis ch. 4; conventions in doc/conventions.md).
 !!
 !! Given the pressure pn on the contact area C and the Coulomb bound g = μ·pn, find the
 !! tangential tractions p = (px, py) on C with slip s = w + (u − u') + offset,
@@ -84,7 +84,7 @@ module fc_tangcg
     end type fc_tangential_result
 
     !> Tangential loading: friction and either the rigid shift (ξ, η) or the forces (Fx, Fy);
-    !! the spin φ is always prescribed (SPEC §5 `&tangential`).
+    !! the spin φ is always prescribed (doc/namelist.md `&tangential`).
     type, public :: fc_tangential_loading
         real(dp) :: mu = 0                    !! coefficient of friction
         real(dp) :: xi = 0, eta = 0           !! prescribed shifts [mm] (force_prescribed = .false.)
