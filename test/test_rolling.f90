@@ -512,6 +512,23 @@ contains
         call top%destroy()
     end subroutine test_driver_cases
 
+    !> Whole text of a file ('' if missing).
+    function file_text(path) result(text)
+        character(len=*), intent(in) :: path
+        character(len=:), allocatable :: text
+        character(len=4096) :: line
+        integer :: u, ios
+        text = ''
+        open (newunit=u, file=path, status='old', action='read', iostat=ios)
+        if (ios /= 0) return
+        do
+            read (u, '(a)', iostat=ios) line
+            if (ios /= 0) exit
+            text = text//trim(line)//' '
+        end do
+        close (u)
+    end function file_text
+
     !> Value of `key` (with quotes) in a JSON file written by the driver.
     subroutine json_value(path, key, value)
         character(len=*), intent(in) :: path, key
@@ -641,8 +658,9 @@ contains
     end subroutine test_fastsim
 
     !> Driver, &solver model = 'fastsim': no grid solve, creep forces of FASTSIM on the Hertz
-    !! ellipse, within 5 % of μFn of the full theory on the Cattaneo scene (measured 1.8 %);
-    !! the model is rejected for a non-rolling problem.
+    !! ellipse, within 5 % of μFn of the full theory on the Cattaneo scene (measured 1.9 %);
+    !! the model is rejected for a non-rolling problem; model = 'auto' with a target takes
+    !! FASTSIM only when its error bound meets the target.
     subroutine test_driver_fastsim(error)
         type(error_type), allocatable, intent(out) :: error
         character(len=:), allocatable :: dir, errors, text
@@ -659,6 +677,16 @@ contains
         call execute_command_line("rm -rf '"//dir//"'")
         call drive(scene('nf', 'normal', 'mu = 0.4')//"&solver model = 'fastsim' /", dir, code, errors)
         call check(error, code /= 0 .and. index(errors, "&solver model = 'fastsim'") > 0, 'fastsim for normal: '//errors)
+        ! the FASTSIM rung of model = 'auto': chosen for a loose target (bound 0.094 here), not
+        ! for a tight one
+        text = scene('t1', 'rolling', 'mu = 0.4, xi = 0.0021, eta = 0.001, phi = 0')//'&solver target = 0.1 /'// &
+            new_line('a')//"&case name = 't2' /"//new_line('a')//'&solver target = 0.02 /'
+        call drive(text, dir, code, errors)
+        call check(error, code == 0, 'target cases run: '//errors)
+        call check(error, index(file_text(dir//'/t1.json'), '"model": "fastsim"') > 0, 'target 0.1: FASTSIM chosen')
+        call check(error, index(file_text(dir//'/t2.json'), '"model": "full"') > 0 .and. &
+                   index(file_text(dir//'/t2.json'), 'FASTSIM not used') > 0, 'target 0.02: full theory')
+        call execute_command_line("rm -rf '"//dir//"'")
     end subroutine test_driver_fastsim
 
 end module test_rolling
