@@ -1,4 +1,4 @@
-!> Model no more than a scene needs (issue 7): accuracy-targeted grid refinement, the
+!> Model no more than a scene needs: accuracy-targeted grid refinement, the
 !! automatic potential contact area and automatic model reduction, for one [[fc_case]]
 !! (built by the batch driver's input layer or by a program).
 !!
@@ -46,29 +46,30 @@ module fc_auto
     use fc_influence, only: fc_material, combine_material
     use fc_norm, only: fc_normal_result
     use fc_tangcg, only: fc_tangential_result, fc_tangential_loading
-    use fc_contact, only: fc_contact_operators, fc_contact_loading, fc_contact_settings, fc_contact_result, &
+    use fc_contact, only: set_influence_coefficients, clear_influence_coefficients, &
+        fc_contact_operators, fc_contact_loading, fc_contact_settings, fc_contact_result, &
         solve_contact, FC_PROBLEM_TANGENTIAL, FC_PROBLEM_ROLLING
     use fc_rolling_batch, only: is_rolling_sequence, rolling_sequence
     use fc_fastsim, only: fastsim, fc_fastsim_result, fastsim_error_bound
     use fc_hertz, only: fc_hertz_solution, fc_cattaneo_solution, hertz_from_approach, hertz_from_force, &
         cattaneo_mindlin
     use fc_fmg, only: fc_quadratic_surface, fc_punch_rough_surface, fc_wavy_surface
+    use fc_icfile, only: fc_ic_set
+    use fc_icfile_load, only: load_influence_source
     use fc_errors, only: FC_ERR_VALUE, FC_ERR_UNSUPPORTED, FC_ERR_NO_CONTACT, FC_ERR_FRICTION_BOUND
     use fc_strings, only: fmt_int, fmt_real
     use fc_scene, only: fc_case, case_setup, is_tangential, is_line_contact
     use fc_case_result, only: fc_level, fc_auto_outcome
+    use fc_auto_estimate, only: richardson_estimate, level_estimate, certify_coarsest, target_quantities, &
+        estimate_safety, estimate_safety_h2, h2_ratio_low, h2_ratio_high
     implicit none
     private
 
     real(dp), parameter, public :: enlarge_factor = 1.5_dp   !! growth of a clipped automatic area
-    real(dp), parameter, public :: estimate_safety = 2.0_dp  !! safety factor of the Richardson estimate
-    !> Safety factor when the observed ratio r = d_{k−1}/d_k lies in [`h2_ratio_low`,
-    !! `h2_ratio_high`], i.e. the sequence is in the O(h²) regime (r = 4 ± 50 %)
-    real(dp), parameter, public :: estimate_safety_h2 = 1.5_dp
-    real(dp), parameter, public :: h2_ratio_low = 3.0_dp, h2_ratio_high = 6.0_dp
     integer, parameter :: max_enlargements = 6
 
     public :: fc_level, fc_auto_outcome
+    public :: estimate_safety, estimate_safety_h2, h2_ratio_low, h2_ratio_high
     public :: solve_case_auto, auto_area, richardson_estimate, prolong_copy, contact_touches_boundary
     public :: plane_strain_hertz, level_estimate, certify_coarsest, target_quantities
 
@@ -92,6 +93,7 @@ contains
         allocate (out%reductions(0), out%warnings(0), out%levels(0))
         out%material = s%material
         call combine_material(out%material, stat, errmsg)
+        if (stat == 0) call use_ic_file(s, ops, stat, errmsg)
         if (stat /= 0) return
         ! ---- analytic answer (or FASTSIM on the Hertz ellipse): no grid at all
         if (s%rolling%fastsim) then
@@ -394,145 +396,6 @@ contains
         to%residual = from%residual; to%cpu_seconds = from%cpu_seconds; to%message = from%message
     end subroutine move_tangential
 
-    !> Estimate of the last level's relative error over the target quantities (the largest
-    !! over fn or approach, the tangential quantity and, with `target_pmax`, pmax).  Public so
-    !! that fastcontact-bench-auto can replay it on reference sequences from every given grid.
-    subroutine level_estimate(levels, s, tang, noise, est, ratio, monotone, qname, factors)
-        type(fc_level), intent(in) :: levels(:)
-        type(fc_case), intent(in) :: s
-        logical, intent(in) :: tang
-        real(dp), intent(in) :: noise
-        real(dp), intent(out) :: est, ratio
-        logical, intent(out) :: monotone
-        character(len=*), intent(out) :: qname
-        real(dp), intent(in), optional :: factors(3)  !! see [[richardson_estimate]]
-        real(dp), allocatable :: q(:, :)
-        real(dp) :: e, r
-        logical :: mono
-        integer :: k
-        call target_quantities(levels, s, tang, q, qname)
-        est = 0; ratio = 0; monotone = .true.
-        do k = 1, size(q, 2)
-            call richardson_estimate(q(:, k), noise, e, r, mono, factors)
-            if (e > est) then
-                est = e; ratio = r
-            end if
-            monotone = monotone .and. mono
-        end do
-    end subroutine level_estimate
-
-    !> The target quantities of each level, relative to the last level: fn (approach
-    !! prescribed) or the approach (fn prescribed); the tangential quantity (signed projection
-    !! on the last level's direction of (xi, eta) when forces are prescribed, of (Fx, Fy)
-    !! relative to max(|Ft|, 0.1·mu·Fn) when shifts are); pmax with `target_pmax`.
-    subroutine target_quantities(levels, s, tang, q, qname)
-        type(fc_level), intent(in) :: levels(:)
-        type(fc_case), intent(in) :: s
-        logical, intent(in) :: tang
-        real(dp), allocatable, intent(out) :: q(:, :)
-        character(len=*), intent(out) :: qname
-        real(dp) :: scale, norm_t
-        integer :: n
-        n = size(levels)
-        allocate (q(n, 0))
-        if (s%normal%force_prescribed) then
-            q = reshape([q, levels%approach/abs(levels(n)%approach)], [n, size(q, 2) + 1]); qname = 'approach'
-        else
-            q = reshape([q, levels%fn/abs(levels(n)%fn)], [n, size(q, 2) + 1]); qname = 'fn'
-        end if
-        if (tang) then
-            if (s%tangential%force_prescribed) then
-                scale = max(hypot(levels(n)%xi, levels(n)%eta), tiny(1.0_dp))
-                q = reshape([q, (levels%xi*levels(n)%xi + levels%eta*levels(n)%eta)/scale**2], [n, size(q, 2) + 1])
-                qname = trim(qname)//' xi_eta'
-            else
-                norm_t = max(hypot(levels(n)%fx, levels(n)%fy), tiny(1.0_dp))
-                scale = max(norm_t, 0.1_dp*s%tangential%mu*levels(n)%fn, tiny(1.0_dp))
-                q = reshape([q, (levels%fx*levels(n)%fx + levels%fy*levels(n)%fy)/(norm_t*scale)], [n, size(q, 2) + 1])
-                qname = trim(qname)//' fx_fy'
-            end if
-        end if
-        if (s%target_pmax) then
-            q = reshape([q, levels%pmax/abs(levels(n)%pmax)], [n, size(q, 2) + 1]); qname = trim(qname)//' pmax'
-        end if
-    end subroutine target_quantities
-
-    !> The coarsest of `levels` certified to meet `target`, once the finest (last) level has
-    !! the error estimate `est`: level j's error is at most max_q |q_j − q_n| + est (triangle
-    !! inequality through the finest grid), so this holds whenever the estimate does.  The
-    !! solve cannot stop there (seeing grid n is what certifies it), but the grid is the answer
-    !! to "which grid does this scene need" for later solves of the same scene.
-    subroutine certify_coarsest(levels, s, tang, est, target, j, bound)
-        type(fc_level), intent(in) :: levels(:)
-        type(fc_case), intent(in) :: s
-        logical, intent(in) :: tang
-        real(dp), intent(in) :: est, target
-        integer, intent(out) :: j                     !! level index (0: none, est > target)
-        real(dp), intent(out) :: bound                !! certified relative error bound of level j
-        real(dp), allocatable :: q(:, :)
-        character(len=64) :: qname
-        integer :: n
-        n = size(levels)
-        j = 0; bound = -1
-        if (n == 0 .or. est > target) return
-        call target_quantities(levels, s, tang, q, qname)
-        do j = 1, n
-            bound = maxval(abs(q(j, :) - q(n, :))) + est
-            if (bound <= target) return
-        end do
-        j = n; bound = est
-    end subroutine certify_coarsest
-
-    !> Relative error estimate of the last of the values `q` (already divided by the last
-    !! value's magnitude, or distances to the last value) on grids refined by two; see the
-    !! module header.  `ratio`: observed d_{k−1}/d_k (0 with two grids); `monotone`: false
-    !! when the differences change sign or grow.
-    !! `factors` = [two-grid factor f2 (est_2 = f2·|d_2|), safety s, safety in the O(h²) band]
-    !! replaces the package's [`estimate_safety`, `estimate_safety`, `estimate_safety_h2`];
-    !! only fastcontact-bench-auto sets it, to measure the alternatives on the same data.
-    pure subroutine richardson_estimate(q, noise, est, ratio, monotone, factors)
-        real(dp), intent(in) :: q(:)
-        real(dp), intent(in) :: noise
-        real(dp), intent(out) :: est, ratio
-        logical, intent(out) :: monotone
-        real(dp), intent(in), optional :: factors(3)
-        real(dp) :: d, dprev, f(3)
-        integer :: n
-        f = [estimate_safety, estimate_safety, estimate_safety_h2]
-        if (present(factors)) f = factors
-        n = size(q)
-        est = -1; ratio = 0; monotone = .true.
-        if (n < 2) return
-        d = q(n) - q(n - 1)
-        if (n == 2) then
-            ! no rate is known yet: assume only that the error at least halves per level (the
-            ! slowest ratio measured); 2|d|/3 from the O(h²) rate failed whenever the two grids
-            ! happened to err alike (Cattaneo from 32² to 64²: true error 1.4× 2|d|/3)
-            est = f(1)*abs(d)
-            return
-        end if
-        dprev = q(n - 1) - q(n - 2)
-        if (abs(d) <= noise .and. abs(dprev) <= noise) then
-            est = noise; ratio = 0; return
-        end if
-        if (abs(d) <= noise) then
-            ratio = abs(dprev)/max(abs(d), tiny(1.0_dp))
-            est = f(2)*max(noise, abs(dprev)/12); return
-        end if
-        ratio = dprev/d
-        if (ratio <= 1) then
-            monotone = .false.
-            est = max(abs(d), abs(dprev))
-        else
-            est = max(abs(d)/(min(ratio, 4.0_dp) - 1), abs(dprev)/12)
-            if (ratio >= h2_ratio_low .and. ratio <= h2_ratio_high) then
-                est = f(3)*est
-            else
-                est = f(2)*est
-            end if
-        end if
-    end subroutine richardson_estimate
-
     !> Copy interpolation of a coarse field to a grid refined by fx × fy (each coarse
     !! element's value on its children).
     pure subroutine prolong_copy(pc, fx, fy, pf)
@@ -786,5 +649,39 @@ contains
         tmp(size(list) + 1) = text
         call move_alloc(tmp, list)
     end subroutine add
+
+    !> Influence coefficients of the case: a file (`ic_file`, body 2 from `ic_file2` or the
+    !! half-space) replaces the half-space kernels in `ops`; without one the half-space
+    !! kernels are (re)used.  Modes that need coefficients on other grids are refused.
+    subroutine use_ic_file(s, ops, stat, errmsg)
+        type(fc_case), intent(in) :: s
+        type(fc_contact_operators), intent(inout) :: ops
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        type(fc_ic_set) :: ic
+        stat = 0; errmsg = ''
+        if (len_trim(s%ic_file) == 0) then
+            if (allocated(ops%ic%a)) call clear_influence_coefficients(ops)
+            return
+        end if
+        stat = FC_ERR_UNSUPPORTED
+        if (s%grid_auto) then
+            errmsg = "ic_file with an automatic potential area: the area chooses its own element size, the file "// &
+                "holds coefficients for one; give a fixed grid (nx, ny, xmin, xmax, ymin, ymax) matching the file"
+            return
+        end if
+        if (s%target > 0) then
+            errmsg = "ic_file with an accuracy target: the target refines the grid, the file holds coefficients "// &
+                "for one grid; remove the target"
+            return
+        end if
+        call load_influence_source(s%ic_file, s%ic_file2, s%material%g1, s%material%nu1, s%material%g2, &
+            s%material%nu2, ic, stat, errmsg)
+        if (stat /= 0) then
+            stat = FC_ERR_VALUE; errmsg = "ic_file = '"//trim(s%ic_file)//"': "//trim(errmsg); return
+        end if
+        call set_influence_coefficients(ops, ic, stat, errmsg)
+        if (stat /= 0) stat = FC_ERR_VALUE
+    end subroutine use_ic_file
 
 end module fc_auto

@@ -1,4 +1,4 @@
-!> The batch driver `fastcontact CASES.nml [--out DIR]` (SPEC §5) as a library routine,
+!> The batch driver `fastcontact CASES.nml [--out DIR]` (doc/user_guide.md) as a library routine,
 !! so that tests can run it in-process.
 !!
 !! Every case in the file is solved in order.  Per good case DIR/<name>.json (summary) and,

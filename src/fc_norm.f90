@@ -27,6 +27,7 @@ module fc_norm
     use fc_kinds
     use fc_geometry, only: fc_grid, h_no_contact
     use fc_influence
+    use fc_icfile, only: fc_ic_set, ic_set_kernel
     use, intrinsic :: iso_c_binding, only: c_loc, c_associated
     implicit none
     private
@@ -89,19 +90,26 @@ module fc_norm
 contains
 
     !> Build A^zz and its preconditioner for `grid` and `material` (combined constants
-    !! already set by [[combine_material]]).
-    subroutine build_normal_operator(nop, material, grid)
+    !! already set by [[combine_material]]); with `ic`, from that set's coefficients (checked
+    !! against the grid by the caller, see [[ic_set_kernel]]) instead of the half-space ones.
+    subroutine build_normal_operator(nop, material, grid, ic)
         type(fc_normal_operator), intent(inout) :: nop
         type(fc_material), intent(in) :: material
         type(fc_grid), intent(in) :: grid
-        integer :: t0, t1, rate
+        type(fc_ic_set), intent(in), optional :: ic
+        integer :: t0, t1, rate, stat
         real(dp), allocatable :: kext(:, :)
+        character(len=msg_len) :: msg
         call system_clock(t0, rate)
         call nop%destroy()
         nop%grid = grid
         nop%material = material
         ! one coefficient evaluation serves both A (offsets < n) and M (offsets ≤ n)
-        call ic_kernel_extended(IC_ZZ, material, grid, grid%nx, grid%ny, kext)
+        if (present(ic)) then
+            call ic_set_kernel(ic, IC_ZZ, grid, kext, stat, msg)
+        else
+            call ic_kernel_extended(IC_ZZ, material, grid, grid%nx, grid%ny, kext)
+        end if
         call build_bttb_from_kernel(nop%a_zz, kext(-(grid%nx - 1):grid%nx - 1, -(grid%ny - 1):grid%ny - 1), &
             grid%nx, grid%ny)
         ! M shares A's FFT plans and buffers (one set per grid)

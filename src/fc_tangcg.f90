@@ -26,6 +26,7 @@ module fc_tangcg
     use fc_kinds
     use fc_geometry, only: fc_grid
     use fc_influence
+    use fc_icfile, only: fc_ic_set, ic_set_kernel
     use, intrinsic :: iso_c_binding, only: c_loc, c_associated
     implicit none
     private
@@ -100,29 +101,47 @@ module fc_tangcg
 contains
 
     !> Build the tangential blocks (and coupling blocks if K ≠ 0) for `grid`.
-    subroutine build_tangential_operator(top, material, grid)
+    subroutine build_tangential_operator(top, material, grid, ic)
         type(fc_tangential_operator), intent(inout) :: top
         type(fc_material), intent(in) :: material
         type(fc_grid), intent(in) :: grid
+        type(fc_ic_set), intent(in), optional :: ic   !! coefficients instead of the half-space ones
         integer :: t0, t1, rate
         call system_clock(t0, rate)
         call top%destroy()
         top%grid = grid
         top%material = material
-        call build_bttb(top%a_xx, IC_XX, material, grid)
-        call build_bttb(top%a_xy, IC_XY, material, grid, plans_from=top%a_xx)
-        call build_bttb(top%a_yy, IC_YY, material, grid, plans_from=top%a_xx)
+        call build_block(top%a_xx, IC_XX)
+        call build_block(top%a_xy, IC_XY, top%a_xx)
+        call build_block(top%a_yy, IC_YY, top%a_xx)
         if (material%k /= 0) then
-            call build_bttb(top%a_xz, IC_XZ, material, grid, plans_from=top%a_xx)
-            call build_bttb(top%a_yz, IC_YZ, material, grid, plans_from=top%a_xx)
-            call build_bttb(top%a_zx, IC_ZX, material, grid, plans_from=top%a_xx)
-            call build_bttb(top%a_zy, IC_ZY, material, grid, plans_from=top%a_xx)
+            call build_block(top%a_xz, IC_XZ, top%a_xx)
+            call build_block(top%a_yz, IC_YZ, top%a_xx)
+            call build_block(top%a_zx, IC_ZX, top%a_xx)
+            call build_block(top%a_zy, IC_ZY, top%a_xx)
         end if
         allocate (top%spec_x(top%a_xx%mx/2 + 1, top%a_xx%my))
         allocate (top%spec_y, top%work, mold=top%spec_x)
         top%nproducts = 0
         call system_clock(t1)
         top%setup_seconds = real(t1 - t0, dp)/rate
+    contains
+        !> One block from the half-space formulas or from `ic`, sharing the plans of `plans_from`.
+        subroutine build_block(op, block, plans_from)
+            type(fc_bttb), intent(inout) :: op
+            integer, intent(in) :: block
+            type(fc_bttb), intent(in), optional :: plans_from
+            real(dp), allocatable :: k(:, :)
+            integer :: stat
+            character(len=msg_len) :: msg
+            if (present(ic)) then
+                call ic_set_kernel(ic, block, grid, k, stat, msg)
+                call build_bttb_from_kernel(op, k(-(grid%nx - 1):grid%nx - 1, -(grid%ny - 1):grid%ny - 1), grid%nx, grid%ny, &
+                    plans_from)
+            else
+                call build_bttb(op, block, material, grid, plans_from=plans_from)
+            end if
+        end subroutine build_block
     end subroutine build_tangential_operator
 
     subroutine tangential_destroy(self)

@@ -646,7 +646,7 @@ contains
         close (u)
     end subroutine test_bad_command_line
 
-    ! ---------------------------------------------------------------- multigrid (issue 4) ----
+    ! ---------------------------------------------------------------- multigrid ----
 
     !> Hertz Test I on 32² (the base case's area at 32²) with tolerance 1e-8.
     function hertz32(name) result(text)
