@@ -31,60 +31,19 @@ module fc_rolling
     use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
     use fc_kinds
     use fc_geometry, only: fc_grid
-    use fc_tangcg, only: fc_tangential_operator, fc_tangential_result, EL_EXTERIOR, EL_ADHESION, EL_SLIP, &
-                         circle_newton, fc_tangential_settings, solve_tangential
+    use fc_tangcg, only: fc_tangential_operator, fc_tangential_result, EL_EXTERIOR, EL_ADHESION, EL_SLIP
+    use fc_rolling_base
+    use fc_rolling_refsolvers, only: run_steadygs, run_march
     implicit none
     private
 
-    !> Settings of the steady rolling solvers.
-    type, public :: fc_rolling_settings
-        character(len=8) :: solver = 'gmres'   !! 'gmres' (Newton–GMRES), 'march' or 'steadygs' (references)
-        real(dp) :: tol = 1.0e-5_dp            !! relative traction change (thesis eq. 4.49)
-        integer :: maxit = 2000                !! GMRES: Krylov iterations in all; SteadyGS: sweeps
-        integer :: restart = 40                !! GMRES restart length
-        real(dp) :: forcing = 0.1_dp           !! GMRES: relative residual reduction per Newton step
-    end type fc_rolling_settings
+    ! the types of fc_rolling_base are part of this module's interface
+    public :: fc_rolling_settings, fc_rolling_loading, fc_rolling_case
 
-    !> Loading of a steady rolling problem.
-    type, public :: fc_rolling_loading
-        real(dp) :: mu = 0                !! static coefficient of friction μs
-        real(dp) :: mu_kinetic = -1       !! kinetic coefficient μk (< 0: equal to μs)
-        real(dp) :: xi = 0, eta = 0       !! longitudinal and lateral creepage [-]
-        real(dp) :: phi = 0               !! spin creepage [1/mm]
-        real(dp) :: fx = 0, fy = 0        !! prescribed creep forces [N] (force_prescribed)
-        logical :: force_prescribed = .false.
-    end type fc_rolling_loading
-
-    !> What a rolling case adds to a contact case: the kinetic friction of steady rolling,
-    !! and a sequence — a creep-force sweep of one loading value, or transient rolling steps.
-    type, public :: fc_rolling_case
-        real(dp) :: mu_kinetic = -1        !! steady rolling: kinetic friction in slip (< 0: = mu)
-        logical :: transient = .false.     !! transient rolling: steps of dq from rest
-        real(dp) :: dq = 0                 !! transient: distance per step [mm] (0: dx)
-        integer :: nsteps = 0              !! transient: steps (0: the area length travelled 4 times)
-        character(len=8) :: sweep = ''     !! steady: swept value 'xi', 'eta', 'phi', 'fx', 'fy' ('': none)
-        real(dp) :: sweep_from = 0, sweep_to = 0  !! range of the swept value (ends included)
-        integer :: sweep_n = 20            !! points of the sweep
-        logical :: fastsim = .false.       !! steady: Kalker's simplified theory on the Hertz ellipse, no grid
-    end type fc_rolling_case
-
-    real(dp), parameter :: relax = 0.5_dp   !! SteadyGS under-relaxation factor
 
     public :: solve_rolling, solve_rolling_loading, convective_difference, rolling_slip
 
 contains
-
-    !> d_i = (f_i − f_{i+1})/δx along x with f_{nx+1} = 0: the convective part of the steady
-    !! slip (material in front of the grid is undeformed).
-    pure subroutine convective_difference(f, dx, d)
-        real(dp), intent(in) :: f(:, :)
-        real(dp), intent(in) :: dx
-        real(dp), intent(out) :: d(:, :)
-        integer :: nx
-        nx = size(f, 1)
-        d(1:nx - 1, :) = (f(1:nx - 1, :) - f(2:nx, :))/dx
-        d(nx, :) = f(nx, :)/dx
-    end subroutine convective_difference
 
     !> Steady slip (sx, sy) [-] of tractions (px, py) for the creepages (ξ, η, φ):
     !! s = w + (u − u_{+x})/δx with u = A p + offset.  For checks and tests.
@@ -103,20 +62,6 @@ contains
         call rigid_creepage(top%grid, xi, eta, phi, sx, sy)
         sx = sx + dx; sy = sy + dy
     end subroutine rolling_slip
-
-    !> Rigid creepage w_I = [ξ − φ·y_I, η + φ·x_I].
-    pure subroutine rigid_creepage(grid, xi, eta, phi, wx, wy)
-        type(fc_grid), intent(in) :: grid
-        real(dp), intent(in) :: xi, eta, phi
-        real(dp), intent(out) :: wx(:, :), wy(:, :)
-        integer :: i, j
-        do j = 1, grid%ny
-            do i = 1, grid%nx
-                wx(i, j) = xi - phi*grid%y(j)
-                wy(i, j) = eta + phi*grid%x(i)
-            end do
-        end do
-    end subroutine rigid_creepage
 
     !> Steady rolling with prescribed creepages (ξ, η, φ) on pressure `pn` [N/mm²].
     !! Optional: starting tractions (warm start) and a known displacement offset (e.g. the
@@ -339,235 +284,6 @@ contains
         res%nslip = count(res%state == EL_SLIP)
         res%ncon = res%nadh + res%nslip
     end subroutine rolling_summary
-
-    !> Relative RMS change of the traction vector (thesis eq. 4.49).
-    pure real(dp) function traction_change(px, py, qx, qy)
-        real(dp), intent(in) :: px(:, :), py(:, :), qx(:, :), qy(:, :)
-        real(dp) :: num, den
-        num = sum((px - qx)**2 + (py - qy)**2)
-        den = sum(px**2 + py**2)
-        if (den > 0) then
-            traction_change = sqrt(num/den)
-        else if (num > 0) then
-            traction_change = huge(1.0_dp)
-        else
-            traction_change = 0
-        end if
-    end function traction_change
-
-    !> Diagonal (dxx, dyy) of the steady operator s ← (A p − (A p)_{+x})/δx:
-    !! (A_II − A_{I+x,I})/δx per component (A^xy vanishes on the x axis).
-    subroutine steady_diagonal(top, dxx, dyy)
-        type(fc_tangential_operator), intent(in) :: top
-        real(dp), intent(out) :: dxx, dyy
-        dxx = top%a_xx%kernel(0, 0); dyy = top%a_yy%kernel(0, 0)
-        if (top%grid%nx > 1) then
-            dxx = dxx - top%a_xx%kernel(1, 0); dyy = dyy - top%a_yy%kernel(1, 0)
-        end if
-        dxx = dxx/top%grid%dx; dyy = dyy/top%grid%dx
-    end subroutine steady_diagonal
-
-    !> SteadyGS: nonlinear block Gauss–Seidel, columns from the leading edge (x = xmax)
-    !! backwards, elements in contact only.  An adhesion element I in a run of adhesion
-    !! elements whose front (leading) element is F satisfies the summed steady equations
-    !! u_I − u_{F+x} = −δx·Σ_{K=I..F} w_K (the sum of s_K = 0 over the run); it is solved for
-    !! p_I with the local coefficient A_II − A_{F+x,I}.  Summing along the run is what makes
-    !! the sweeps converge: the element-wise equation s_I = 0 couples I to the element
-    !! ahead as strongly as to itself, and Gauss–Seidel on it diverges.  A slip element
-    !! solves p_I = −μk·pn_I·s_I/|s_I| on its friction circle with the local coefficient
-    !! (A_II − A_{I+x,I})/δx (shared Newton solve of ConvexGS).  Updates are under-relaxed
-    !! by `relax` (the summed equations are not symmetric; unrelaxed sweeps oscillate).
-    subroutine run_steadygs(top, contact, gs, gk, wx, wy, settings, res)
-        type(fc_tangential_operator), intent(inout) :: top
-        logical, intent(in) :: contact(:, :)
-        real(dp), intent(in) :: gs(:, :), gk(:, :), wx(:, :), wy(:, :)
-        type(fc_rolling_settings), intent(in) :: settings
-        type(fc_tangential_result), intent(inout) :: res
-        real(dp), dimension(size(gs, 1), size(gs, 2)) :: px, py, ux, uy, pox, poy, cx, cy
-        integer, dimension(size(gs, 1), size(gs, 2)) :: state
-        real(dp) :: dxx, dyy, rdx, gdx, sx, sy, stx, sty, tx, ty, dpx, dpy, change, uxf, uyf, cxx, cyy, tnorm
-        real(dp) :: accx(size(gs, 2)), accy(size(gs, 2))
-        integer :: front(size(gs, 2))
-        integer :: sweep, i, j, l, nx, ny, f
-        real(dp), allocatable :: hist(:)
-        logical :: converged
-        nx = size(gs, 1); ny = size(gs, 2)
-        gdx = top%grid%dx; rdx = 1/gdx
-        call steady_diagonal(top, dxx, dyy)
-        px = res%px; py = res%py
-        call top%apply(px, py, ux, uy)
-        state = EL_EXTERIOR
-        where (contact) state = EL_ADHESION
-        allocate (hist(settings%maxit))
-        converged = .false.
-        res%status = FC_NOT_CONVERGED
-        change = huge(1.0_dp)
-        do sweep = 1, settings%maxit
-            pox = px; poy = py
-            front = 0
-            do i = nx, 1, -1
-                do j = 1, ny
-                    if (.not. contact(i, j)) then
-                        front(j) = 0
-                        cycle
-                    end if
-                    ! run of adhesion elements ahead of I (updated in this sweep)
-                    if (front(j) == 0) then
-                        front(j) = i; accx(j) = 0; accy(j) = 0
-                    end if
-                    f = front(j)
-                    accx(j) = accx(j) + wx(i, j)*gdx; accy(j) = accy(j) + wy(i, j)*gdx
-                    uxf = 0; uyf = 0
-                    if (f < nx) then
-                        uxf = ux(f + 1, j); uyf = uy(f + 1, j)
-                    end if
-                    ! adhesion trial from the run equation
-                    cxx = top%a_xx%kernel(0, 0); cyy = top%a_yy%kernel(0, 0)
-                    if (f < nx) then
-                        cxx = cxx - top%a_xx%kernel(f + 1 - i, 0); cyy = cyy - top%a_yy%kernel(f + 1 - i, 0)
-                    end if
-                    tx = px(i, j) - (ux(i, j) - uxf + accx(j))/cxx
-                    ty = py(i, j) - (uy(i, j) - uyf + accy(j))/cyy
-                    if (tx**2 + ty**2 <= gs(i, j)**2) then
-                        state(i, j) = EL_ADHESION
-                    else
-                        state(i, j) = EL_SLIP
-                        uxf = 0; uyf = 0
-                        if (i < nx) then
-                            uxf = ux(i + 1, j); uyf = uy(i + 1, j)
-                        end if
-                        sx = wx(i, j) + (ux(i, j) - uxf)*rdx
-                        sy = wy(i, j) + (uy(i, j) - uyf)*rdx
-                        stx = sx - dxx*px(i, j)
-                        sty = sy - dyy*py(i, j)
-                        call circle_newton(gk(i, j), dxx, dyy, stx, sty, tx, ty)
-                    end if
-                    ! under-relaxation (slip: back onto the kinetic circle)
-                    tx = px(i, j) + relax*(tx - px(i, j)); ty = py(i, j) + relax*(ty - py(i, j))
-                    if (state(i, j) == EL_SLIP .and. tx**2 + ty**2 > 0) then
-                        tnorm = gk(i, j)/hypot(tx, ty); tx = tx*tnorm; ty = ty*tnorm
-                    end if
-                    dpx = tx - px(i, j); dpy = ty - py(i, j)
-                    if (state(i, j) == EL_SLIP) front(j) = 0   ! the next element starts a new run
-                    if (dpx == 0 .and. dpy == 0) cycle
-                    px(i, j) = tx; py(i, j) = ty
-                    ! u_J += A_JI Δp_I for every J: O(n) column update
-                    do l = 1, ny
-                        ux(:, l) = ux(:, l) + dpx*top%a_xx%kernel(1 - i:nx - i, l - j) &
-                            + dpy*top%a_xy%kernel(1 - i:nx - i, l - j)
-                        uy(:, l) = uy(:, l) + dpx*top%a_xy%kernel(1 - i:nx - i, l - j) &
-                            + dpy*top%a_yy%kernel(1 - i:nx - i, l - j)
-                    end do
-                end do
-            end do
-            change = traction_change(px, py, pox, poy)
-            hist(sweep) = change
-            res%iterations = sweep
-            if (ieee_is_nan(change) .or. change > 1.0e12_dp) then
-                res%status = FC_DIVERGED
-                res%message = 'SteadyGS diverged (traction change not finite)'
-                exit
-            end if
-            if (change < settings%tol) then
-                converged = .true.
-                exit
-            end if
-        end do
-        call finish(res, converged, 'SteadyGS', settings%maxit, 'sweeps', change)
-        res%outer_iterations = res%iterations
-        ! report the exact slip of the final tractions (one FFT product)
-        call top%apply(px, py, ux, uy)
-        call convective_difference(ux, top%grid%dx, cx)
-        call convective_difference(uy, top%grid%dx, cy)
-        res%px = px; res%py = py; res%ux = ux; res%uy = uy
-        res%sx = wx + cx; res%sy = wy + cy
-        where (.not. contact)
-            res%sx = 0; res%sy = 0
-        end where
-        res%state = state
-        allocate (res%history(res%iterations), source=hist(1:res%iterations))
-    end subroutine run_steadygs
-
-    !> Reference 'march': transient rolling with the travelled distance δq = δx per step
-    !! (previous displacements and tractions moved by one column, thesis eq. 4.10), each
-    !! step solved by TangCG to tol/10 from the moved tractions, until the tractions change
-    !! by less than `tol` from one step to the next.  Its fixed point is the steady state by
-    !! construction; it converges as the physical transient does (the contact must travel
-    !! a few times its length).  `maxit` bounds the number of steps.
-    subroutine run_march(top, pn, mu, wx, wy, settings, res, stat, errmsg)
-        type(fc_tangential_operator), intent(inout) :: top
-        real(dp), intent(in) :: pn(:, :), mu, wx(:, :), wy(:, :)
-        type(fc_rolling_settings), intent(in) :: settings
-        type(fc_tangential_result), intent(inout) :: res
-        integer, intent(out) :: stat
-        character(len=*), intent(out) :: errmsg
-        type(fc_tangential_settings) :: ts
-        type(fc_tangential_result) :: step
-        real(dp), dimension(size(pn, 1), size(pn, 2)) :: upx, upy, ppx, ppy, ox, oy, cx, cy
-        real(dp), allocatable :: hist(:)
-        real(dp) :: change, gdx
-        integer :: k, nx, its, mvs
-        logical :: converged
-        nx = size(pn, 1); gdx = top%grid%dx
-        ts%tol = settings%tol/10; ts%maxit = 10000
-        ox = gdx*wx; oy = gdx*wy
-        ppx = res%px; ppy = res%py
-        call top%apply(ppx, ppy, upx, upy)
-        allocate (hist(settings%maxit))
-        converged = .false.; change = huge(1.0_dp); its = 0; mvs = 0
-        res%status = FC_NOT_CONVERGED
-        do k = 1, settings%maxit
-            ! the material now at x_i was at x_{i+1} one step earlier; new material is undeformed
-            upx(1:nx - 1, :) = upx(2:nx, :); upx(nx, :) = 0
-            upy(1:nx - 1, :) = upy(2:nx, :); upy(nx, :) = 0
-            call solve_tangential(top, pn, mu, ts, step, stat, errmsg, 0.0_dp, 0.0_dp, 0.0_dp, ux_prev=upx, &
-                                  uy_prev=upy, px_start=ppx, py_start=ppy, offset_x=ox, offset_y=oy)
-            if (stat /= 0) return
-            its = its + step%iterations; mvs = mvs + step%matvecs
-            if (step%status /= FC_CONVERGED) then
-                res%status = step%status
-                res%message = 'march: step solve: '//trim(step%message)
-                exit
-            end if
-            change = traction_change(step%px, step%py, ppx, ppy)
-            hist(k) = change
-            res%outer_iterations = k
-            ppx = step%px; ppy = step%py; upx = step%ux; upy = step%uy
-            if (change < settings%tol) then
-                converged = .true.
-                exit
-            end if
-        end do
-        call finish(res, converged, 'march', settings%maxit, 'steps', change)
-        res%iterations = its; res%matvecs = mvs
-        res%px = ppx; res%py = ppy
-        call top%apply(ppx, ppy, res%ux, res%uy)
-        call convective_difference(res%ux, gdx, cx)
-        call convective_difference(res%uy, gdx, cy)
-        res%sx = wx + cx; res%sy = wy + cy
-        where (.not. pn > 0)
-            res%sx = 0; res%sy = 0
-        end where
-        res%state = step%state
-        allocate (res%history(res%outer_iterations), source=hist(1:res%outer_iterations))
-    end subroutine run_march
-
-    !> Final status and message; `change` is the last traction change.
-    subroutine finish(res, converged, solver, maxit, unit_name, change)
-        type(fc_tangential_result), intent(inout) :: res
-        logical, intent(in) :: converged
-        character(len=*), intent(in) :: solver, unit_name
-        integer, intent(in) :: maxit
-        real(dp), intent(in) :: change
-        if (converged) then
-            res%status = FC_CONVERGED
-            res%message = 'converged'
-        else if (res%status == FC_NOT_CONVERGED) then
-            write (res%message, '(a,i0,1x,a,a,es10.3)') solver//' not converged in maxit = ', maxit, unit_name, &
-                '; last traction change ', change
-        end if
-        res%residual = change
-    end subroutine finish
 
     !> Newton–GMRES with TangCG's active set and variables.
     subroutine run_newton_gmres(top, contact, gs, gk, wx, wy, settings, res)
