@@ -26,6 +26,7 @@
 !!   --grids N  number of grids from 30×25 up (1..4, default 3: up to 120×100)
 !!   --gs N     the reference 'march' on the first N grids only (default 2)
 !!   --case C   only case C of the seven
+!!   --forcing F  Newton–GMRES forcing term (default 0.1)
 program fastcontact_bench_rolling
     use fc_kinds, only: dp, status_name
     use fc_geometry, only: fc_grid, make_grid, quadratic_gap
@@ -56,8 +57,8 @@ program fastcontact_bench_rolling
     integer :: stat, ig, c, ngrids, ngs, u, k, only_case
     character(len=256) :: msg, arg, outfile
     character(len=16) :: mode
-    real(dp) :: tsum(3, 4), msum(3, 4), unk(4)
-    ngrids = 3; ngs = 2; outfile = ''; mode = 'perf'; only_case = 0
+    real(dp) :: tsum(3, 4), msum(3, 4), unk(4), forcing
+    ngrids = 3; ngs = 2; outfile = ''; mode = 'perf'; only_case = 0; forcing = 0.1_dp
     tsum = 0; msum = 0; unk = 0
     k = 1
     do while (k <= command_argument_count())
@@ -68,6 +69,7 @@ program fastcontact_bench_rolling
         case ('--out'); k = k + 1; call get_command_argument(k, outfile)
         case ('--kalker', '--fastsim', '--curve'); mode = arg(3:)
         case ('--case'); k = k + 1; call get_command_argument(k, arg); read (arg, *) only_case
+        case ('--forcing'); k = k + 1; call get_command_argument(k, arg); read (arg, *) forcing
         case default; write (*, '(a)') 'usage: fastcontact-bench-rolling [--grids N] [--gs N] [--out FILE]'; stop 2
         end select
         k = k + 1
@@ -98,7 +100,7 @@ program fastcontact_bench_rolling
             call solve_tangential(top, nr%pn, 0.4_dp, ts, tr, stat, msg, xi(c), eta(c), phi(c))
             call row('tangcg-shift', 1)
             rl%mu = 0.4_dp; rl%xi = xi(c); rl%eta = eta(c); rl%phi = phi(c)
-            rs%solver = 'gmres'
+            rs%solver = 'gmres'; rs%forcing = forcing
             call solve_rolling(top, nr%pn, rl, rs, tr, stat, msg)
             call row('gmres', 2)
             if (ig <= ngs) then
