@@ -203,7 +203,7 @@ contains
         tangential = load%problem /= FC_PROBLEM_NORMAL
         use_fmg = settings%normal%solver == 'fmg'
         if (load%problem == FC_PROBLEM_ROLLING .and. load%transient /= FC_FROM_REST) then
-            stat = 1
+            stat = FC_ERR_UNSUPPORTED
             errmsg = 'solve_contact: steady rolling has no transient mode (use FC_PROBLEM_TANGENTIAL with '// &
                 'FC_TRANSIENT_ROLLING for transient rolling)'
             return
