@@ -7,7 +7,7 @@ module fc_case_result
     use fc_geometry, only: fc_grid
     use fc_influence, only: fc_material
     use fc_hertz, only: fc_hertz_solution, fc_cattaneo_solution
-    use fc_contact, only: fc_contact_result
+    use fc_contact_types, only: fc_contact_result
     implicit none
     private
 
@@ -57,6 +57,8 @@ module fc_case_result
         logical :: has_cattaneo = .false.                  !! Cattaneo–Mindlin part present
         type(fc_cattaneo_solution) :: cattaneo             !! analytic Cattaneo–Mindlin
         real(dp) :: fx = 0, fy = 0                         !! analytic tangential forces [N]
+        real(dp) :: mz = 0                                 !! FASTSIM spin moment [N·mm]
+        real(dp), allocatable :: sequence(:, :)            !! rolling sweep / transient steps: one row each
     end type fc_auto_outcome
 
 end module fc_case_result

@@ -24,7 +24,8 @@ module fc_driver
     use fc_influence, only: fc_material
     use fc_norm, only: fc_normal_result
     use fc_tangcg, only: fc_tangential_result, EL_EXTERIOR, EL_ADHESION
-    use fc_contact, only: fc_contact_operators
+    use fc_contact, only: fc_contact_operators, FC_PROBLEM_ROLLING
+    use fc_rolling_batch, only: write_sequence_csv, sweep_header, steps_header
     use fc_mg2d, only: fc_strip_problem, fc_mg2d_settings, fc_mg2d_result, strip_model_problem, solve_strip_mg, &
         solve_strip_fft_rsm
     use fc_hertz, only: hertz_from_approach, hertz_from_force
@@ -34,7 +35,8 @@ module fc_driver
     use fc_input_scene, only: build_case, case_notes
     use fc_scene, only: fc_case
     use fc_strings, only: fmt_int, fmt_real
-    use fc_errors, only: FC_ERR_FRICTION_BOUND, FC_ERR_NO_CONTACT, FC_ERR_GEOMETRY, FC_ERR_IO, FC_ERR_ALLOC, FC_ERR_GRID
+    use fc_errors, only: FC_ERR_VALUE, FC_ERR_FRICTION_BOUND, FC_ERR_NO_CONTACT, FC_ERR_GEOMETRY, FC_ERR_IO, FC_ERR_ALLOC, &
+        FC_ERR_GRID
     use fc_output, only: fc_case_summary, write_case_json, write_case_csv, write_case_report
     use fc_auto, only: fc_auto_outcome, solve_case_auto
     implicit none
@@ -63,11 +65,14 @@ contains
     end function driver_usage
 
     !> Run the driver on the command-line arguments `args` (without the program name).
-    subroutine run_driver(args, exit_code, report_unit, error_unit)
+    !! With `only_case` = k (the MPI batch driver): cases before k are read and checked only,
+    !! for what case k inherits; case k is solved and written; no closing summary line.
+    subroutine run_driver(args, exit_code, report_unit, error_unit, only_case)
         character(len=*), intent(in) :: args(:)
         integer, intent(out) :: exit_code
         integer, intent(in), optional :: report_unit   !! report (default: stdout)
         integer, intent(in), optional :: error_unit    !! error messages (default: stderr)
+        integer, intent(in), optional :: only_case     !! solve only this case (1-based)
         integer :: rep, err, i, k, stat, ncase_err, ncase_fail
         character(len=:), allocatable :: case_file, out_dir
         type(fc_case_chunk), allocatable :: cases(:)
@@ -131,6 +136,12 @@ contains
         allocate (used(0), used_case(0))
         ncase_err = 0; ncase_fail = 0
         do k = 1, size(cases)
+            if (present(only_case)) then
+                if (k > only_case) exit
+                if (k < only_case) then
+                    call inherit_case(k); cycle
+                end if
+            end if
             call run_one_case(k, case_status)
             select case (case_status)
             case (0)
@@ -139,9 +150,9 @@ contains
             end select
         end do
         call ops%destroy()
-        write (rep, '(a,i0,a,i0,a,i0,a,i0,a)') 'fastcontact: ', size(cases), ' case(s): ', &
-            size(cases) - ncase_err - ncase_fail, ' converged, ', ncase_fail, ' not converged, ', ncase_err, &
-            ' with input errors'
+        if (.not. present(only_case)) write (rep, '(a,i0,a,i0,a,i0,a,i0,a)') 'fastcontact: ', size(cases), &
+            ' case(s): ', size(cases) - ncase_err - ncase_fail, ' converged, ', ncase_fail, ' not converged, ', &
+            ncase_err, ' with input errors'
         if (ncase_err > 0) then
             exit_code = EXIT_INPUT_ERROR
         else if (ncase_fail > 0) then
@@ -279,6 +290,19 @@ contains
             else
                 call remove_file(dir//'/'//trim(state%name)//'.csv')
             end if
+            if (allocated(s%outcome%sequence)) then
+                ! rolling: creep-force curve or transient steps, one row each
+                if (state%problem == 'transient_rolling') then
+                    call write_sequence_csv(dir//'/'//trim(state%name)//'_steps.csv', steps_header, s%outcome%sequence, &
+                                            stat, errmsg)
+                else
+                    call write_sequence_csv(dir//'/'//trim(state%name)//'_creep.csv', sweep_header, s%outcome%sequence, &
+                                            stat, errmsg)
+                end if
+                if (stat /= 0) then
+                    call case_error(); return
+                end if
+            end if
             call system_clock(t2)
             s%cpu_seconds = real(t2 - t0, dp)/rate
             call write_case_json(dir//'/'//trim(state%name)//'.json', s, stat, errmsg)
@@ -345,6 +369,21 @@ contains
                     trim(status_name(final_status))//': '//trim(s%message)
             end if
         end subroutine run_strip_case
+
+        !> Apply and check case k without solving or writing: the state later cases inherit
+        !! (as [[run_one_case]] leaves it, except after an error found only while solving).
+        subroutine inherit_case(k)
+            integer, intent(in) :: k
+            saved_state = state
+            call apply_case(cases(k), k, state, name, stat, errmsg)
+            if (stat /= 0 .or. any(used == state%name)) then
+                state = saved_state; return
+            end if
+            used = [character(len=64) :: used, name]
+            used_case = [used_case, k]
+            call validate_case(state, stat, errmsg)
+            if (stat /= 0) state = saved_state
+        end subroutine inherit_case
 
         !> Report an input error of the current case and remove stale outputs.
         subroutine case_error(clean)
@@ -413,7 +452,7 @@ contains
         case ('fft-rsm')
             call solve_strip_fft_rsm(prob, t, r, stat, errmsg)
         case default
-            stat = 1; errmsg = 'unknown strip solver'
+            stat = FC_ERR_VALUE; errmsg = 'unknown strip solver'
         end select
         if (stat /= 0) then
             errmsg = "&solver strip = '"//trim(state%strip)//"': "//trim(errmsg); return
@@ -450,6 +489,13 @@ contains
         s%has_hertz = .true.; s%hertz = s%outcome%hertz
         s%fn = s%outcome%hertz%fn; s%approach = s%outcome%hertz%approach; s%pmax = s%outcome%hertz%p0
         s%residual = 0
+        if (s%outcome%model == 'fastsim') then
+            s%message = "elliptic Hertz and FASTSIM (Kalker's simplified theory)"
+            s%solver = 'hertz+fastsim'; s%tangential = .true.; s%tangential_run = .true.
+            s%solver_tangential = 'fastsim'; s%status_tangential = 'converged'
+            s%fx = s%outcome%fx; s%fy = s%outcome%fy; s%mz = s%outcome%mz; s%mu = state%mu
+            s%xi = state%xi; s%eta = state%eta; s%phi = state%phi
+        end if
         if (s%outcome%has_cattaneo) then
             s%fx = s%outcome%fx; s%fy = s%outcome%fy
             s%mu = state%mu
@@ -470,7 +516,8 @@ contains
         associate (res => s%outcome%result%normal, tres => s%outcome%result%tangential)
             s%tangential = .true.
             s%solver_tangential = kase%settings%tangential%solver
-            s%solver = trim(kase%settings%normal%solver)//'+'//trim(kase%settings%tangential%solver)
+            if (kase%problem == FC_PROBLEM_ROLLING) s%solver_tangential = kase%settings%rolling%solver
+            s%solver = trim(kase%settings%normal%solver)//'+'//trim(s%solver_tangential)
             s%mu = state%mu; s%tforce_prescribed = state%tforce_prescribed
             s%fx_prescribed = state%fx; s%fy_prescribed = state%fy
             s%panagiotopoulos_rounds = s%outcome%result%rounds

@@ -220,6 +220,8 @@ contains
             real(dp), intent(in) :: factor
             integer :: ii, jj
             if (factor == 0) return
+            ! rows are independent: shared among threads (fc_threads)
+            !$omp parallel do default(shared) private(jj) schedule(static)
             do jj = -my, my + 1
                 select case (which)
                 case (1); fc(:, jj) = f_inv_rho(cx, cy(jj))
@@ -230,11 +232,14 @@ contains
                 case default; fc(:, jj) = f_u_rho2(cy(jj), cx)
                 end select
             end do
+            !$omp end parallel do
+            !$omp parallel do default(shared) private(ii, jj) schedule(static)
             do jj = -my, my
                 do ii = -mx, mx
                     kernel(ii, jj) = kernel(ii, jj) + factor*(fc(ii + 1, jj + 1) - fc(ii + 1, jj) - fc(ii, jj + 1) + fc(ii, jj))
                 end do
             end do
+            !$omp end parallel do
         end subroutine add_primitive
     end subroutine ic_kernel_extended
 

@@ -9,7 +9,7 @@ module fc_input_validate
     use fc_errors, only: FC_OK, FC_ERR_VALUE
     use fc_strings, only: fmt_int, fmt_real
     use fc_influence, only: fc_material, combine_material, rigid_modulus
-    use fc_fmg, only: fmg_cycle_from_name
+    use fc_fmg_levels, only: fmg_cycle_from_name
     use fc_input, only: fc_case_input, is_given, grid_is_auto, is_tangential, strip_model_index, max_grid_elements
     implicit none
     private
@@ -65,6 +65,8 @@ contains
                 if (len_trim(errmsg) == 0) call validate_normal(s, errmsg)
                 if (len_trim(errmsg) == 0) call validate_tangential(s, errmsg)
                 if (len_trim(errmsg) == 0) call validate_solver(s, errmsg)
+                if (len_trim(errmsg) == 0) call validate_rolling(s, errmsg)
+                if (len_trim(errmsg) == 0 .and. s%periodic) call validate_periodic(s, errmsg)
                 if (len_trim(errmsg) == 0) call validate_output(s, errmsg)
             end if
         end if
@@ -82,10 +84,11 @@ contains
             return
         end if
         select case (s%problem)
-        case ('normal', 'tangential', 'normal+tangential', 'hertz', 'strip_mp1', 'strip_mp2', 'strip_mp3')
+        case ('normal', 'tangential', 'normal+tangential', 'hertz', 'strip_mp1', 'strip_mp2', 'strip_mp3', 'rolling', &
+              'transient_rolling')
         case default
             errmsg = "&case problem = '"//trim(s%problem)//"': unknown problem; use 'normal', 'normal+tangential', "// &
-                "'tangential', 'hertz' or 'strip_mp1', 'strip_mp2', 'strip_mp3'"
+                "'tangential', 'rolling', 'transient_rolling', 'hertz' or 'strip_mp1', 'strip_mp2', 'strip_mp3'"
         end select
     end subroutine validate_case_group
 
@@ -210,8 +213,16 @@ contains
         end if
         select case (s%model)
         case ('auto', 'full')
+        case ('fastsim')
+            if (s%problem /= 'rolling' .or. s%kind /= 'quadratic' .or. .not. (s%rx > 0 .and. s%ry > 0) .or. &
+                s%tforce_prescribed .or. len_trim(s%sweep) > 0) then
+                errmsg = "&solver model = 'fastsim': needs problem = 'rolling' with &geometry kind = 'quadratic', "// &
+                    'rx > 0, ry > 0, creepages xi, eta, phi (no fx, fy) and no sweep'
+                return
+            end if
         case default
-            errmsg = "&solver model = '"//trim(s%model)//"': use 'auto' (reduce the model where possible) or 'full'"
+            errmsg = "&solver model = '"//trim(s%model)//"': use 'auto' (reduce the model where possible), 'full' "// &
+                "or 'fastsim' (steady rolling: Kalker's simplified theory)"
             return
         end select
         if (auto) then
@@ -325,6 +336,10 @@ contains
                 'subdivision checks)'
             return
         end if
+        if (s%threads < 0 .or. s%threads > 1024) then
+            errmsg = '&solver threads = '//fmt_int(s%threads)//': must lie in [0, 1024] (0: OMP_NUM_THREADS, else 1)'
+            return
+        end if
         ! (with mu = 0 and model = 'auto' the tangential stage is dropped: no coupling)
         if (s%normal_solver == 'fmg' .and. is_tangential(s) .and. .not. (s%model == 'auto' .and. s%mu == 0)) then
             m%g1 = s%g1; m%g2 = s%g2; m%nu1 = s%nu1; m%nu2 = s%nu2
@@ -342,6 +357,78 @@ contains
         errmsg = ''
         if (len_trim(s%dir) == 0) errmsg = "&output dir = '': must not be empty"
     end subroutine validate_output
+
+    !> Rolling keys (&tangential mu_kinetic, dq, nsteps, sweep*, &solver rolling): values
+    !! checked whenever given; sweeps only for 'rolling', dq/nsteps for 'transient_rolling'.
+    subroutine validate_rolling(s, errmsg)
+        type(fc_case_input), intent(in) :: s
+        character(len=*), intent(out) :: errmsg
+        logical :: steady, transient
+        errmsg = ''
+        steady = s%problem == 'rolling'
+        transient = s%problem == 'transient_rolling'
+        select case (s%rolling)
+        case ('gmres', 'march', 'steadygs')
+        case default
+            errmsg = "&solver rolling = '"//trim(s%rolling)//"': unknown solver; use 'gmres', 'march' or 'steadygs'"
+            return
+        end select
+        if (is_given(s, 'tangential', 'mu_kinetic')) then
+            if (.not. (s%mu_kinetic >= 0 .and. s%mu_kinetic <= s%mu)) then
+                errmsg = '&tangential mu_kinetic = '//fmt_real(s%mu_kinetic)//': must be in [0, mu = '//fmt_real(s%mu)// &
+                    '] (kinetic friction in slip)'
+                return
+            end if
+        end if
+        if (is_given(s, 'tangential', 'dq')) then
+            if (.not. (s%dq > 0 .and. s%dq < huge(1.0_dp))) then
+                errmsg = '&tangential dq = '//fmt_real(s%dq)//': must be > 0 (travelled distance per step, mm)'; return
+            end if
+        end if
+        if (s%nsteps < 0 .or. s%nsteps > 100000) then
+            errmsg = '&tangential nsteps = '//fmt_int(s%nsteps)//': must be in [0, 100000] (0: automatic)'; return
+        end if
+        if (transient .and. s%tforce_prescribed) then
+            errmsg = "&tangential fx, fy: problem = 'transient_rolling' takes creepages xi, eta, phi"; return
+        end if
+        if (transient .and. s%mu_kinetic >= 0 .and. s%mu_kinetic /= s%mu) then
+            errmsg = '&tangential mu_kinetic = '//fmt_real(s%mu_kinetic)//": problem = 'transient_rolling' has "// &
+                'one coefficient of friction (mu)'
+            return
+        end if
+        if (len_trim(s%sweep) == 0) return
+        select case (s%sweep)
+        case ('xi', 'eta', 'phi', 'fx', 'fy')
+        case default
+            errmsg = "&tangential sweep = '"//trim(s%sweep)//"': use 'xi', 'eta', 'phi', 'fx' or 'fy' (or '' for none)"
+            return
+        end select
+        if (.not. steady) then
+            errmsg = "&tangential sweep = '"//trim(s%sweep)//"': only for problem = 'rolling'"; return
+        end if
+        if (s%target > 0) then
+            errmsg = '&solver target = '//fmt_real(s%target)//": not available for a creep-force sweep (give a "// &
+                'fixed grid)'
+            return
+        end if
+        if (.not. (is_given(s, 'tangential', 'sweep_from') .and. is_given(s, 'tangential', 'sweep_to'))) then
+            errmsg = "&tangential sweep = '"//trim(s%sweep)//"': sweep_from and sweep_to are required"; return
+        end if
+        if (.not. (abs(s%sweep_from) < 1e6_dp .and. abs(s%sweep_to) < 1e6_dp)) then
+            errmsg = '&tangential sweep_from = '//fmt_real(s%sweep_from)//', sweep_to = '//fmt_real(s%sweep_to)// &
+                ': must be finite, |value| < 1e6'
+            return
+        end if
+        if (s%sweep_n < 2 .or. s%sweep_n > 1000) then
+            errmsg = '&tangential sweep_n = '//fmt_int(s%sweep_n)//': must be in [2, 1000]'; return
+        end if
+        if ((s%sweep == 'fx' .or. s%sweep == 'fy') .and. .not. s%tforce_prescribed) then
+            errmsg = "&tangential sweep = '"//trim(s%sweep)//"': needs prescribed forces (give fx or fy)"; return
+        end if
+        if ((s%sweep == 'xi' .or. s%sweep == 'eta') .and. s%tforce_prescribed) then
+            errmsg = "&tangential sweep = '"//trim(s%sweep)//"': needs creepages (give xi or eta, not fx, fy)"; return
+        end if
+    end subroutine validate_rolling
 
     !> &solver tol > 0 and maxit >= 1 (shared by every problem kind).
     subroutine validate_iteration_keys(s, errmsg)
@@ -409,5 +496,34 @@ contains
         character(len=*), intent(in) :: path
         inquire (file=trim(path), exist=file_exists)
     end function file_exists
+
+    !> `&grid periodic = .true.`: the grid is one cell of a surface repeated in x and y
+    !! (periodic half-space, normal contact): an explicit grid of even nx, ny, the mean
+    !! pressure prescribed through fn, a normal problem, BCCG or NORM.
+    subroutine validate_periodic(s, errmsg)
+        type(fc_case_input), intent(in) :: s
+        character(len=*), intent(out) :: errmsg
+        errmsg = ''
+        if (grid_is_auto(s)) then
+            errmsg = '&grid periodic = .true. with an automatic grid: give the cell (nx, ny, xmin, xmax, ymin, ymax)'
+        else if (s%nx < 2 .or. s%ny < 2 .or. modulo(s%nx, 2) /= 0 .or. modulo(s%ny, 2) /= 0) then
+            errmsg = '&grid periodic = .true., nx = '//fmt_int(s%nx)//', ny = '//fmt_int(s%ny)// &
+                ': the periodic cell needs even nx and ny >= 2'
+        else if (is_tangential(s) .or. s%problem == 'hertz') then
+            errmsg = "&grid periodic = .true. with problem = '"//trim(s%problem)// &
+                "': the periodic half-space is available for normal contact only"
+        else if (.not. s%force_prescribed) then
+            errmsg = '&grid periodic = .true. with &normal approach: prescribe fn (mean pressure x cell area); '// &
+                'the displacements of a periodic cell are defined up to a constant'
+        else if (s%normal_solver == 'fmg') then
+            errmsg = "&grid periodic = .true. with &solver normal = 'fmg': use 'bccg' or 'norm'"
+        else if (len_trim(s%ic_file) > 0) then
+            errmsg = '&grid periodic = .true. with &material ic_file: the periodic half-space has its own '// &
+                'influence coefficients'
+        else if (s%kind == 'strip2d' .or. s%kind == 'cylinder') then
+            errmsg = "&grid periodic = .true. with &geometry kind = '"//trim(s%kind)//"': use a 3D surface "// &
+                "(quadratic, wavy, punch_rough, table)"
+        end if
+    end subroutine validate_periodic
 
 end module fc_input_validate
