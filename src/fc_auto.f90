@@ -60,6 +60,7 @@ module fc_auto
     use fc_case_result, only: fc_level, fc_auto_outcome
     use fc_auto_estimate, only: richardson_estimate, level_estimate, certify_coarsest, target_quantities, &
         estimate_safety, estimate_safety_h2, h2_ratio_low, h2_ratio_high
+    use fc_threads, only: set_thread_count
     implicit none
     private
 
@@ -88,6 +89,7 @@ contains
         real(dp) :: cx, cy, hx, hy
         s = s_in
         stat = 0; errmsg = ''
+        call set_thread_count(s%threads)   ! before any FFT plan of this case is made
         allocate (out%reductions(0), out%warnings(0), out%levels(0))
         out%material = s%material
         call combine_material(out%material, stat, errmsg)
@@ -114,7 +116,8 @@ contains
             'materials (K = 0): one normal and one tangential solve, no Panagiotopoulos loop')
         out%tangential = tang
         ! ---- line contact → 2D strip
-        line = is_line_contact(s) .and. s%kind /= 'strip2d'
+        line = is_line_contact(s) .and. s%kind /= 'strip2d' .and. .not. s%periodic
+        ops%periodic = s%periodic
         if (line .and. s%reduce) then
             if (s%kind == 'quadratic' .and. s%ry > 0) then
                 ! elongated ellipse: only a strip when the y curvature is negligible over the area
@@ -164,7 +167,7 @@ contains
             call solve_levels(s, tang, ops, out, stat, errmsg)
             if (stat /= 0) return
             out%touches_boundary = contact_touches_boundary(out%result%normal%pn, out%model == 'strip2d' .or. &
-                s%kind == 'cylinder' .or. (s%kind == 'quadratic' .and. s%ry == 0))
+                s%kind == 'cylinder' .or. (s%kind == 'quadratic' .and. s%ry == 0)) .and. .not. s%periodic
             if (.not. out%touches_boundary) exit
             if (.not. out%grid_auto .or. attempt == max_enlargements + 1) then
                 if (out%grid_auto) then
