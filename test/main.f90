@@ -12,6 +12,7 @@ program tester
     use test_auto, only: collect_auto
     use test_stability, only: collect_stability
     use test_legacy, only: collect_legacy
+    use test_table_io, only: collect_table_io
     implicit none
     character(len=64) :: suite, only
     integer :: npass, nfail
@@ -49,6 +50,9 @@ program tester
     end if
     if (want('auto')) then
         call collect_auto(tests); call run_suite('auto', tests, only, npass, nfail)
+    end if
+    if (want('table_io')) then
+        call collect_table_io(tests); call run_suite('table_io', tests, only, npass, nfail)
     end if
     write (*, '(i0,a,i0,a)') npass, ' passed, ', nfail, ' failed'
     if (nfail > 0 .or. npass == 0) stop 1   ! non-zero exit status (no backtrace, unlike error stop)
