@@ -27,6 +27,7 @@ module fc_tangcg
     use fc_geometry, only: fc_grid
     use fc_influence
     use fc_norm
+    use fc_tangprec, only: fc_block_inverse, build_block_inverse
     implicit none
     private
 
@@ -38,7 +39,9 @@ module fc_tangcg
         real(dp) :: tol = 1.0e-5_dp              !! relative traction change, eq. (4.49)
         integer :: maxit = 2000                  !! TangCG inner iterations / ConvexGS sweeps
         integer :: inner_k = 3                   !! TangCG: NLCG iterations between subdivision checks
-        logical :: precondition = .true.         !! TangCG: diagonal preconditioner (eq. 4.43)
+        logical :: precondition = .true.         !! TangCG: preconditioner on
+        character(len=8) :: preconditioner = 'fft'  !! TangCG: 'fft' (block Toeplitz inverse on adhesion,
+                                                 !! diagonal on slip, elastic start) or 'diagonal' (eq. 4.43)
     end type fc_tangential_settings
 
     !> Tangential influence blocks on one grid (and the coupling blocks when K ≠ 0).
@@ -49,6 +52,7 @@ module fc_tangcg
         type(fc_bttb) :: a_xz, a_yz         !! u_t from pn (built only when K ≠ 0)
         type(fc_bttb) :: a_zx, a_zy         !! u_z from p_t (built only when K ≠ 0)
         complex(dp), allocatable :: spec_x(:, :), spec_y(:, :), work(:, :)
+        type(fc_block_inverse) :: prec      !! TangCG's FFT preconditioner (built on first use)
         integer :: nproducts = 0            !! combined 2×2 block products
         real(dp) :: setup_seconds = 0
     contains
@@ -123,6 +127,7 @@ contains
         call self%a_xz%destroy(); call self%a_yz%destroy()
         call self%a_zx%destroy(); call self%a_zy%destroy()
         if (allocated(self%spec_x)) deallocate (self%spec_x, self%spec_y, self%work)
+        self%prec = fc_block_inverse()
     end subroutine tangential_destroy
 
     !> True when the normal and tangential problems are coupled (K ≠ 0).
@@ -476,10 +481,27 @@ contains
         logical, dimension(size(g, 1), size(g, 2)) :: adh, slp
         real(dp) :: axx, ayy, alpha, beta, zd_old, zd, denom, change
         integer :: it, inner, nmoved
-        logical :: changed, converged, check_now
+        logical :: changed, converged, check_now, fft_prec
         real(dp), allocatable :: hist(:)
         axx = top%a_xx%kernel(0, 0); ayy = top%a_yy%kernel(0, 0)
         px = res%px; py = res%py
+        fft_prec = settings%precondition .and. settings%preconditioner == 'fft'
+        if (fft_prec) then
+            if (.not. top%prec%built()) call build_block_inverse(top%prec, top%material, top%grid)
+            if (.not. any(contact .and. (px /= 0 .or. py /= 0))) then
+                ! cold start: the elastic (full-adhesion) estimate p ≈ −M w on the contact area;
+                ! where it exceeds the bound, the step below starts the element in slip
+                where (contact)
+                    dax = -wx; day = -wy
+                elsewhere
+                    dax = 0; day = 0
+                end where
+                call apply_block_inverse(top, dax, day, px, py)
+                where (.not. contact)
+                    px = 0; py = 0
+                end where
+            end if
+        end if
         ! initial subdivision (step 0): adhesion everywhere in contact; a warm start whose
         ! traction reaches the bound starts in slip
         adh = contact; slp = .false.
@@ -512,8 +534,23 @@ contains
             elsewhere
                 dax = 0; day = 0
             end where
-            ! step 3: diagonal preconditioner, eq. (4.43): scale the diagonal to A^xx_II
-            if (settings%precondition) then
+            ! step 3: preconditioner
+            if (fft_prec) then
+                ! adhesion: block Toeplitz inverse of A (masked); slip: the inverse of the
+                ! reduced Jacobian's diagonal (as below, without the scaling to A^xx_II)
+                where (adh)
+                    mx = dax; my = day
+                elsewhere
+                    mx = 0; my = 0
+                end where
+                call apply_block_inverse(top, mx, my, zx, zy)
+                where (slp)
+                    zx = dax/(px**2*ayy + py**2*axx + max(0.0_dp, -(px*sx + py*sy))); zy = 0
+                elsewhere (.not. adh)
+                    zx = 0; zy = 0
+                end where
+            else if (settings%precondition) then
+                ! diagonal preconditioner, eq. (4.43): scale the diagonal to A^xx_II
                 where (adh)
                     mx = 1; my = axx/ayy
                 elsewhere (slp)
@@ -536,7 +573,9 @@ contains
                     my = 0
                 end where
             end if
-            zx = mx*dax; zy = my*day
+            if (.not. fft_prec) then
+                zx = mx*dax; zy = my*day
+            end if
             zd = sum(zx*dax + zy*day)
             ! step 4: search direction (Polak–Ribière, β ≥ 0; restart on a new subdivision)
             if (changed) then
@@ -645,6 +684,20 @@ contains
         end where
         allocate (res%history(res%iterations), source=hist(1:res%iterations))
     end subroutine run_tangcg
+
+    !> (zx, zy) = M (dx, dy) with M the FFT preconditioner of [[fc_tangprec]] (one forward
+    !! transform per component, two inverse transforms).
+    subroutine apply_block_inverse(top, dx, dy, zx, zy)
+        type(fc_tangential_operator), intent(inout) :: top
+        real(dp), intent(in) :: dx(:, :), dy(:, :)
+        real(dp), intent(out) :: zx(:, :), zy(:, :)
+        call top%a_xx%forward(dx, top%spec_x)
+        call top%a_xx%forward(dy, top%spec_y)
+        top%work = top%spec_x*top%prec%mxx + top%spec_y*top%prec%mxy
+        call top%a_xx%backward(top%work, zx)
+        top%work = top%spec_x*top%prec%mxy + top%spec_y*top%prec%myy
+        call top%a_xx%backward(top%work, zy)
+    end subroutine apply_block_inverse
 
     !> ConvexGS: block Gauss–Seidel over the contact elements (thesis §4.2.4).
     subroutine run_convexgs(top, contact, g, wx, wy, settings, res)
