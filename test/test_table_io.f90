@@ -54,6 +54,7 @@ contains
         end do
         call compare(0.0_dp); call compare(-0.0_dp); call compare(huge(1.0_dp)); call compare(-tiny(1.0_dp))
         call compare(1.0e-300_dp); call compare(9.9999999999999999e22_dp); call compare(0.1_dp)
+        if (.not. allocated(first)) first = ''
         call check(error, nbad == 0, 'put_real differs from the run-time ES23.15E3 in some cases, first: '//first)
         if (allocated(error)) return
         x = huge(1.0_dp); x = x*2
