@@ -454,7 +454,11 @@ contains
         allocate (hist(settings%maxit))
         changed = .true.; converged = .false.
         zd_old = 1; vax = 0; vay = 0; dox = 0; doy = 0
+        ! with the FFT preconditioner's elastic start the subdivision is nearly right: check it
+        ! after the first iteration already (the elements the start put wrongly are found
+        ! before CG builds up directions), then every K iterations
         inner = 0
+        if (fft_prec) inner = settings%inner_k - 1
         res%status = FC_NOT_CONVERGED
         res%outer_iterations = 0
         change = huge(1.0_dp)
