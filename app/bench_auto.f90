@@ -12,7 +12,11 @@
 program bench_auto
     use, intrinsic :: iso_fortran_env, only: int64
     use fc_kinds, only: dp, msg_len
-    use fc_input, only: fc_case_input, fc_case_chunk, read_case_file, apply_case, validate_case
+    use fc_namelist, only: fc_case_chunk, read_case_file
+    use fc_input, only: fc_case_input, apply_case
+    use fc_input_validate, only: validate_case
+    use fc_input_scene, only: build_case
+    use fc_scene, only: fc_case
     use fc_contact, only: fc_contact_operators
     use fc_hertz, only: fc_hertz_solution, hertz_from_approach, hertz_from_force
     use fc_auto, only: fc_auto_outcome, fc_level, solve_case_auto, plane_strain_hertz, level_estimate, &
@@ -73,9 +77,9 @@ contains
         ! ---- 1. problem = 'hertz' vs the full model to 1e-3 (auto area)
         call solve_text("&case problem = 'hertz' /"//nl//hertz_scene, red, tr)
         call solve_text(hertz_scene//'&solver target = 1.0e-3 /'//nl, full, tf)
-        call row('hertz_analytic', 'analytic', red, 'fn', red%hertz%fn, full%res%fn, tr, tf)
-        call row('hertz_analytic', 'full_target_1e-3', full, 'fn', full%res%fn, red%hertz%fn, tf, tf)
-        call row('hertz_analytic', 'full_target_1e-3', full, 'pmax', full%res%pmax, red%hertz%p0, tf, tf)
+        call row('hertz_analytic', 'analytic', red, 'fn', red%hertz%fn, full%result%normal%fn, tr, tf)
+        call row('hertz_analytic', 'full_target_1e-3', full, 'fn', full%result%normal%fn, red%hertz%fn, tf, tf)
+        call row('hertz_analytic', 'full_target_1e-3', full, 'pmax', full%result%normal%pmax, red%hertz%p0, tf, tf)
 
         ! ---- 2. line contact: cylinder as a strip vs a 3D grid of the same cylinder
         call solve_text('&material g1 = 82000.0, g2 = 82000.0 /'//nl// &
@@ -84,23 +88,23 @@ contains
             "&geometry kind = 'cylinder', rx = 100.0, length = 20.0 /"//nl//'&normal fn = 2.0e4 /'//nl// &
             "&solver model = 'full' /"//nl, full, tf)
         call plane_strain_hertz(100.0_dp, 1000.0_dp, 82000.0_dp/0.72_dp, b, p0)
-        call row('line_contact', 'strip2d', red, 'pmax', red%res%pmax, p0, tr, tf)
+        call row('line_contact', 'strip2d', red, 'pmax', red%result%normal%pmax, p0, tr, tf)
         call row('line_contact', 'full_3d_finite_cylinder', full, 'pmax_centre_line', &
-            maxval(full%res%pn(:, (full%grid%ny + 1)/2)), p0, tf, tf)
-        call row('line_contact', 'full_3d_finite_cylinder', full, 'pmax_ends', full%res%pmax, p0, tf, tf)
+            maxval(full%result%normal%pn(:, (full%grid%ny + 1)/2)), p0, tf, tf)
+        call row('line_contact', 'full_3d_finite_cylinder', full, 'pmax_ends', full%result%normal%pmax, p0, tf, tf)
 
         ! ---- 3. no tangential loading (zero shifts, K = 0): normal only vs normal + tangential
         call solve_text(cattaneo_scene//'&tangential mu = 0.4, xi = 0.0, eta = 0.0, phi = 0.0 /'//nl, red, tr)
         call solve_text(cattaneo_scene//'&tangential mu = 0.4, xi = 0.0, eta = 0.0, phi = 0.0 /'//nl// &
             "&solver model = 'full' /"//nl, full, tf)
-        call row('no_tangential_loading', 'normal_only', red, 'fn', red%res%fn, full%res%fn, tr, tf)
-        call row('no_tangential_loading', 'full', full, 'fx', full%tres%fx, 0.0_dp, tf, tf)
+        call row('no_tangential_loading', 'normal_only', red, 'fn', red%result%normal%fn, full%result%normal%fn, tr, tf)
+        call row('no_tangential_loading', 'full', full, 'fx', full%result%tangential%fx, 0.0_dp, tf, tf)
 
         ! ---- 4. K = 0: decoupled (one normal + one tangential solve) vs the coupled pipeline
         call solve_text(cattaneo_scene//'&tangential mu = 0.4, xi = -0.0081724 /'//nl, red, tr)
         call solve_text(cattaneo_scene//'&tangential mu = 0.4, xi = -0.0081724 /'//nl//"&solver model = 'full' /"//nl, &
             full, tf)
-        call row('k0_decoupled', 'decoupled', red, 'fx', red%tres%fx, full%tres%fx, tr, tf)
+        call row('k0_decoupled', 'decoupled', red, 'fx', red%result%tangential%fx, full%result%tangential%fx, tr, tf)
 
         ! ---- 5. accuracy target vs the final grid alone and a fixed 256² grid
         call solve_text(hertz_scene//'&grid nx = 16, ny = 16, xmin = -10.0, xmax = 10.0, ymin = -6.0, ymax = 6.0 /'//nl// &
@@ -113,11 +117,11 @@ contains
         end do
         call solve_text(hertz_scene//'&grid nx = 64, ny = 64, xmin = -10.0, xmax = 10.0, ymin = -6.0, ymax = 6.0 /'//nl, &
             full, tf)
-        call row('accuracy_target', 'target_5e-4_all_grids', red, 'fn', red%res%fn, hz%fn, tr, tf)
-        call row('accuracy_target', 'final_grid_alone', full, 'fn', full%res%fn, hz%fn, tf, tf)
+        call row('accuracy_target', 'target_5e-4_all_grids', red, 'fn', red%result%normal%fn, hz%fn, tr, tf)
+        call row('accuracy_target', 'final_grid_alone', full, 'fn', full%result%normal%fn, hz%fn, tf, tf)
         call solve_text(hertz_scene//'&grid nx = 256, ny = 256, xmin = -10.0, xmax = 10.0, ymin = -6.0, ymax = 6.0 /'// &
             nl, full, tf)
-        call row('accuracy_target', 'fixed_256', full, 'fn', full%res%fn, hz%fn, tf, tr)
+        call row('accuracy_target', 'fixed_256', full, 'fn', full%result%normal%fn, hz%fn, tf, tr)
 
         ! ---- 6. target sweep: the grid the algorithm chooses for each target (one full run per
         ! target: the solver tolerance, hence the noise floor of the estimate, follows the target)
@@ -253,7 +257,7 @@ contains
                 cycle
             end if
             write (cgrid, '(i0)') out%grid%nx
-            true_err = rel_err(out%res%fn, out%tres%fx, ref_fn, ref_fx, with_fx)
+            true_err = rel_err(out%result%normal%fn, out%result%tangential%fx, ref_fn, ref_fx, with_fx)
             ! the reference sequence holds the same grids (same start, refined by two)
             kc = 0
             do k = 1, n
@@ -311,7 +315,7 @@ contains
         character(len=*), intent(in) :: name, text
         real(dp), intent(in) :: truth_q1, truth_q2
         type(fc_auto_outcome) :: ref
-        type(fc_case_input) :: s
+        type(fc_case) :: s
         type(fc_level), allocatable :: lv(:)
         real(dp), allocatable :: q(:, :), true_err(:)
         real(dp) :: secs, truth(2), scale(2), tgt, noise, est, ratio, margin
@@ -332,7 +336,7 @@ contains
         call target_quantities(lv, s, tang, q, qname)
         nq = size(q, 2)
         allocate (true_err(n))
-        truth = [truth_q1/abs(merge(lv(n)%approach, lv(n)%fn, s%force_prescribed)), truth_q2]
+        truth = [truth_q1/abs(merge(lv(n)%approach, lv(n)%fn, s%normal%force_prescribed)), truth_q2]
         extrapolated = .false.
         do j = 1, nq
             if (truth(j) == 0) then
@@ -349,7 +353,7 @@ contains
             do start = 1, nuse - 1
                 do it = 0, 20
                     tgt = 10.0_dp**(-2 - it/10.0_dp)
-                    noise = 10*min(s%settings%tol, tgt/100)
+                    noise = 10*min(s%settings%normal%tol, tgt/100)
                     chosen = 0
                     do k = start + 1, min(nuse, start + 5)
                         call level_estimate(lv(start:k), s, tang, noise, est, ratio, mono, qname, variants(:, v))
@@ -494,9 +498,10 @@ contains
         character(len=*), intent(in) :: text
         type(fc_auto_outcome), intent(out) :: out
         real(dp), intent(out) :: seconds
-        type(fc_case_input), intent(out), optional :: state_out  !! the validated case, before solving
+        type(fc_case), intent(out), optional :: state_out  !! the validated case, before solving
         type(fc_case_chunk), allocatable :: cases(:)
         type(fc_case_input) :: state
+        type(fc_case) :: kase
         type(fc_contact_operators) :: ops
         character(len=64) :: name
         character(len=msg_len) :: msg
@@ -511,9 +516,10 @@ contains
             if (stat == 0) call apply_case(cases(k), k, state, name, stat, msg)
         end do
         if (stat == 0) call validate_case(state, stat, msg)
-        if (present(state_out)) state_out = state
+        if (stat == 0) kase = build_case(state)
+        if (present(state_out)) state_out = kase
         call system_clock(t0, rate)
-        if (stat == 0) call solve_case_auto(state, ops, out, stat, msg)
+        if (stat == 0) call solve_case_auto(kase, ops, out, stat, msg)
         call system_clock(t1)
         seconds = real(t1 - t0, dp)/rate
         if (stat /= 0) write (*, '(a)') 'bench-auto: case failed: '//trim(msg)

@@ -28,8 +28,13 @@ module fc_driver
     use fc_mg2d, only: fc_strip_problem, fc_mg2d_settings, fc_mg2d_result, strip_model_problem, solve_strip_mg, &
         solve_strip_fft_rsm
     use fc_hertz, only: hertz_from_approach, hertz_from_force
-    use fc_input, only: fc_case_chunk, fc_case_input, read_case_file, apply_case, validate_case, setup_case, fmt_real, &
-        is_tangential, tangential_loading, strip_model_index, is_given
+    use fc_namelist, only: fc_case_chunk, read_case_file
+    use fc_input, only: fc_case_input, apply_case, strip_model_index, is_given
+    use fc_input_validate, only: validate_case
+    use fc_input_scene, only: build_case, case_notes
+    use fc_scene, only: fc_case
+    use fc_strings, only: fmt_int, fmt_real
+    use fc_errors, only: FC_ERR_FRICTION_BOUND, FC_ERR_NO_CONTACT, FC_ERR_GEOMETRY, FC_ERR_IO, FC_ERR_ALLOC, FC_ERR_GRID
     use fc_output, only: fc_case_summary, write_case_json, write_case_csv, write_case_report
     use fc_auto, only: fc_auto_outcome, solve_case_auto
     implicit none
@@ -150,16 +155,12 @@ contains
             integer, intent(out) :: case_status
             character(len=:), allocatable :: dir
             type(fc_material) :: mat
-            type(fc_grid) :: grid
-            real(dp), allocatable :: h0(:, :)
-            type(fc_normal_result) :: res
-            type(fc_tangential_result) :: tres
             type(fc_case_summary) :: s
             integer(int64) :: t0, t1, t2, rate
-            integer :: j, rounds, final_status
+            integer :: j, final_status
             real(dp) :: ca, cb
             logical :: tang
-            type(fc_auto_outcome) :: auto
+            type(fc_case) :: kase
             call system_clock(t0, rate)
             case_status = 1
             nused_before = size(used)
@@ -192,38 +193,30 @@ contains
                 call case_error(clean=.false.); return
             end if
             ! ---- strip model problems: their own solvers and outputs
+            kase = build_case(state)
             if (strip_model_index(state) > 0) then
-                call run_strip_case(dir, t0, rate, case_status)
+                call run_strip_case(dir, kase, t0, rate, case_status)
                 return
             end if
-            ! ---- solve: model choice, potential area, accuracy target (fc_auto); operators reused
+            ! ---- solve: model choice, potential area, accuracy target (fc_auto); operators reused;
+            !      the outcome goes straight into the summary
             call system_clock(t1)
-            call solve_case_auto(state, ops, auto, stat, errmsg)
+            call solve_case_auto(kase, ops, s%outcome, stat, errmsg)
             call system_clock(t2)
             if (stat /= 0) then
-                call library_message(errmsg, state)
+                call library_context(stat, errmsg, state, s%outcome)
                 call case_error(); return
             end if
-            tang = auto%tangential
-            mat = auto%material
+            tang = s%outcome%tangential
+            mat = s%outcome%material
             ! ---- summary
             s%name = state%name; s%title = state%title; s%problem = state%problem; s%geometry = state%kind
-            s%material = mat; s%force_prescribed = state%force_prescribed
-            s%tol = state%settings%tol
-            if (auto%tol > 0) s%tol = auto%tol
-            s%notes = state%notes
-            s%model = auto%model; s%reductions = auto%reductions; s%warnings = auto%warnings
-            s%grid_auto = auto%grid_auto; s%enlargements = auto%enlargements
-            s%touches_boundary = auto%touches_boundary
-            s%target = auto%target; s%estimate = auto%estimate; s%reliable = auto%reliable
-            s%target_met = auto%target_met; s%quantities = auto%quantities; s%levels = auto%levels
-            if (auto%sufficient > 0) then
-                s%sufficient_nx = auto%levels(auto%sufficient)%nx; s%sufficient_ny = auto%levels(auto%sufficient)%ny
-                s%sufficient_bound = auto%sufficient_bound
-            end if
-            s%levels_seconds = auto%total_seconds
-            if (auto%analytic) then
-                call analytic_summary(s, auto, state)
+            s%force_prescribed = state%force_prescribed
+            s%tol = kase%settings%normal%tol
+            if (s%outcome%tol > 0) s%tol = s%outcome%tol
+            s%notes = state%notes//case_notes(state)
+            if (s%outcome%analytic) then
+                call analytic_summary(s, state)
                 final_status = FC_CONVERGED
                 call remove_file(dir//'/'//trim(state%name)//'.csv')
                 call system_clock(t2)
@@ -236,34 +229,28 @@ contains
                 case_status = 0
                 return
             end if
-            grid = auto%grid
-            call move_alloc(auto%h0, h0)
-            call move_alloc(auto%res%pn, res%pn); call move_alloc(auto%res%gap, res%gap)
-            res%approach = auto%res%approach; res%fn = auto%res%fn; res%pmax = auto%res%pmax
-            res%ncon = auto%res%ncon; res%status = auto%res%status; res%iterations = auto%res%iterations
-            res%outer_iterations = auto%res%outer_iterations; res%matvecs = auto%res%matvecs
-            res%residual = auto%res%residual; res%cpu_seconds = auto%res%cpu_seconds; res%message = auto%res%message
-            if (tang) tres = auto%tres
-            rounds = auto%rounds
-            s%setup_seconds = auto%setup_seconds; s%setup_seconds_tangential = auto%setup_seconds_tangential
-            s%grid = grid
-            s%status = status_name(res%status); s%message = res%message
-            s%solver = state%settings%solver; s%solver_normal = state%settings%solver
-            s%status_normal = status_name(res%status)
-            s%fn = res%fn; s%approach = res%approach; s%pmax = res%pmax
-            s%ncon = res%ncon; s%nadh = res%ncon; s%nslip = 0
-            s%iterations = res%iterations; s%outer_iterations = res%outer_iterations; s%matvecs = res%matvecs
-            s%iterations_normal = res%iterations; s%outer_iterations_normal = res%outer_iterations
-            if (state%settings%solver == 'fmg') then
-                s%work_units = auto%work_units; s%convergence_factor = auto%convergence_factor
-                s%cycle = state%cycle
-            end if
-            s%matvecs_normal = res%matvecs; s%residual_normal = res%residual
-            s%residual = res%residual
-            s%cpu_seconds_normal = s%setup_seconds + res%cpu_seconds
-            if (size(auto%levels) > 1) s%cpu_seconds_normal = real(t2 - t1, dp)/rate
-            final_status = res%status
-            if (tang) call tangential_summary(s, state, res, tres, auto%tangential_run, rounds, final_status)
+            associate (res => s%outcome%result%normal, grid => s%outcome%grid)
+                s%setup_seconds = s%outcome%result%setup_seconds_normal
+                s%setup_seconds_tangential = s%outcome%result%setup_seconds_tangential
+                s%status = status_name(res%status); s%message = res%message
+                s%solver = kase%settings%normal%solver; s%solver_normal = kase%settings%normal%solver
+                s%status_normal = status_name(res%status)
+                s%fn = res%fn; s%approach = res%approach; s%pmax = res%pmax
+                s%ncon = res%ncon; s%nadh = res%ncon; s%nslip = 0
+                s%iterations = res%iterations; s%outer_iterations = res%outer_iterations; s%matvecs = res%matvecs
+                s%iterations_normal = res%iterations; s%outer_iterations_normal = res%outer_iterations
+                if (kase%settings%normal%solver == 'fmg') then
+                    s%work_units = s%outcome%result%work_units
+                    s%convergence_factor = s%outcome%result%convergence_factor
+                    s%cycle = state%cycle
+                end if
+                s%matvecs_normal = res%matvecs; s%residual_normal = res%residual
+                s%residual = res%residual
+                s%cpu_seconds_normal = s%setup_seconds + res%cpu_seconds
+                if (size(s%outcome%levels) > 1) s%cpu_seconds_normal = real(t2 - t1, dp)/rate
+                final_status = res%status
+                if (tang) call tangential_summary(s, state, kase, final_status)
+            end associate
             if (mat%k /= 0 .and. .not. tang) s%notes = s%notes//'K = '//fmt_real(mat%k)// &
                 ' /= 0: the normal problem is solved without the tangential coupling. '
             if (state%kind == 'quadratic' .and. state%rx > 0 .and. state%ry > 0) then
@@ -277,12 +264,15 @@ contains
             end if
             ! ---- outputs
             if (state%table) then
-                if (tang) then
-                    call write_case_csv(dir//'/'//trim(state%name)//'.csv', grid, res%pn, res%gap, stat, errmsg, &
-                        tres%state, tres%px, tres%py, tres%sx, tres%sy)
-                else
-                    call write_case_csv(dir//'/'//trim(state%name)//'.csv', grid, res%pn, res%gap, stat, errmsg)
-                end if
+                associate (res => s%outcome%result%normal, tres => s%outcome%result%tangential)
+                    if (tang) then
+                        call write_case_csv(dir//'/'//trim(state%name)//'.csv', s%outcome%grid, res%pn, res%gap, stat, &
+                            errmsg, tres%state, tres%px, tres%py, tres%sx, tres%sy)
+                    else
+                        call write_case_csv(dir//'/'//trim(state%name)//'.csv', s%outcome%grid, res%pn, res%gap, stat, &
+                            errmsg)
+                    end if
+                end associate
                 if (stat /= 0) then
                     call case_error(); return
                 end if
@@ -297,9 +287,9 @@ contains
                 call case_error(); return
             end if
             if (tang) then
-                call write_case_report(rep, s, res%pn, tres%state)
+                call write_case_report(rep, s, s%outcome%result%normal%pn, s%outcome%result%tangential%state)
             else
-                call write_case_report(rep, s, res%pn)
+                call write_case_report(rep, s, s%outcome%result%normal%pn)
             end if
             if (final_status == FC_CONVERGED) then
                 case_status = 0
@@ -312,8 +302,9 @@ contains
         end subroutine run_one_case
 
         !> Solve a strip model problem case and write its outputs (sets case_status).
-        subroutine run_strip_case(dir, t0, rate, case_status)
+        subroutine run_strip_case(dir, kase, t0, rate, case_status)
             character(len=*), intent(in) :: dir
+            type(fc_case), intent(in) :: kase
             integer(int64), intent(in) :: t0, rate
             integer, intent(out) :: case_status
             type(fc_case_summary) :: s
@@ -323,7 +314,7 @@ contains
             real(dp), allocatable :: px(:, :), zero(:, :)
             integer, allocatable :: el(:, :)
             case_status = 1
-            call solve_strip_case(state, s, sgrid, px, el, final_status, stat, errmsg)
+            call solve_strip_case(state, kase, s, sgrid, px, el, final_status, stat, errmsg)
             if (stat /= 0) then
                 call case_error(); return
             end if
@@ -392,8 +383,9 @@ contains
     !! / FFT+SD smoother) or 'fft-rsm' (one-grid FFT+RSM).  Returns the summary, the grid, the
     !! traction px per element and the element states (A on the contact strips, E elsewhere).
     !! tol is 1e−8 (thesis) unless `&solver tol` was given.
-    subroutine solve_strip_case(state, s, grid, px, el, final_status, stat, errmsg)
+    subroutine solve_strip_case(state, kase, s, grid, px, el, final_status, stat, errmsg)
         type(fc_case_input), intent(in) :: state
+        type(fc_case), intent(in) :: kase
         type(fc_case_summary), intent(inout) :: s
         type(fc_grid), intent(out) :: grid
         real(dp), allocatable, intent(out) :: px(:, :)
@@ -411,9 +403,9 @@ contains
             errmsg = '&grid nx = '//fmt_int(state%nx)//": problem = '"//trim(state%problem)//"': "//trim(errmsg); return
         end if
         t%tol = 1.0e-8_dp
-        if (is_given(state, 'solver', 'tol')) t%tol = state%settings%tol
-        t%maxit = state%settings%maxit
-        t%nu1 = state%fmg%nu1; t%nu2 = state%fmg%nu2
+        if (is_given(state, 'solver', 'tol')) t%tol = kase%settings%normal%tol
+        t%maxit = kase%settings%normal%maxit
+        t%nu1 = kase%settings%fmg%nu1; t%nu2 = kase%settings%fmg%nu2
         select case (state%strip)
         case ('mg-fft-rsm', 'mg-fft-sd')
             t%smoother = state%strip(4:)
@@ -432,9 +424,9 @@ contains
         el = reshape(merge(EL_ADHESION, EL_EXTERIOR, prob%contact), [n, 1])
         final_status = r%status
         s%name = state%name; s%title = state%title; s%problem = state%problem; s%geometry = 'strip2d'
-        s%material = prob%material; s%grid = grid; s%model = 'strip2d'
-        allocate (s%reductions(0), s%warnings(0))
-        s%notes = state%notes
+        s%outcome%material = prob%material; s%outcome%grid = grid; s%outcome%model = 'strip2d'
+        allocate (s%outcome%reductions(0), s%outcome%warnings(0))
+        s%notes = state%notes//case_notes(state)
         s%status = status_name(r%status); s%message = r%message
         s%solver = state%strip
         s%solver_normal = 'none'; s%status_normal = 'not_run'
@@ -449,98 +441,94 @@ contains
         stat = 0; errmsg = ''
     end subroutine solve_strip_case
 
-    function fmt_int(i) result(text)
-        integer, intent(in) :: i
-        character(len=:), allocatable :: text
-        character(len=20) :: buf
-        write (buf, '(i0)') i
-        text = trim(buf)
-    end function fmt_int
-
     !> Summary of an analytic (problem = 'hertz') case: no grid, Hertz values as results.
-    subroutine analytic_summary(s, auto, state)
+    subroutine analytic_summary(s, state)
         type(fc_case_summary), intent(inout) :: s
-        type(fc_auto_outcome), intent(in) :: auto
         type(fc_case_input), intent(in) :: state
-        s%analytic = .true.
         s%status = 'converged'; s%message = 'analytic Hertz solution'
         s%solver = 'hertz'; s%solver_normal = 'hertz'; s%status_normal = 'converged'
-        s%has_hertz = .true.; s%hertz = auto%hertz
-        s%fn = auto%hertz%fn; s%approach = auto%hertz%approach; s%pmax = auto%hertz%p0
+        s%has_hertz = .true.; s%hertz = s%outcome%hertz
+        s%fn = s%outcome%hertz%fn; s%approach = s%outcome%hertz%approach; s%pmax = s%outcome%hertz%p0
         s%residual = 0
-        s%has_cattaneo = auto%has_cattaneo
-        if (auto%has_cattaneo) then
-            s%cattaneo = auto%cattaneo
-            s%fx = auto%fx; s%fy = auto%fy
+        if (s%outcome%has_cattaneo) then
+            s%fx = s%outcome%fx; s%fy = s%outcome%fy
             s%mu = state%mu
             ! the shift opposes the force (tractions act on body 1 and oppose its slip)
-            s%xi = -auto%cattaneo%shift*auto%fx/max(hypot(auto%fx, auto%fy), tiny(1.0_dp))
-            s%eta = -auto%cattaneo%shift*auto%fy/max(hypot(auto%fx, auto%fy), tiny(1.0_dp))
+            s%xi = -s%outcome%cattaneo%shift*s%outcome%fx/max(hypot(s%outcome%fx, s%outcome%fy), tiny(1.0_dp))
+            s%eta = -s%outcome%cattaneo%shift*s%outcome%fy/max(hypot(s%outcome%fx, s%outcome%fy), tiny(1.0_dp))
         end if
     end subroutine analytic_summary
 
     !> Tangential part of the summary; status = worst of both stages.  When the normal
     !! stage failed the tangential stage was not run: zero tractions, states from the
     !! pressure (adhesion where pn > 0), status of the normal stage.
-    subroutine tangential_summary(s, state, res, tres, tangential_run, rounds, final_status)
+    subroutine tangential_summary(s, state, kase, final_status)
         type(fc_case_summary), intent(inout) :: s
         type(fc_case_input), intent(in) :: state
-        type(fc_normal_result), intent(in) :: res
-        type(fc_tangential_result), intent(in) :: tres
-        logical, intent(in) :: tangential_run
-        integer, intent(in) :: rounds
+        type(fc_case), intent(in) :: kase
         integer, intent(inout) :: final_status
-        s%tangential = .true.
-        s%solver_tangential = state%tsettings%solver
-        s%solver = trim(state%settings%solver)//'+'//trim(state%tsettings%solver)
-        s%mu = state%mu; s%tforce_prescribed = state%tforce_prescribed
-        s%fx_prescribed = state%fx; s%fy_prescribed = state%fy
-        s%panagiotopoulos_rounds = rounds
-        s%cpu_seconds_normal = s%setup_seconds + res%cpu_seconds
-        s%tangential_run = tangential_run
-        if (.not. s%tangential_run) then
-            ! (the orchestrator's result has zero tractions and adhesion where pn > 0)
-            s%status_tangential = 'not_run'
-            s%message = trim(res%message)//' (tangential stage not run)'
-            s%xi = state%xi; s%eta = state%eta; s%phi = state%phi
-            s%cpu_seconds_tangential = s%setup_seconds_tangential
-            return
-        end if
-        s%status_tangential = status_name(tres%status)
-        s%fx = tres%fx; s%fy = tres%fy; s%mz = tres%mz
-        s%xi = tres%xi; s%eta = tres%eta; s%phi = tres%phi
-        s%nadh = tres%nadh; s%nslip = tres%nslip
-        s%iterations_tangential = tres%iterations; s%outer_iterations_tangential = tres%outer_iterations
-        s%matvecs_tangential = tres%matvecs; s%residual_tangential = tres%residual
-        s%iterations = res%iterations + tres%iterations
-        s%outer_iterations = res%outer_iterations + tres%outer_iterations
-        s%matvecs = res%matvecs + tres%matvecs
-        s%residual = max(res%residual, tres%residual)
-        s%cpu_seconds_tangential = s%setup_seconds_tangential + tres%cpu_seconds
-        final_status = max(res%status, tres%status)
-        s%status = status_name(final_status)
-        if (tres%status /= FC_CONVERGED) then
-            if (res%status == FC_CONVERGED) then
-                s%message = 'tangential: '//trim(tres%message)
-            else
-                s%message = 'normal: '//trim(res%message)//'; tangential: '//trim(tres%message)
+        associate (res => s%outcome%result%normal, tres => s%outcome%result%tangential)
+            s%tangential = .true.
+            s%solver_tangential = kase%settings%tangential%solver
+            s%solver = trim(kase%settings%normal%solver)//'+'//trim(kase%settings%tangential%solver)
+            s%mu = state%mu; s%tforce_prescribed = state%tforce_prescribed
+            s%fx_prescribed = state%fx; s%fy_prescribed = state%fy
+            s%panagiotopoulos_rounds = s%outcome%result%rounds
+            s%cpu_seconds_normal = s%setup_seconds + res%cpu_seconds
+            s%tangential_run = s%outcome%result%tangential_run
+            if (.not. s%tangential_run) then
+                ! (the orchestrator's result has zero tractions and adhesion where pn > 0)
+                s%status_tangential = 'not_run'
+                s%message = trim(res%message)//' (tangential stage not run)'
+                s%xi = state%xi; s%eta = state%eta; s%phi = state%phi
+                s%cpu_seconds_tangential = s%setup_seconds_tangential
+                return
             end if
-        end if
+            s%status_tangential = status_name(tres%status)
+            s%fx = tres%fx; s%fy = tres%fy; s%mz = tres%mz
+            s%xi = tres%xi; s%eta = tres%eta; s%phi = tres%phi
+            s%nadh = tres%nadh; s%nslip = tres%nslip
+            s%iterations_tangential = tres%iterations; s%outer_iterations_tangential = tres%outer_iterations
+            s%matvecs_tangential = tres%matvecs; s%residual_tangential = tres%residual
+            s%iterations = res%iterations + tres%iterations
+            s%outer_iterations = res%outer_iterations + tres%outer_iterations
+            s%matvecs = res%matvecs + tres%matvecs
+            s%residual = max(res%residual, tres%residual)
+            s%cpu_seconds_tangential = s%setup_seconds_tangential + tres%cpu_seconds
+            final_status = max(res%status, tres%status)
+            s%status = status_name(final_status)
+            if (tres%status /= FC_CONVERGED) then
+                if (res%status == FC_CONVERGED) then
+                    s%message = 'tangential: '//trim(tres%message)
+                else
+                    s%message = 'normal: '//trim(res%message)//'; tangential: '//trim(tres%message)
+                end if
+            end if
+        end associate
     end subroutine tangential_summary
 
-    !> Library messages start with the group ('tangential: ...', 'solver: ...'):
-    !! make them name the group as the input checks do, with the values given.
-    subroutine library_message(errmsg, state)
+    !> Name the namelist group, keys and values of a library error that the input checks
+    !! cannot foresee (it depends on the grid or the solution), chosen by the error code.
+    subroutine library_context(stat, errmsg, state, auto)
+        integer, intent(in) :: stat
         character(len=*), intent(inout) :: errmsg
         type(fc_case_input), intent(in) :: state
-        if (index(errmsg, 'tangential: |(fx, fy)|') == 1) then
+        type(fc_auto_outcome), intent(in) :: auto   !! (grid of the failed solve)
+        select case (stat)
+        case (FC_ERR_FRICTION_BOUND)
             errmsg = '&tangential fx = '//fmt_real(state%fx)//', fy = '//fmt_real(state%fy)//', mu = '// &
-                fmt_real(state%mu)//': '//trim(errmsg(13:))//' for &normal approach = '//fmt_real(state%approach)
-        else if (index(errmsg, 'tangential: ') == 1 .or. index(errmsg, 'solver: ') == 1 .or. &
-                 index(errmsg, 'normal: ') == 1) then
-            errmsg = '&'//trim(errmsg)
-        end if
-    end subroutine library_message
+                fmt_real(state%mu)//': '//trim(errmsg)//' for &normal approach = '//fmt_real(state%approach)
+        case (FC_ERR_NO_CONTACT)
+            errmsg = '&normal '//trim(errmsg)
+        case (FC_ERR_GEOMETRY, FC_ERR_IO)
+            errmsg = '&geometry '//trim(errmsg)
+        case (FC_ERR_ALLOC)
+            errmsg = '&grid '//trim(errmsg)
+        case (FC_ERR_GRID)
+            errmsg = '&grid nx = '//fmt_int(auto%grid%nx)//', ny = '//fmt_int(auto%grid%ny)// &
+                " with &solver normal = '"//trim(state%normal_solver)//"': "//trim(errmsg)//"; or use normal = 'bccg'"
+        end select
+    end subroutine library_context
 
     !> mkdir -p DIR.
     subroutine make_directory(dir, stat)

@@ -26,6 +26,7 @@ module fc_tangcg
     use fc_kinds
     use fc_geometry, only: fc_grid
     use fc_influence
+    use, intrinsic :: iso_c_binding, only: c_loc, c_associated
     use fc_tangprec, only: fc_block_inverse, build_block_inverse
     implicit none
     private
@@ -43,7 +44,10 @@ module fc_tangcg
                                                  !! diagonal on slip, elastic start) or 'diagonal' (eq. 4.43)
     end type fc_tangential_settings
 
-    !> Tangential influence blocks on one grid (and the coupling blocks when K ≠ 0).
+    !> Tangential influence blocks on one grid (and the coupling blocks when K ≠ 0).  All
+    !! blocks share a_xx's FFT plans and buffers (one set per grid); even blocks store real
+    !! symbols, the odd coupling blocks their imaginary parts.  Plans are released by
+    !! `destroy` or when the operator is dropped; a copy is independent of the original.
     type, public :: fc_tangential_operator
         type(fc_grid) :: grid
         type(fc_material) :: material
@@ -59,6 +63,8 @@ module fc_tangcg
         procedure :: destroy => tangential_destroy
         procedure :: coupled => tangential_coupled
         procedure :: matches => tangential_matches
+        procedure, private :: tangential_assign
+        generic :: assignment(=) => tangential_assign
     end type fc_tangential_operator
 
     !> Result of a tangential solve.
@@ -107,15 +113,16 @@ contains
         top%grid = grid
         top%material = material
         call build_bttb(top%a_xx, IC_XX, material, grid)
-        call build_bttb(top%a_xy, IC_XY, material, grid)
-        call build_bttb(top%a_yy, IC_YY, material, grid)
+        call build_bttb(top%a_xy, IC_XY, material, grid, plans_from=top%a_xx)
+        call build_bttb(top%a_yy, IC_YY, material, grid, plans_from=top%a_xx)
         if (material%k /= 0) then
-            call build_bttb(top%a_xz, IC_XZ, material, grid)
-            call build_bttb(top%a_yz, IC_YZ, material, grid)
-            call build_bttb(top%a_zx, IC_ZX, material, grid)
-            call build_bttb(top%a_zy, IC_ZY, material, grid)
+            call build_bttb(top%a_xz, IC_XZ, material, grid, plans_from=top%a_xx)
+            call build_bttb(top%a_yz, IC_YZ, material, grid, plans_from=top%a_xx)
+            call build_bttb(top%a_zx, IC_ZX, material, grid, plans_from=top%a_xx)
+            call build_bttb(top%a_zy, IC_ZY, material, grid, plans_from=top%a_xx)
         end if
-        allocate (top%spec_x, top%spec_y, top%work, mold=top%a_xx%symbol)
+        allocate (top%spec_x(top%a_xx%mx/2 + 1, top%a_xx%my))
+        allocate (top%spec_y, top%work, mold=top%spec_x)
         top%nproducts = 0
         call system_clock(t1)
         top%setup_seconds = real(t1 - t0, dp)/rate
@@ -140,6 +147,34 @@ contains
             abs(self%grid%dx - grid%dx) <= 1e-12_dp*grid%dx .and. abs(self%grid%dy - grid%dy) <= 1e-12_dp*grid%dy &
             .and. self%material%g == material%g .and. self%material%nu == material%nu .and. self%material%k == material%k
     end function tangential_matches
+    !> `lhs = rhs`: deep copy; the copy's blocks share their own new plan set.
+    !! (Explicit rather than component-wise: gfortran 12 finalizes a shallow temporary in
+    !! the intrinsic assignment of a type with finalizable components.)
+    subroutine tangential_assign(lhs, rhs)
+        class(fc_tangential_operator), intent(inout) :: lhs
+        type(fc_tangential_operator), intent(in) :: rhs
+        if (same_object(lhs, rhs)) return
+        call lhs%destroy()
+        lhs%grid = rhs%grid
+        lhs%material = rhs%material
+        lhs%nproducts = rhs%nproducts
+        lhs%setup_seconds = rhs%setup_seconds
+        call copy_bttb(lhs%a_xx, rhs%a_xx)
+        call copy_bttb(lhs%a_xy, rhs%a_xy, plans_from=lhs%a_xx)
+        call copy_bttb(lhs%a_yy, rhs%a_yy, plans_from=lhs%a_xx)
+        call copy_bttb(lhs%a_xz, rhs%a_xz, plans_from=lhs%a_xx)
+        call copy_bttb(lhs%a_yz, rhs%a_yz, plans_from=lhs%a_xx)
+        call copy_bttb(lhs%a_zx, rhs%a_zx, plans_from=lhs%a_xx)
+        call copy_bttb(lhs%a_zy, rhs%a_zy, plans_from=lhs%a_xx)
+        if (allocated(rhs%spec_x)) allocate (lhs%spec_x, lhs%spec_y, lhs%work, mold=rhs%spec_x)
+        lhs%prec = rhs%prec
+    contains
+        logical function same_object(a, b)
+            class(fc_tangential_operator), intent(in), target :: a
+            type(fc_tangential_operator), intent(in), target :: b
+            same_object = c_associated(c_loc(a%setup_seconds), c_loc(b%setup_seconds))
+        end function same_object
+    end subroutine tangential_assign
 
     !> True when the normal and tangential problems are coupled (K ≠ 0).
     pure logical function tangential_coupled(self)
@@ -154,9 +189,9 @@ contains
         real(dp), intent(out) :: ux(:, :), uy(:, :)
         call self%a_xx%forward(px, self%spec_x)
         call self%a_xx%forward(py, self%spec_y)
-        self%work = self%spec_x*self%a_xx%symbol + self%spec_y*self%a_xy%symbol
+        call spectrum_pair_product(self%a_xx, self%spec_x, self%a_xy, self%spec_y, self%work)
         call self%a_xx%backward(self%work, ux)
-        self%work = self%spec_x*self%a_xy%symbol + self%spec_y*self%a_yy%symbol
+        call spectrum_pair_product(self%a_xy, self%spec_x, self%a_yy, self%spec_y, self%work)
         call self%a_xx%backward(self%work, uy)
         self%nproducts = self%nproducts + 1
     end subroutine tangential_apply

@@ -21,7 +21,7 @@ module fc_tangprec
     !! symbols (including 1/(mx·my)), so that they multiply the spectra of `forward`.
     type, public :: fc_block_inverse
         integer :: nx = 0, ny = 0
-        complex(dp), allocatable :: mxx(:, :), mxy(:, :), myy(:, :)
+        real(dp), allocatable :: mxx(:, :), mxy(:, :), myy(:, :)   !! real: the circulants are even
     contains
         procedure :: built => block_inverse_built
     end type fc_block_inverse
@@ -77,9 +77,9 @@ contains
                 disc = sqrt(0.25_dp*(a - c)**2 + b**2)
                 l1 = 0.5_dp*tr + disc; l2 = 0.5_dp*tr - disc
                 if (l2 >= floor_) then
-                    prec%mxx(i, k) = cmplx(c/det*scale, 0.0_dp, dp)
-                    prec%myy(i, k) = cmplx(a/det*scale, 0.0_dp, dp)
-                    prec%mxy(i, k) = cmplx(-b/det*scale, 0.0_dp, dp)
+                    prec%mxx(i, k) = c/det*scale
+                    prec%myy(i, k) = a/det*scale
+                    prec%mxy(i, k) = -b/det*scale
                 else
                     ! floor the eigenvalues: M = Σ v vᵀ / max(λ, floor)
                     call floored_inverse(a, b, c, max(l1, floor_), max(l2, floor_), scale, prec%mxx(i, k), &
@@ -112,7 +112,7 @@ contains
     !! l1 ≥ l2 > 0, times `scale`.
     pure subroutine floored_inverse(a, b, c, l1, l2, scale, mxx, mxy, myy)
         real(dp), intent(in) :: a, b, c, l1, l2, scale
-        complex(dp), intent(out) :: mxx, mxy, myy
+        real(dp), intent(out) :: mxx, mxy, myy
         real(dp) :: vx, vy, nrm, e1
         ! eigenvector of the larger eigenvalue of [a b; b c]
         e1 = 0.5_dp*(a + c) + sqrt(0.25_dp*(a - c)**2 + b**2)
@@ -126,9 +126,9 @@ contains
         nrm = hypot(vx, vy)
         vx = vx/nrm; vy = vy/nrm
         ! M = v vᵀ/l1 + w wᵀ/l2 with w = (−vy, vx)
-        mxx = cmplx(scale*(vx*vx/l1 + vy*vy/l2), 0.0_dp, dp)
-        myy = cmplx(scale*(vy*vy/l1 + vx*vx/l2), 0.0_dp, dp)
-        mxy = cmplx(scale*(vx*vy/l1 - vx*vy/l2), 0.0_dp, dp)
+        mxx = scale*(vx*vx/l1 + vy*vy/l2)
+        myy = scale*(vy*vy/l1 + vx*vx/l2)
+        mxy = scale*(vx*vy/l1 - vx*vy/l2)
     end subroutine floored_inverse
 
 end module fc_tangprec

@@ -14,6 +14,7 @@ program tester
     use test_stability, only: collect_stability
     use test_legacy, only: collect_legacy
     use test_table_io, only: collect_table_io
+    use test_operators, only: collect_operators
     implicit none
     character(len=64) :: suite, only
     integer :: npass, nfail
@@ -57,6 +58,9 @@ program tester
     end if
     if (want('table_io')) then
         call collect_table_io(tests); call run_suite('table_io', tests, only, npass, nfail)
+    end if
+    if (want('operators')) then
+        call collect_operators(tests); call run_suite('operators', tests, only, npass, nfail)
     end if
     write (*, '(i0,a,i0,a)') npass, ' passed, ', nfail, ' failed'
     if (nfail > 0 .or. npass == 0) stop 1   ! non-zero exit status (no backtrace, unlike error stop)

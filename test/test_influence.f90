@@ -3,6 +3,7 @@ module test_influence
     use fc_kinds, only: dp, pi
     use fc_geometry, only: fc_grid, make_grid
     use fc_influence
+    use fc_lapack, only: dpotrf, dsyev
     use fc_testing
     implicit none
     private
@@ -108,23 +109,6 @@ contains
     !! smallest eigenvalue from dsyev is positive) on small grids.
     subroutine test_azz_spd(error)
         type(error_type), allocatable, intent(out) :: error
-        interface
-            subroutine dpotrf(uplo, n, a, lda, info)
-                import :: dp
-                character, intent(in) :: uplo
-                integer, intent(in) :: n, lda
-                real(dp), intent(inout) :: a(lda, *)
-                integer, intent(out) :: info
-            end subroutine dpotrf
-            subroutine dsyev(jobz, uplo, n, a, lda, w, work, lwork, info)
-                import :: dp
-                character, intent(in) :: jobz, uplo
-                integer, intent(in) :: n, lda, lwork
-                real(dp), intent(inout) :: a(lda, *)
-                real(dp), intent(out) :: w(*), work(*)
-                integer, intent(out) :: info
-            end subroutine dsyev
-        end interface
         type(fc_material) :: mat
         type(fc_grid) :: grid
         type(fc_bttb) :: op
