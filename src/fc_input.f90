@@ -35,7 +35,8 @@
 !!   MP1–MP3 of thesis §3.2.5 (A^xx p = u on an nx×1 grid of [−4,4]×[−50,50] mm) with
 !!   `&geometry kind = 'strip2d'` and `&grid nx` (power of 2, ≥ 4); the model problem fixes
 !!   material, area and loading; tol defaults to 1e-8 (thesis) unless given.
-!! * `&output dir, table` — dir = 'out' (the command line `--out` wins), table = .true.
+!! * `&output dir, table, table_format` — dir = 'out' (the command line `--out` wins), table = .true.,
+!!   table_format = 'csv' ('npy': NumPy structured array; 'both')
 !!
 !! Every value persists from case to case except `name`.  A case with an input error does
 !! not change the inherited state: the next case inherits from the last good case.
@@ -111,7 +112,8 @@ module fc_input
         character(len=16) :: model = 'auto'        !! 'auto': apply model reductions; 'full': never
         ! &output
         character(len=path_len) :: dir = 'out'     !! output directory
-        logical :: table = .true.                  !! write the CSV table
+        logical :: table = .true.                  !! write the element table
+        character(len=8) :: table_format = 'csv'   !! 'csv', 'npy' or 'both'
         ! bookkeeping
         character(len=2*key_len + 1), allocatable :: given(:)  !! 'group:key' given so far
         character(len=:), allocatable :: notes     !! remarks for the report (ignored keys)
@@ -441,11 +443,12 @@ contains
         character(len=*), intent(out) :: iomsg
         character(len=path_len) :: dir
         logical :: table
-        namelist /output/ dir, table
-        dir = s%dir; table = s%table
+        character(len=8) :: table_format
+        namelist /output/ dir, table, table_format
+        dir = s%dir; table = s%table; table_format = s%table_format
         read (text, nml=output, iostat=ios, iomsg=iomsg)
         if (ios /= 0) return
-        s%dir = dir; s%table = table
+        s%dir = dir; s%table = table; s%table_format = lower(table_format)
     end subroutine read_output_group
 
     !> Keys of a group, blank separated.
@@ -463,7 +466,7 @@ contains
         case ('solver')
             keys = 'normal tangential tol maxit inner_maxit inner_k precondition precondition_tangential deflation '// &
                 'cycle omega beta smoother strip target target_pmax max_levels model'
-        case ('output');     keys = 'dir table'
+        case ('output');     keys = 'dir table table_format'
         case default;        keys = ''
         end select
     end function keys_of

@@ -341,6 +341,8 @@ contains
         character(len=*), intent(out) :: errmsg
         errmsg = ''
         if (len_trim(s%dir) == 0) errmsg = "&output dir = '': must not be empty"
+        if (len_trim(errmsg) == 0 .and. all(s%table_format /= [character(len=8) :: 'csv', 'npy', 'both'])) &
+            errmsg = "&output table_format = '"//trim(s%table_format)//"': must be 'csv', 'npy' or 'both'"
     end subroutine validate_output
 
     !> &solver tol > 0 and maxit >= 1 (shared by every problem kind).

@@ -6,6 +6,7 @@ module test_table_io
     use fc_table_io
     use fc_geometry, only: fc_grid, make_grid
     use fc_output, only: write_case_csv, write_case_npy
+    use fc_driver, only: run_driver
     use fc_testing
     implicit none
     private
@@ -20,7 +21,8 @@ contains
             new_unittest('parse_equals_runtime_read', test_parse), &
             new_unittest('csv_parses_back_to_printed_precision', test_csv_roundtrip), &
             new_unittest('npy_roundtrip', test_npy_roundtrip), &
-            new_unittest('read_table_layout_and_errors', test_read_table) ]
+            new_unittest('read_table_layout_and_errors', test_read_table), &
+            new_unittest('driver_table_format_keys', test_driver_format) ]
     end subroutine collect_table_io
 
     !> put_real gives the run-time library's ES23.15E3 text (without blanks) exactly, for
@@ -270,6 +272,79 @@ contains
         call read_real_table(path, vals, stat, msg)
         call check(error, stat /= 0 .and. index(msg, 'cannot open') > 0, 'missing file: '//trim(msg))
     end subroutine test_read_table
+
+    !> The batch driver's `&output table_format`: 'both' writes the CSV and the .npy with the
+    !! same pressures, 'npy' only the .npy, a bad value is an input error naming the key.
+    subroutine test_driver_format(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: dir = 'build/test_table_io_driver'
+        character(len=1), parameter :: nl = achar(10)
+        character(len=:), allocatable :: base
+        character(len=256) :: args(3), line
+        character(len=512) :: errors
+        integer :: code, u, uerr, ios, k, hlen, ix, iy
+        logical :: has_csv, has_npy, same
+        character(len=10) :: pre
+        character(len=:), allocatable :: header
+        character(len=1) :: letter
+        real(dp) :: x, y, v(6), pcsv(256)
+        call execute_command_line("rm -rf '"//dir//"' && mkdir -p '"//dir//"'")
+        base = '&material g1 = 82000.0, g2 = 82000.0, nu1 = 0.28, nu2 = 0.28 /'//nl// &
+            '&grid nx = 16, ny = 16, xmin = -10.0, xmax = 10.0, ymin = -6.0, ymax = 6.0 /'//nl// &
+            "&geometry kind = 'quadratic', rx = 300.0, ry = 163.0 /"//nl//'&normal approach = 0.1091 /'//nl
+        call run("&case name = 'both' /"//nl//base//"&output table_format = 'both' /"//nl// &
+            "&case name = 'onlynpy' /"//nl//"&output table_format = 'NPY' /"//nl, code)
+        call check(error, code == 0, 'driver exit code 0: '//trim(errors))
+        inquire (file=dir//'/both.csv', exist=has_csv); inquire (file=dir//'/both.npy', exist=has_npy)
+        call check(error, has_csv .and. has_npy, "table_format = 'both' writes both.csv and both.npy")
+        inquire (file=dir//'/onlynpy.csv', exist=has_csv); inquire (file=dir//'/onlynpy.npy', exist=has_npy)
+        call check(error, has_npy .and. .not. has_csv, "table_format = 'NPY' writes only onlynpy.npy")
+        if (allocated(error)) return
+        ! CSV pressures (column 6) against the .npy records
+        open (newunit=u, file=dir//'/both.csv', status='old', action='read')
+        read (u, '(a)') line
+        do k = 1, 256
+            read (u, '(a)') line
+            line = line(1:index(line, ',A,') + index(line, ',E,'))//line(index(line, ',A,') + index(line, ',E,') + 3:)
+            read (line, *) ix, iy, x, y, pcsv(k)
+        end do
+        close (u)
+        open (newunit=u, file=dir//'/both.npy', access='stream', form='unformatted', status='old', action='read')
+        read (u) pre
+        hlen = iachar(pre(9:9)) + 256*iachar(pre(10:10))
+        allocate (character(len=hlen) :: header)
+        read (u) header
+        same = index(header, "'shape': (256,)") > 0
+        do k = 1, 256
+            read (u, iostat=ios) ix, iy, x, y, letter, v
+            same = same .and. ios == 0 .and. close16(pcsv(k), v(1)) .and. (letter == 'A' .eqv. v(1) > 0)
+        end do
+        close (u)
+        call check(error, same, 'the .npy pressures equal the CSV pressures (16 digits), status from pn > 0')
+        call run("&case name = 'bad' /"//nl//base//"&output table_format = 'xls' /"//nl, code)
+        call check(error, code == 1 .and. index(errors, "&output table_format = 'xls'") > 0, &
+            'bad table_format: exit 1 and a message naming the key: '//trim(errors))
+        call execute_command_line("rm -rf '"//dir//"'")
+    contains
+        subroutine run(text, code)
+            character(len=*), intent(in) :: text
+            integer, intent(out) :: code
+            integer :: uin
+            open (newunit=uin, file=dir//'/cases.nml', status='replace', action='write')
+            write (uin, '(a)') text
+            close (uin)
+            open (newunit=u, file=dir//'/report.txt', status='replace', action='write')
+            open (newunit=uerr, file=dir//'/errors.txt', status='replace', action='write')
+            args(1) = dir//'/cases.nml'; args(2) = '--out'; args(3) = dir
+            call run_driver(args, code, report_unit=u, error_unit=uerr)
+            close (u)
+            close (uerr)
+            errors = ''
+            open (newunit=uerr, file=dir//'/errors.txt', status='old', action='read')
+            read (uerr, '(a)', iostat=ios) errors
+            close (uerr)
+        end subroutine run
+    end subroutine test_driver_format
 
     !> A sample tangential solution with every kind of value: zeros, negatives, tiny and
     !! large magnitudes, all three states.
