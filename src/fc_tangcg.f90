@@ -55,7 +55,7 @@ module fc_tangcg
         type(fc_bttb) :: a_xz, a_yz         !! u_t from pn (built only when K ≠ 0)
         type(fc_bttb) :: a_zx, a_zy         !! u_z from p_t (built only when K ≠ 0)
         complex(dp), allocatable :: spec_x(:, :), spec_y(:, :), work(:, :)
-        type(fc_block_inverse) :: prec      !! TangCG's FFT preconditioner (built on first use)
+        type(fc_block_inverse) :: prec      !! TangCG's FFT preconditioner (fc_tangprec)
         integer :: nproducts = 0            !! combined 2×2 block products
         real(dp) :: setup_seconds = 0
     contains
@@ -112,9 +112,20 @@ contains
         call top%destroy()
         top%grid = grid
         top%material = material
-        call build_bttb(top%a_xx, IC_XX, material, grid)
-        call build_bttb(top%a_xy, IC_XY, material, grid, plans_from=top%a_xx)
-        call build_bttb(top%a_yy, IC_YY, material, grid, plans_from=top%a_xx)
+        ! one coefficient evaluation per block serves A (offsets < n) and TangCG's
+        ! preconditioner (offsets ≤ n)
+        block
+            real(dp), allocatable :: kxx(:, :), kxy(:, :), kyy(:, :)
+            integer :: nx, ny
+            nx = grid%nx; ny = grid%ny
+            call ic_kernel_extended(IC_XX, material, grid, nx, ny, kxx)
+            call ic_kernel_extended(IC_XY, material, grid, nx, ny, kxy)
+            call ic_kernel_extended(IC_YY, material, grid, nx, ny, kyy)
+            call build_bttb_from_kernel(top%a_xx, kxx(-(nx - 1):nx - 1, -(ny - 1):ny - 1), nx, ny)
+            call build_bttb_from_kernel(top%a_xy, kxy(-(nx - 1):nx - 1, -(ny - 1):ny - 1), nx, ny, plans_from=top%a_xx)
+            call build_bttb_from_kernel(top%a_yy, kyy(-(nx - 1):nx - 1, -(ny - 1):ny - 1), nx, ny, plans_from=top%a_xx)
+            call build_block_inverse(top%prec, kxx, kxy, kyy, nx, ny)
+        end block
         if (material%k /= 0) then
             call build_bttb(top%a_xz, IC_XZ, material, grid, plans_from=top%a_xx)
             call build_bttb(top%a_yz, IC_YZ, material, grid, plans_from=top%a_xx)
@@ -455,7 +466,6 @@ contains
         px = res%px; py = res%py
         fft_prec = settings%precondition .and. settings%preconditioner == 'fft'
         if (fft_prec) then
-            if (.not. top%prec%built()) call build_block_inverse(top%prec, top%material, top%grid)
             if (.not. any(contact .and. (px /= 0 .or. py /= 0))) then
                 ! cold start: the elastic (full-adhesion) estimate p ≈ −M w on the contact area;
                 ! where it exceeds the bound, the step below starts the element in slip

@@ -11,8 +11,6 @@
 !! definite matrix, hence SPD.  Symbol eigenvalues are floored at 1e−8 of the largest.
 module fc_tangprec
     use fc_kinds, only: dp
-    use fc_geometry, only: fc_grid
-    use fc_influence, only: fc_material, ic_kernel_extended, IC_XX, IC_XY, IC_YY
     use fc_fftw
     implicit none
     private
@@ -35,22 +33,19 @@ contains
         block_inverse_built = allocated(self%mxx)
     end function block_inverse_built
 
-    !> Build the preconditioner for `material` on `grid` (see module header).
-    subroutine build_block_inverse(prec, material, grid)
+    !> Build the preconditioner from the blocks' coefficients for offsets −n…n (see module
+    !! header): k_xx, k_xy, k_yy(−nx:nx, −ny:ny) as [[ic_kernel_extended]] returns them.
+    subroutine build_block_inverse(prec, kxx, kxy, kyy, nx, ny)
         type(fc_block_inverse), intent(inout) :: prec
-        type(fc_material), intent(in) :: material
-        type(fc_grid), intent(in) :: grid
-        real(dp), allocatable :: kxx(:, :), kxy(:, :), kyy(:, :), rbuf(:, :)
+        integer, intent(in) :: nx, ny
+        real(dp), intent(in) :: kxx(-nx:, -ny:), kxy(-nx:, -ny:), kyy(-nx:, -ny:)
+        real(dp), allocatable :: rbuf(:, :)
         complex(dp), allocatable :: sxx(:, :), sxy(:, :), syy(:, :)
         real(dp) :: a, b, c, det, tr, disc, l1, l2, lmax, floor_, scale
-        integer :: nx, ny, mx, my, i, j, k
+        integer :: mx, my, i, k
         type(c_ptr) :: plan
-        nx = grid%nx; ny = grid%ny
         mx = 2*nx; if (nx == 1) mx = 1
         my = 2*ny; if (ny == 1) my = 1
-        call ic_kernel_extended(IC_XX, material, grid, nx, ny, kxx)
-        call ic_kernel_extended(IC_XY, material, grid, nx, ny, kxy)
-        call ic_kernel_extended(IC_YY, material, grid, nx, ny, kyy)
         allocate (rbuf(mx, my), sxx(mx/2 + 1, my), sxy(mx/2 + 1, my), syy(mx/2 + 1, my))
         plan = fftw_plan_dft_r2c_2d(int(my, c_int), int(mx, c_int), rbuf, sxx, FFTW_ESTIMATE)
         call fill(kxx, .false.); call fftw_execute_dft_r2c(plan, rbuf, sxx)
