@@ -46,11 +46,14 @@ module fc_auto
     use fc_influence, only: fc_material, combine_material
     use fc_norm, only: fc_normal_result
     use fc_tangcg, only: fc_tangential_result, fc_tangential_loading
-    use fc_contact, only: fc_contact_operators, fc_contact_loading, fc_contact_settings, fc_contact_result, &
+    use fc_contact, only: set_influence_coefficients, clear_influence_coefficients, &
+        fc_contact_operators, fc_contact_loading, fc_contact_settings, fc_contact_result, &
         solve_contact, FC_PROBLEM_TANGENTIAL
     use fc_hertz, only: fc_hertz_solution, fc_cattaneo_solution, hertz_from_approach, hertz_from_force, &
         cattaneo_mindlin
     use fc_fmg, only: fc_quadratic_surface, fc_punch_rough_surface, fc_wavy_surface
+    use fc_icfile, only: fc_ic_set
+    use fc_icfile_load, only: load_influence_source
     use fc_errors, only: FC_ERR_VALUE, FC_ERR_UNSUPPORTED, FC_ERR_NO_CONTACT, FC_ERR_FRICTION_BOUND
     use fc_strings, only: fmt_int, fmt_real
     use fc_scene, only: fc_case, case_setup, is_tangential, is_line_contact
@@ -90,6 +93,7 @@ contains
         allocate (out%reductions(0), out%warnings(0), out%levels(0))
         out%material = s%material
         call combine_material(out%material, stat, errmsg)
+        if (stat == 0) call use_ic_file(s, ops, stat, errmsg)
         if (stat /= 0) return
         ! ---- analytic answer: no grid at all
         if (s%analytic) then
@@ -706,5 +710,39 @@ contains
         tmp(size(list) + 1) = text
         call move_alloc(tmp, list)
     end subroutine add
+
+    !> Influence coefficients of the case: a file (`ic_file`, body 2 from `ic_file2` or the
+    !! half-space) replaces the half-space kernels in `ops`; without one the half-space
+    !! kernels are (re)used.  Modes that need coefficients on other grids are refused.
+    subroutine use_ic_file(s, ops, stat, errmsg)
+        type(fc_case), intent(in) :: s
+        type(fc_contact_operators), intent(inout) :: ops
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        type(fc_ic_set) :: ic
+        stat = 0; errmsg = ''
+        if (len_trim(s%ic_file) == 0) then
+            if (allocated(ops%ic%a)) call clear_influence_coefficients(ops)
+            return
+        end if
+        stat = FC_ERR_UNSUPPORTED
+        if (s%grid_auto) then
+            errmsg = "ic_file with an automatic potential area: the area chooses its own element size, the file "// &
+                "holds coefficients for one; give a fixed grid (nx, ny, xmin, xmax, ymin, ymax) matching the file"
+            return
+        end if
+        if (s%target > 0) then
+            errmsg = "ic_file with an accuracy target: the target refines the grid, the file holds coefficients "// &
+                "for one grid; remove the target"
+            return
+        end if
+        call load_influence_source(s%ic_file, s%ic_file2, s%material%g1, s%material%nu1, s%material%g2, &
+            s%material%nu2, ic, stat, errmsg)
+        if (stat /= 0) then
+            stat = FC_ERR_VALUE; errmsg = "ic_file = '"//trim(s%ic_file)//"': "//trim(errmsg); return
+        end if
+        call set_influence_coefficients(ops, ic, stat, errmsg)
+        if (stat /= 0) stat = FC_ERR_VALUE
+    end subroutine use_ic_file
 
 end module fc_auto

@@ -29,6 +29,7 @@ module fc_contact
     use fc_tangcg, only: fc_tangential_operator, fc_tangential_settings, fc_tangential_result, fc_tangential_loading, &
         build_tangential_operator, solve_tangential_loading, coupling_displacements, EL_EXTERIOR, EL_ADHESION, EL_SLIP
     use fc_fmg, only: fc_fmg_settings, fc_fmg_stats, fc_surface, solve_normal_fmg
+    use fc_icfile, only: fc_ic_set, ic_set_kernel
     implicit none
     private
 
@@ -77,6 +78,9 @@ module fc_contact
         integer :: builds_tangential = 0            !! tangential operator builds so far
         real(dp) :: setup_seconds_normal = 0        !! set-up time of the last [[ensure_operators]] (0: reused)
         real(dp) :: setup_seconds_tangential = 0    !! same for the tangential operator
+        !> combined influence coefficients from a file ([[set_influence_coefficients]]); when
+        !! allocated they replace the half-space kernels for every block
+        type(fc_ic_set) :: ic
     contains
         procedure :: destroy => operators_destroy
     end type fc_contact_operators
@@ -113,6 +117,7 @@ module fc_contact
     end type fc_contact_result
 
     public :: solve_contact, ensure_operators, solve_normal_tangential, shift_along_x, fc_tangential_loading
+    public :: set_influence_coefficients, clear_influence_coefficients
 
 contains
 
@@ -126,7 +131,11 @@ contains
         ops%setup_seconds_normal = 0; ops%setup_seconds_tangential = 0
         if (normal) then
             if (.not. (ops%reuse .and. ops%normal%matches(grid, material))) then
-                call build_normal_operator(ops%normal, material, grid)
+                if (allocated(ops%ic%a)) then
+                    call build_normal_operator(ops%normal, material, grid, ops%ic)
+                else
+                    call build_normal_operator(ops%normal, material, grid)
+                end if
                 ops%builds_normal = ops%builds_normal + 1
                 ops%setup_seconds_normal = ops%normal%setup_seconds
             end if
@@ -134,7 +143,11 @@ contains
         end if
         if (tangential) then
             if (.not. (ops%reuse .and. ops%tangential%matches(grid, material))) then
-                call build_tangential_operator(ops%tangential, material, grid)
+                if (allocated(ops%ic%a)) then
+                    call build_tangential_operator(ops%tangential, material, grid, ops%ic)
+                else
+                    call build_tangential_operator(ops%tangential, material, grid)
+                end if
                 ops%builds_tangential = ops%builds_tangential + 1
                 ops%setup_seconds_tangential = ops%tangential%setup_seconds
             end if
@@ -147,6 +160,30 @@ contains
         call self%normal%destroy()
         call self%tangential%destroy()
     end subroutine operators_destroy
+
+    !> Use the combined coefficients `ic` (content 'combined', validated) for every block
+    !! from now on; the operators are rebuilt at the next solve.  FMG, which needs
+    !! coefficients on coarser grids, is refused while a set is in use.
+    subroutine set_influence_coefficients(ops, ic, stat, errmsg)
+        type(fc_contact_operators), intent(inout) :: ops
+        type(fc_ic_set), intent(in) :: ic
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        stat = 0; errmsg = ''
+        if (ic%content /= 'combined' .or. .not. allocated(ic%a)) then
+            stat = 1; errmsg = "influence coefficients: a set of content 'combined' is needed (combine the bodies first)"
+            return
+        end if
+        ops%ic = ic
+        call ops%normal%destroy(); call ops%tangential%destroy()
+    end subroutine set_influence_coefficients
+
+    !> Return to the half-space coefficients (operators rebuilt at the next solve).
+    subroutine clear_influence_coefficients(ops)
+        type(fc_contact_operators), intent(inout) :: ops
+        if (allocated(ops%ic%a)) deallocate (ops%ic%a)
+        call ops%normal%destroy(); call ops%tangential%destroy()
+    end subroutine clear_influence_coefficients
 
     !> Forget the previous solution (keeps `warm_start`).
     subroutine state_reset(self)
@@ -186,6 +223,19 @@ contains
             errmsg = 'solve_contact: FMG is not available for dissimilar materials (K /= 0): the coupling alternates '// &
                 'normal and tangential solves; use BCCG'
             return
+        end if
+        if (allocated(ops%ic%a)) then
+            if (use_fmg) then
+                stat = 1
+                errmsg = 'solve_contact: FMG needs influence coefficients on every coarser grid, an influence-'// &
+                    'coefficient file holds them for one grid: use BCCG or NORM'
+                return
+            end if
+            block
+                real(dp), allocatable :: k(:, :)
+                call ic_set_kernel(ops%ic, 1, grid, k, stat, errmsg)   ! 1: any block; checks cells and offsets
+            end block
+            if (stat /= 0) return
         end if
         call ensure_operators(ops, grid, material, normal=.not. use_fmg, tangential=tangential)
         call contact_rounds(ops%normal, ops%tangential, grid, material, h0, load, settings, res, stat, errmsg, &

@@ -1,4 +1,4 @@
-!> Potential contact grid and undeformed distance (SPEC §2, thesis §2.2.4–2.2.5).
+!> Potential contact grid and undeformed distance (thesis §2.2.4–2.2.5; doc/conventions.md).
 !!
 !! The potential contact area is the rectangle [xmin,xmax]×[ymin,ymax] divided into
 !! nx×ny cell-centred elements; element (i,j) has its centre at

@@ -42,7 +42,7 @@ module fc_influence
 
 contains
 
-    !> Combine two bodies into G, ν, K (SPEC §2).  A modulus ≥ 1e29 is a rigid body.
+    !> Combine two bodies into G, ν, K (doc/conventions.md).  A modulus ≥ 1e29 is a rigid body.
     subroutine combine_material(mat, stat, errmsg)
         type(fc_material), intent(inout) :: mat
         integer, intent(out) :: stat
@@ -76,7 +76,7 @@ contains
         mat%k = mat%g/4*((1 - 2*mat%nu1)*c1 - (1 - 2*mat%nu2)*c2)
     end subroutine combine_material
 
-    ! ---- antiderivatives F with ∂²F/∂u∂v = kernel (SPEC §2) ---------------------------
+    ! ---- antiderivatives F with ∂²F/∂u∂v = kernel (doc/conventions.md) ---------------------------
 
     !> ∫∫ 1/ρ: u·asinh(v/|u|) + v·asinh(u/|v|).
     elemental real(dp) function f_inv_rho(u, v) result(f)
@@ -117,7 +117,7 @@ contains
     end function f_u_rho2
 
     !> Influence coefficient of block `block` for a source element of size dx×dy at
-    !! offset (X,Y) = (x_I − x_J, y_I − y_J) [mm per N/mm²] (SPEC §2 double difference).
+    !! offset (X,Y) = (x_I − x_J, y_I − y_J) [mm per N/mm²] (double difference, doc/conventions.md).
     elemental real(dp) function element_coefficient(block, mat, x, y, dx, dy) result(a)
         integer, intent(in) :: block
         type(fc_material), intent(in) :: mat

@@ -10,8 +10,9 @@
 !! * `&case name, title, problem` — name: file stem of the outputs, not inherited, default
 !!   `case<N>`; title: ''; problem: 'normal' (default), 'normal+tangential' or 'tangential'
 !!   (the same pipeline: the normal problem is solved as the prerequisite of the tangential one).
-!! * `&material g1, g2, nu1, nu2, ic_file` — g1, g2 required (≥ 1e29: rigid);
-!!   nu1 = nu2 = 0.28; ic_file: not yet supported.
+!! * `&material g1, g2, nu1, nu2, ic_file, ic_file2` — g1, g2 required (≥ 1e29: rigid);
+!!   nu1 = nu2 = 0.28; ic_file: influence coefficients of body 1 (or combined) from a file,
+!!   ic_file2: body 2's (default: the half-space g2, nu2) — doc/numerical_ic.md.
 !! * `&grid nx, ny, xmin, xmax, ymin, ymax` — all required (outer edges of the potential
 !!   contact area); strip2d: ny defaults to 1 and must be 1.  nx·ny ≤ 4096².
 !! * `&geometry kind, ...` — kind required: 'quadratic' (rx > 0, ry ≥ 0; 0 = flat),
@@ -65,7 +66,8 @@ module fc_input
         ! &material
         real(dp) :: g1 = 0, g2 = 0                 !! shear moduli [N/mm²] (≥ 1e29: rigid)
         real(dp) :: nu1 = 0.28_dp, nu2 = 0.28_dp   !! Poisson ratios
-        character(len=path_len) :: ic_file = ''    !! influence coefficients from file (not yet)
+        character(len=path_len) :: ic_file = ''    !! influence coefficients of body 1 (or combined) from a file
+        character(len=path_len) :: ic_file2 = ''   !! influence coefficients of body 2 from a file
         ! &grid
         integer :: nx = 0, ny = 0                  !! elements per direction
         real(dp) :: xmin = 0, xmax = 0, ymin = 0, ymax = 0  !! outer edges [mm]
@@ -330,12 +332,12 @@ contains
         integer, intent(out) :: ios
         character(len=*), intent(out) :: iomsg
         real(dp) :: g1, g2, nu1, nu2
-        character(len=path_len) :: ic_file
-        namelist /material/ g1, g2, nu1, nu2, ic_file
-        g1 = s%g1; g2 = s%g2; nu1 = s%nu1; nu2 = s%nu2; ic_file = s%ic_file
+        character(len=path_len) :: ic_file, ic_file2
+        namelist /material/ g1, g2, nu1, nu2, ic_file, ic_file2
+        g1 = s%g1; g2 = s%g2; nu1 = s%nu1; nu2 = s%nu2; ic_file = s%ic_file; ic_file2 = s%ic_file2
         read (text, nml=material, iostat=ios, iomsg=iomsg)
         if (ios /= 0) return
-        s%g1 = g1; s%g2 = g2; s%nu1 = nu1; s%nu2 = nu2; s%ic_file = ic_file
+        s%g1 = g1; s%g2 = g2; s%nu1 = nu1; s%nu2 = nu2; s%ic_file = ic_file; s%ic_file2 = ic_file2
     end subroutine read_material_group
 
     subroutine read_grid_group(text, s, ios, iomsg)
@@ -457,7 +459,7 @@ contains
         character(len=:), allocatable :: keys
         select case (group)
         case ('case');       keys = 'name title problem'
-        case ('material');   keys = 'g1 g2 nu1 nu2 ic_file'
+        case ('material');   keys = 'g1 g2 nu1 nu2 ic_file ic_file2'
         case ('grid');       keys = 'nx ny xmin xmax ymin ymax auto margin n_across'
         case ('geometry')
             keys = 'kind rx ry diameter sigma gamma m_modes n_modes seed amplitude wavelength_x wavelength_y file length'

@@ -27,6 +27,7 @@ contains
         c%problem = merge(FC_PROBLEM_TANGENTIAL, FC_PROBLEM_NORMAL, is_tangential(s))
         c%analytic = s%problem == 'hertz'
         c%material%g1 = s%g1; c%material%g2 = s%g2; c%material%nu1 = s%nu1; c%material%nu2 = s%nu2
+        c%ic_file = s%ic_file; c%ic_file2 = s%ic_file2
         ! potential contact area
         c%nx = s%nx; c%ny = s%ny
         c%xmin = s%xmin; c%xmax = s%xmax; c%ymin = s%ymin; c%ymax = s%ymax

@@ -108,8 +108,8 @@ contains
             errmsg = '&material nu2 = '//fmt_real(s%nu2)//': must lie in [0, 0.5)'
         else if (s%g1 >= rigid_modulus .and. s%g2 >= rigid_modulus) then
             errmsg = '&material g1 = '//fmt_real(s%g1)//', g2 = '//fmt_real(s%g2)//': both bodies rigid'
-        else if (len_trim(s%ic_file) > 0) then
-            errmsg = "&material ic_file = '"//trim(s%ic_file)//"': not yet supported"
+        else if (len_trim(s%ic_file) == 0 .and. len_trim(s%ic_file2) > 0) then
+            errmsg = "&material ic_file2 = '"//trim(s%ic_file2)//"': needs ic_file (body 1) too"
         end if
     end subroutine validate_material
 

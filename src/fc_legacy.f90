@@ -35,6 +35,8 @@ module fc_legacy
     use fc_strings, only: fmt_int, fmt_g6
     use fc_errors
     use fc_legacy_registry
+    use fc_icfile, only: fc_ic_set
+    use fc_icfile_load, only: load_influence_source
     implicit none
     private
 
@@ -44,6 +46,7 @@ module fc_legacy
     public :: fc_get_forces, fc_get_approach, fc_get_pmax, fc_get_shifts, fc_get_contact_stats
     public :: fc_get_tractions, fc_get_slip, fc_get_gap, fc_get_status_array, fc_get_iterations
     public :: fc_get_rebuilds, fc_get_grid_size, fc_get_error_message, fc_get_nhandles
+    public :: fc_set_influence_file
     public :: shift_along_x
     public :: FCL_OK, FCL_INVALID_HANDLE, FCL_ORDER, FCL_INVALID_VALUE, FCL_NOT_CONVERGED, FCL_DIVERGED
     public :: FCL_ARRAY_SIZE, FCL_INTERNAL, FCL_FROM_REST, FCL_CONTINUE, FCL_ROLLING
@@ -107,6 +110,50 @@ contains
         s%mat = m
         s%has_material = .true.
     end subroutine fc_set_material
+
+    !> Influence coefficients from files instead of the half-space ones (doc/numerical_ic.md):
+    !! `path` body 1's (written by `fastcontact-ic`) or combined ones (either format),
+    !! `path2` body 2's ('' : the half-space of fc_set_material's g2, nu2).  Null-terminated
+    !! strings; path = '' returns to the half-space kernels.  Call after fc_set_material;
+    !! the grid must have the file's element size.  The operators are rebuilt at the next
+    !! calculation.
+    subroutine fc_set_influence_file(handle, path, path2, ierr) bind(C, name='fc_set_influence_file')
+        integer(c_int), intent(in) :: handle
+        character(kind=c_char), intent(in) :: path(*), path2(*)
+        integer(c_int), intent(out) :: ierr
+        type(legacy_state), pointer :: s
+        type(fc_ic_set) :: ic
+        integer :: stat
+        character(len=msg_len) :: msg
+        character(len=:), allocatable :: p1, p2
+        call lookup(handle, 'fc_set_influence_file', s, ierr)
+        if (ierr /= FCL_OK) return
+        p1 = c_string(path); p2 = c_string(path2)
+        if (len(p1) == 0) then
+            call clear_influence_coefficients(s%ops); return
+        end if
+        if (.not. s%has_material) then
+            call fail(s, ierr, FCL_ORDER, 'fc_set_influence_file: material not set (call fc_set_material first)')
+            return
+        end if
+        call load_influence_source(p1, p2, s%mat%g1, s%mat%nu1, s%mat%g2, s%mat%nu2, ic, stat, msg)
+        if (stat == 0) call set_influence_coefficients(s%ops, ic, stat, msg)
+        if (stat /= 0) then
+            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_influence_file: '//trim(msg)); return
+        end if
+    contains
+        function c_string(c) result(f)
+            character(kind=c_char), intent(in) :: c(*)
+            character(len=:), allocatable :: f
+            integer :: n
+            n = 0
+            do while (c(n + 1) /= c_null_char .and. n < 4096)
+                n = n + 1
+            end do
+            allocate (character(len=n) :: f)
+            f = transfer(c(1:n), f)
+        end function c_string
+    end subroutine fc_set_influence_file
 
     !> Potential contact area [xmin,xmax]×[ymin,ymax] [mm] with nx×ny elements.  A changed
     !! element count or size rebuilds the operators and drops the previous state; moving

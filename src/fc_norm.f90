@@ -1,4 +1,4 @@
-!> Normal contact problem: the LCP e = h + A p ≥ 0, p ≥ 0, e·p = 0 (thesis §2.2, SPEC §2–§3).
+!> Normal contact problem: the LCP e = h + A p ≥ 0, p ≥ 0, e·p = 0 (thesis §2.2; doc/conventions.md).
 !!
 !! Two solvers share one operator object ([[fc_normal_operator]], built once per grid and
 !! material and reused across calls):
@@ -27,6 +27,7 @@ module fc_norm
     use fc_kinds
     use fc_geometry, only: fc_grid, h_no_contact
     use fc_influence
+    use fc_icfile, only: fc_ic_set, ic_set_kernel
     use, intrinsic :: iso_c_binding, only: c_loc, c_associated
     implicit none
     private
@@ -40,6 +41,12 @@ module fc_norm
         logical :: precondition = .true.      !! BCCG: FFT-based preconditioner
         logical :: deflation = .false.        !! BCCG: coarse correction on the contact indicator (measured: no gain)
         logical :: elastic_start = .true.     !! BCCG cold start: elastic estimate −M(h0 − δ) on the penetration set
+        !> NORM: reading of the active-set step (thesis §2.3, §2.4.1) — '' (ours: warm-started
+        !! CG, drop p < 0 and add e < 0 in one step); research alternatives for thesis Table 2.8
+        !! (bench/norm_table28.f90): 'restart' (CG from p = 0), 'keep_negative' (dropped
+        !! elements keep p), 'add_if_no_drop', 'add_on_zero' (add e ≤ 0), 'continue_cg'
+        !! (search direction kept across active-set steps), 'recompute_u' (e after the drop)
+        character(len=16) :: norm_reading = ''
     end type fc_normal_settings
 
     !> Influence operator A^zz and the preconditioner for one grid and material; the two
@@ -84,19 +91,26 @@ module fc_norm
 contains
 
     !> Build A^zz and its preconditioner for `grid` and `material` (combined constants
-    !! already set by [[combine_material]]).
-    subroutine build_normal_operator(nop, material, grid)
+    !! already set by [[combine_material]]); with `ic`, from that set's coefficients (checked
+    !! against the grid by the caller, see [[ic_set_kernel]]) instead of the half-space ones.
+    subroutine build_normal_operator(nop, material, grid, ic)
         type(fc_normal_operator), intent(inout) :: nop
         type(fc_material), intent(in) :: material
         type(fc_grid), intent(in) :: grid
-        integer :: t0, t1, rate
+        type(fc_ic_set), intent(in), optional :: ic
+        integer :: t0, t1, rate, stat
         real(dp), allocatable :: kext(:, :)
+        character(len=msg_len) :: msg
         call system_clock(t0, rate)
         call nop%destroy()
         nop%grid = grid
         nop%material = material
         ! one coefficient evaluation serves both A (offsets < n) and M (offsets ≤ n)
-        call ic_kernel_extended(IC_ZZ, material, grid, grid%nx, grid%ny, kext)
+        if (present(ic)) then
+            call ic_set_kernel(ic, IC_ZZ, grid, kext, stat, msg)
+        else
+            call ic_kernel_extended(IC_ZZ, material, grid, grid%nx, grid%ny, kext)
+        end if
         call build_bttb_from_kernel(nop%a_zz, kext(-(grid%nx - 1):grid%nx - 1, -(grid%ny - 1):grid%ny - 1), &
             grid%nx, grid%ny)
         ! M shares A's FFT plans and buffers (one set per grid)
@@ -186,6 +200,13 @@ contains
         end if
         call check_iteration_settings(settings%tol, settings%maxit, stat, errmsg)
         if (stat /= 0) return
+        select case (settings%norm_reading)
+        case ('', 'restart', 'keep_negative', 'add_if_no_drop', 'add_on_zero', 'continue_cg', 'recompute_u')
+        case default
+            stat = 1; errmsg = "solve_normal: norm_reading = '"//trim(settings%norm_reading)//"' is not one of '', "// &
+                "'restart', 'keep_negative', 'add_if_no_drop', 'add_on_zero', 'continue_cg', 'recompute_u'"
+            return
+        end select
         allocate (res%pn(nx, ny), res%gap(nx, ny))
         res%pn = 0
         if (present(p_start)) then
@@ -478,8 +499,8 @@ contains
         type(fc_normal_result), intent(inout) :: res
         real(dp), dimension(size(h0, 1), size(h0, 2)) :: p, u, r, d, q, h
         logical, dimension(size(h0, 1), size(h0, 2)) :: con, con_new, allowed
-        real(dp) :: delta, area, alpha, beta, rr, rr_old, dq, hnorm, rnorm, inner_tol, e
-        integer :: outer, inner, inner_max, ncon, total_inner, i, j
+        real(dp) :: delta, area, alpha, beta, rr, rr_old, dq, hnorm, rnorm, inner_tol, e, rr_keep
+        integer :: outer, inner, inner_max, ncon, total_inner, i, j, ndrop
         logical :: changed
         real(dp), allocatable :: hist(:)
         area = nop%grid%area()
@@ -500,6 +521,7 @@ contains
         inner_tol = 0.1_dp*settings%tol
         allocate (hist(settings%maxit))
         total_inner = 0
+        rr_keep = 0; d = 0
         res%status = FC_NOT_CONVERGED
         do outer = 1, settings%maxit
             res%outer_iterations = outer
@@ -508,6 +530,7 @@ contains
                 res%message = 'NORM: contact area became empty'
                 exit
             end if
+            if (settings%norm_reading == 'restart') p = 0
             if (force_mode) then
                 where (con)
                     p = max(p, 0.0_dp)
@@ -526,7 +549,12 @@ contains
             if (force_mode) call project_mean(r, con)
             hnorm = sqrt(sum(h**2, mask=con))
             rr = sum(r*r)
-            d = r
+            if (settings%norm_reading == 'continue_cg' .and. outer > 1 .and. rr_keep > 0) then
+                where (.not. con) d = 0
+                d = r + (rr/rr_keep)*d
+            else
+                d = r
+            end if
             do inner = 1, inner_max
                 if (sqrt(rr) <= inner_tol*hnorm) exit
                 call nop%a_zz%apply(d, q)
@@ -543,6 +571,7 @@ contains
                 d = r + beta*d
                 total_inner = total_inner + 1
             end do
+            rr_keep = rr
             call nop%a_zz%apply(p, u)
             if (force_mode) delta = sum(h0 + u, mask=con)/ncon
             h = h0 - delta
@@ -559,21 +588,29 @@ contains
             ! active-set update (thesis §2.4.1 step 4): (a) drop negative pressures,
             ! (b) add exterior elements that penetrate
             con_new = con
-            changed = .false.
+            ndrop = 0
             do j = 1, size(h0, 2)
                 do i = 1, size(h0, 1)
-                    if (con(i, j)) then
-                        if (p(i, j) < 0) then
-                            con_new(i, j) = .false.; p(i, j) = 0; changed = .true.
-                        end if
-                    else if (allowed(i, j)) then
-                        e = h(i, j) + u(i, j)
-                        if (e < 0) then
-                            con_new(i, j) = .true.; changed = .true.
-                        end if
+                    if (con(i, j) .and. p(i, j) < 0) then
+                        con_new(i, j) = .false.; ndrop = ndrop + 1
+                        if (settings%norm_reading /= 'keep_negative') p(i, j) = 0
                     end if
                 end do
             end do
+            changed = ndrop > 0
+            if (settings%norm_reading == 'recompute_u' .and. ndrop > 0) call nop%a_zz%apply(p, u)
+            if (.not. (settings%norm_reading == 'add_if_no_drop' .and. ndrop > 0)) then
+                do j = 1, size(h0, 2)
+                    do i = 1, size(h0, 1)
+                        if (.not. con(i, j) .and. allowed(i, j)) then
+                            e = h(i, j) + u(i, j)
+                            if (e < 0 .or. (settings%norm_reading == 'add_on_zero' .and. e <= 0)) then
+                                con_new(i, j) = .true.; changed = .true.
+                            end if
+                        end if
+                    end do
+                end do
+            end if
             con = con_new
             if (.not. changed .and. res%residual <= settings%tol) then
                 res%status = FC_CONVERGED

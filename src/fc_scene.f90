@@ -23,6 +23,8 @@ module fc_scene
         integer :: problem = FC_PROBLEM_NORMAL       !! FC_PROBLEM_NORMAL or FC_PROBLEM_TANGENTIAL
         logical :: analytic = .false.                !! answer by the analytic Hertz solution, no grid
         type(fc_material) :: material                !! g1, g2, nu1, nu2 (combined when solved)
+        character(len=path_len) :: ic_file = ''      !! influence coefficients of body 1 (or combined) from a file
+        character(len=path_len) :: ic_file2 = ''     !! body 2's coefficients from a file ('': half-space g2, nu2)
         ! ---- potential contact area
         integer :: nx = 0, ny = 0                    !! elements per direction
         real(dp) :: xmin = 0, xmax = 0, ymin = 0, ymax = 0  !! outer edges [mm]

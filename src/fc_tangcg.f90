@@ -1,4 +1,4 @@
-!> Tangential (frictional) contact problem: TangCG(K) and ConvexGS (thesis ch. 4, SPEC §2–§3).
+!> Tangential (frictional) contact problem: TangCG(K) and ConvexGS (thesis ch. 4; conventions in doc/conventions.md).
 !!
 !! Given the pressure pn on the contact area C and the Coulomb bound g = μ·pn, find the
 !! tangential tractions p = (px, py) on C with slip s = w + (u − u') + offset,
@@ -26,6 +26,7 @@ module fc_tangcg
     use fc_kinds
     use fc_geometry, only: fc_grid
     use fc_influence
+    use fc_icfile, only: fc_ic_set, ic_set_kernel
     use, intrinsic :: iso_c_binding, only: c_loc, c_associated
     use fc_tangprec, only: fc_block_inverse, build_block_inverse
     implicit none
@@ -88,7 +89,7 @@ module fc_tangcg
     end type fc_tangential_result
 
     !> Tangential loading: friction and either the rigid shift (ξ, η) or the forces (Fx, Fy);
-    !! the spin φ is always prescribed (SPEC §5 `&tangential`).
+    !! the spin φ is always prescribed (doc/namelist.md `&tangential`).
     type, public :: fc_tangential_loading
         real(dp) :: mu = 0                    !! coefficient of friction
         real(dp) :: xi = 0, eta = 0           !! prescribed shifts [mm] (force_prescribed = .false.)
@@ -103,10 +104,11 @@ module fc_tangcg
 contains
 
     !> Build the tangential blocks (and coupling blocks if K ≠ 0) for `grid`.
-    subroutine build_tangential_operator(top, material, grid)
+    subroutine build_tangential_operator(top, material, grid, ic)
         type(fc_tangential_operator), intent(inout) :: top
         type(fc_material), intent(in) :: material
         type(fc_grid), intent(in) :: grid
+        type(fc_ic_set), intent(in), optional :: ic   !! coefficients instead of the half-space ones
         integer :: t0, t1, rate
         call system_clock(t0, rate)
         call top%destroy()
@@ -116,27 +118,59 @@ contains
         ! preconditioner (offsets ≤ n)
         block
             real(dp), allocatable :: kxx(:, :), kxy(:, :), kyy(:, :)
-            integer :: nx, ny
-            nx = grid%nx; ny = grid%ny
-            call ic_kernel_extended(IC_XX, material, grid, nx, ny, kxx)
-            call ic_kernel_extended(IC_XY, material, grid, nx, ny, kxy)
-            call ic_kernel_extended(IC_YY, material, grid, nx, ny, kyy)
-            call build_bttb_from_kernel(top%a_xx, kxx(-(nx - 1):nx - 1, -(ny - 1):ny - 1), nx, ny)
-            call build_bttb_from_kernel(top%a_xy, kxy(-(nx - 1):nx - 1, -(ny - 1):ny - 1), nx, ny, plans_from=top%a_xx)
-            call build_bttb_from_kernel(top%a_yy, kyy(-(nx - 1):nx - 1, -(ny - 1):ny - 1), nx, ny, plans_from=top%a_xx)
-            call build_block_inverse(top%prec, kxx, kxy, kyy, nx, ny)
+            call block_kernel(IC_XX, kxx); call block_kernel(IC_XY, kxy); call block_kernel(IC_YY, kyy)
+            call build_from(top%a_xx, kxx)
+            call build_from(top%a_xy, kxy, top%a_xx)
+            call build_from(top%a_yy, kyy, top%a_xx)
+            call build_block_inverse(top%prec, kxx, kxy, kyy, grid%nx, grid%ny)
         end block
         if (material%k /= 0) then
-            call build_bttb(top%a_xz, IC_XZ, material, grid, plans_from=top%a_xx)
-            call build_bttb(top%a_yz, IC_YZ, material, grid, plans_from=top%a_xx)
-            call build_bttb(top%a_zx, IC_ZX, material, grid, plans_from=top%a_xx)
-            call build_bttb(top%a_zy, IC_ZY, material, grid, plans_from=top%a_xx)
+            call build_block(top%a_xz, IC_XZ, top%a_xx)
+            call build_block(top%a_yz, IC_YZ, top%a_xx)
+            call build_block(top%a_zx, IC_ZX, top%a_xx)
+            call build_block(top%a_zy, IC_ZY, top%a_xx)
         end if
         allocate (top%spec_x(top%a_xx%mx/2 + 1, top%a_xx%my))
         allocate (top%spec_y, top%work, mold=top%spec_x)
         top%nproducts = 0
         call system_clock(t1)
         top%setup_seconds = real(t1 - t0, dp)/rate
+    contains
+        !> One block from the half-space formulas or from `ic`, sharing the plans of `plans_from`.
+        subroutine build_block(op, block, plans_from)
+            type(fc_bttb), intent(inout) :: op
+            integer, intent(in) :: block
+            type(fc_bttb), intent(in), optional :: plans_from
+            real(dp), allocatable :: k(:, :)
+            integer :: stat
+            character(len=msg_len) :: msg
+            if (present(ic)) then
+                call ic_set_kernel(ic, block, grid, k, stat, msg)
+                call build_bttb_from_kernel(op, k(-(grid%nx - 1):grid%nx - 1, -(grid%ny - 1):grid%ny - 1), grid%nx, grid%ny, &
+                    plans_from)
+            else
+                call build_bttb(op, block, material, grid, plans_from=plans_from)
+            end if
+        end subroutine build_block
+        !> Coefficients of one block for offsets −n…n (half-space formulas or `ic`).
+        subroutine block_kernel(block, k)
+            integer, intent(in) :: block
+            real(dp), allocatable, intent(out) :: k(:, :)
+            integer :: stat
+            character(len=msg_len) :: msg
+            if (present(ic)) then
+                call ic_set_kernel(ic, block, grid, k, stat, msg)
+            else
+                call ic_kernel_extended(block, material, grid, grid%nx, grid%ny, k)
+            end if
+        end subroutine block_kernel
+        subroutine build_from(op, k, plans_from)
+            type(fc_bttb), intent(inout) :: op
+            real(dp), intent(in) :: k(-grid%nx:, -grid%ny:)
+            type(fc_bttb), intent(in), optional :: plans_from
+            call build_bttb_from_kernel(op, k(-(grid%nx - 1):grid%nx - 1, -(grid%ny - 1):grid%ny - 1), grid%nx, grid%ny, &
+                plans_from)
+        end subroutine build_from
     end subroutine build_tangential_operator
 
     subroutine tangential_destroy(self)

@@ -15,6 +15,7 @@ program tester
     use test_legacy, only: collect_legacy
     use test_table_io, only: collect_table_io
     use test_operators, only: collect_operators
+    use test_fem_ic, only: collect_fem_ic
     implicit none
     character(len=64) :: suite, only
     integer :: npass, nfail
@@ -61,6 +62,9 @@ program tester
     end if
     if (want('operators')) then
         call collect_operators(tests); call run_suite('operators', tests, only, npass, nfail)
+    end if
+    if (want('fem_ic')) then
+        call collect_fem_ic(tests); call run_suite('fem_ic', tests, only, npass, nfail)
     end if
     write (*, '(i0,a,i0,a)') npass, ' passed, ', nfail, ' failed'
     if (nfail > 0 .or. npass == 0) stop 1   ! non-zero exit status (no backtrace, unlike error stop)

@@ -599,7 +599,7 @@ contains
     end subroutine test_reduction_hertz
 
     !> problem = 'hertz' with a tangential force on a sphere: Cattaneo–Mindlin stick radius
-    !! 0.5 mm and shift 0.008172 mm (SPEC §4); the numerical shift for the same force agrees
+    !! 0.5 mm and shift 0.008172 mm (doc/conventions.md); the numerical shift for the same force agrees
     !! within 2.5 % at 64² (the discrete problem converges 0.2 % away, Mindlin's approximation).
     subroutine test_reduction_cattaneo(error)
         type(error_type), allocatable, intent(out) :: error

@@ -1,4 +1,4 @@
-!> Tests of the batch driver (SPEC §5): good files with inheritance, and every kind of bad
+!> Tests of the batch driver (doc/namelist.md): good files with inheritance, and every kind of bad
 !! input giving a non-zero exit code, a message naming group and key, and no outputs.
 !! The driver runs in-process on small grids; files go to a unique directory under /tmp.
 module test_driver
@@ -378,7 +378,7 @@ contains
 
     ! ---------------------------------------------------------------- tangential ----
 
-    !> Cattaneo (SPEC §4) on 30×25, Table 4.1 case 3 shifts, named `name`.
+    !> Cattaneo (doc/conventions.md) on 30×25, Table 4.1 case 3 shifts, named `name`.
     function cattaneo_case(name) result(text)
         character(len=*), intent(in) :: name
         character(len=:), allocatable :: text

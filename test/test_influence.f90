@@ -1,4 +1,4 @@
-!> Suite `influence`: influence coefficients and BTTB products (SPEC §2).
+!> Suite `influence`: influence coefficients and BTTB products (doc/conventions.md).
 module test_influence
     use fc_kinds, only: dp, pi
     use fc_geometry, only: fc_grid, make_grid
@@ -32,7 +32,7 @@ contains
         call combine_material(mat, stat, msg)
     end subroutine steel
 
-    !> Kalker's combination (SPEC §2): identical bodies, rigid body, dissimilar K sign.
+    !> Kalker's combination (doc/conventions.md): identical bodies, rigid body, dissimilar K sign.
     subroutine test_material(error)
         type(error_type), allocatable, intent(out) :: error
         type(fc_material) :: m
@@ -224,7 +224,7 @@ contains
 
     !> Periodic A^zz: a sinusoidal pressure p = cos(2πx/L) on a long periodic strip of the
     !! surface gives the plane-strain response u = 2(1−ν)/G · L/(2π) · p (Johnson §13.2,
-    !! with the combined G of SPEC §2).  Piecewise-constant elements and a finite image sum
+    !! with the combined G of doc/conventions.md).  Piecewise-constant elements and a finite image sum
     !! make this approximate: tolerance 2 % at 64 elements per wavelength.
     subroutine test_periodic_sinusoid(error)
         type(error_type), allocatable, intent(out) :: error
