@@ -1,4 +1,4 @@
-!> fastcontact-bench-auto: what the automatic layer (issue 7) saves, and what it costs.
+!> fastcontact-bench-auto: what the automatic layer (accuracy target, automatic area, model reduction) saves, and what it costs.
 !!
 !! For each model reduction the reduced and the full model are solved on the same scene; the
 !! program prints the answers, their relative difference and the wall-clock cost ratio

@@ -1,4 +1,4 @@
-!> fastcontact-stability: every method over its hard cases (issue 6, "failures are
+!> fastcontact-stability: every method over its hard cases ("failures are
 !! detected and reported").  One row per (method, scenario):
 !!
 !!   method,scenario,grid,outcome,iterations,residual,expected,as_expected,message

@@ -7,7 +7,7 @@ module fc_case_result
     use fc_geometry, only: fc_grid
     use fc_influence, only: fc_material
     use fc_hertz, only: fc_hertz_solution, fc_cattaneo_solution
-    use fc_contact, only: fc_contact_result
+    use fc_contact_types, only: fc_contact_result
     implicit none
     private
 

@@ -1,4 +1,4 @@
-!> The batch driver `fastcontact CASES.nml [--out DIR]` (SPEC §5) as a library routine,
+!> The batch driver `fastcontact CASES.nml [--out DIR]` (doc/user_guide.md) as a library routine,
 !! so that tests can run it in-process.
 !!
 !! Every case in the file is solved in order.  Per good case DIR/<name>.json (summary) and,
@@ -34,7 +34,8 @@ module fc_driver
     use fc_input_scene, only: build_case, case_notes
     use fc_scene, only: fc_case
     use fc_strings, only: fmt_int, fmt_real
-    use fc_errors, only: FC_ERR_FRICTION_BOUND, FC_ERR_NO_CONTACT, FC_ERR_GEOMETRY, FC_ERR_IO, FC_ERR_ALLOC, FC_ERR_GRID
+    use fc_errors, only: FC_ERR_VALUE, FC_ERR_FRICTION_BOUND, FC_ERR_NO_CONTACT, FC_ERR_GEOMETRY, FC_ERR_IO, FC_ERR_ALLOC, &
+        FC_ERR_GRID
     use fc_output, only: fc_case_summary, write_case_json, write_case_csv, write_case_npy, write_case_report
     use fc_auto, only: fc_auto_outcome, solve_case_auto
     implicit none
@@ -63,11 +64,14 @@ contains
     end function driver_usage
 
     !> Run the driver on the command-line arguments `args` (without the program name).
-    subroutine run_driver(args, exit_code, report_unit, error_unit)
+    !! With `only_case` = k (the MPI batch driver): cases before k are read and checked only,
+    !! for what case k inherits; case k is solved and written; no closing summary line.
+    subroutine run_driver(args, exit_code, report_unit, error_unit, only_case)
         character(len=*), intent(in) :: args(:)
         integer, intent(out) :: exit_code
         integer, intent(in), optional :: report_unit   !! report (default: stdout)
         integer, intent(in), optional :: error_unit    !! error messages (default: stderr)
+        integer, intent(in), optional :: only_case     !! solve only this case (1-based)
         integer :: rep, err, i, k, stat, ncase_err, ncase_fail
         character(len=:), allocatable :: case_file, out_dir
         type(fc_case_chunk), allocatable :: cases(:)
@@ -131,6 +135,12 @@ contains
         allocate (used(0), used_case(0))
         ncase_err = 0; ncase_fail = 0
         do k = 1, size(cases)
+            if (present(only_case)) then
+                if (k > only_case) exit
+                if (k < only_case) then
+                    call inherit_case(k); cycle
+                end if
+            end if
             call run_one_case(k, case_status)
             select case (case_status)
             case (0)
@@ -139,9 +149,9 @@ contains
             end select
         end do
         call ops%destroy()
-        write (rep, '(a,i0,a,i0,a,i0,a,i0,a)') 'fastcontact: ', size(cases), ' case(s): ', &
-            size(cases) - ncase_err - ncase_fail, ' converged, ', ncase_fail, ' not converged, ', ncase_err, &
-            ' with input errors'
+        if (.not. present(only_case)) write (rep, '(a,i0,a,i0,a,i0,a,i0,a)') 'fastcontact: ', size(cases), &
+            ' case(s): ', size(cases) - ncase_err - ncase_fail, ' converged, ', ncase_fail, ' not converged, ', &
+            ncase_err, ' with input errors'
         if (ncase_err > 0) then
             exit_code = EXIT_INPUT_ERROR
         else if (ncase_fail > 0) then
@@ -357,6 +367,21 @@ contains
             end if
         end subroutine run_strip_case
 
+        !> Apply and check case k without solving or writing: the state later cases inherit
+        !! (as [[run_one_case]] leaves it, except after an error found only while solving).
+        subroutine inherit_case(k)
+            integer, intent(in) :: k
+            saved_state = state
+            call apply_case(cases(k), k, state, name, stat, errmsg)
+            if (stat /= 0 .or. any(used == state%name)) then
+                state = saved_state; return
+            end if
+            used = [character(len=64) :: used, name]
+            used_case = [used_case, k]
+            call validate_case(state, stat, errmsg)
+            if (stat /= 0) state = saved_state
+        end subroutine inherit_case
+
         !> Report an input error of the current case and remove stale outputs.
         subroutine case_error(clean)
             logical, intent(in), optional :: clean
@@ -424,7 +449,7 @@ contains
         case ('fft-rsm')
             call solve_strip_fft_rsm(prob, t, r, stat, errmsg)
         case default
-            stat = 1; errmsg = 'unknown strip solver'
+            stat = FC_ERR_VALUE; errmsg = 'unknown strip solver'
         end select
         if (stat /= 0) then
             errmsg = "&solver strip = '"//trim(state%strip)//"': "//trim(errmsg); return

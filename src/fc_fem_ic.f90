@@ -92,7 +92,7 @@ contains
                 ' must satisfy 1 <= n <= 4096 and dx, dy > 0'
             return
         end if
-        call fem_defaults(p, nx, ny)
+        call fem_defaults(p, nx, ny, dx, dy)
         call fem_validate(p, nx, ny, dx, dy, stat, errmsg); if (stat /= 0) return
         call build_fem_mesh(p, nx, ny, dx, dy, mesh, stat, errmsg); if (stat /= 0) return
         info%nodes = mesh%nnodes; info%elements = mesh%nelems; info%dofs = 3*mesh%nnodes

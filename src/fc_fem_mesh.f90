@@ -55,21 +55,23 @@ module fc_fem_mesh
 
     integer, parameter :: max_cells_axis = 400        !! cells per axis accepted
     integer(i8), parameter :: max_nodes = 500000_i8   !! nodes accepted (1.5 M unknowns: SPOOLES needs ~20 GB beyond)
+    integer(i8), parameter :: auto_nodes = 30000_i8   !! node budget of the automatic stretch
 
     public :: fem_defaults, fem_validate, build_fem_mesh, write_fem_deck, fem_domain, lattice_coord
     public :: face_shape, face_lattice
 
 contains
 
-    !> Fill the automatic values of `p` for a grid of nx×ny cells of size dx×dy.
-    subroutine fem_defaults(p, nx, ny)
+    !> Fill the automatic values of `p` for a grid of nx×ny cells of size dx×dy.  The
+    !! automatic growth factor is the thesis' (1.2 Mesh1, 1.5 Mesh2) when that model has at
+    !! most `auto_nodes` nodes, else the first of 1.5, 2, 2.5, 3 that fits (a one-to-two
+    !! minute CalculiX run on one core); a stretch given explicitly is kept.
+    subroutine fem_defaults(p, nx, ny, dx, dy)
         type(fc_fem_params), intent(inout) :: p
         integer, intent(in) :: nx, ny
-        if (p%stretch == 0) then
-            p%stretch = 1.2_dp
-            if (p%mesh == 'prism') p%stretch = 1.5_dp
-        end if
-        if (p%stretch_far == 0) p%stretch_far = p%stretch
+        real(dp), intent(in) :: dx, dy
+        real(dp), parameter :: candidates(4) = [1.5_dp, 2.0_dp, 2.5_dp, 3.0_dp]
+        integer :: k
         if (p%l_over_hc == 0) then
             if (p%mesh == 'prism') then
                 p%l_over_hc = max(80.0_dp, 50.0_dp*max(nx, ny))
@@ -77,7 +79,46 @@ contains
                 p%l_over_hc = max(80.0_dp, 400.0_dp*max(nx, ny))
             end if
         end if
+        if (p%stretch == 0) then
+            p%stretch = 1.2_dp
+            if (p%mesh == 'prism') p%stretch = 1.5_dp
+            do k = 1, size(candidates)
+                if (model_nodes(p, nx, ny, dx, dy) <= auto_nodes) exit
+                if (candidates(k) > p%stretch) p%stretch = candidates(k)
+            end do
+        end if
+        if (p%stretch_far == 0) p%stretch_far = p%stretch
     end subroutine fem_defaults
+
+    !> Nodes of the model `p` would build (0 when the axes cannot be built).
+    integer(i8) function model_nodes(p, nx, ny, dx, dy) result(count)
+        type(fc_fem_params), intent(in) :: p
+        integer, intent(in) :: nx, ny
+        real(dp), intent(in) :: dx, dy
+        type(fc_fem_params) :: q
+        real(dp), allocatable :: xs(:), ys(:), zs(:)
+        integer :: stat, m, ncx, ncy, ncz
+        real(dp) :: l, near
+        character(len=msg_len) :: msg
+        q = p
+        if (q%stretch_far == 0) q%stretch_far = q%stretch
+        count = huge(1_i8)
+        if (q%hc_over_hs < 1 .or. q%stretch < 1.01_dp .or. q%stretch_far < 1.01_dp) return
+        l = fem_domain(q, dx, dy)
+        near = max((nx + 1)*dx, (ny + 1)*dy)
+        m = nint(q%cube_over_hc*q%hc_over_hs)
+        call graded_axis(l, dx/q%hc_over_hs, m, q%stretch, near, q%stretch_far, xs, stat, msg); if (stat /= 0) return
+        call graded_axis(l, dy/q%hc_over_hs, m, q%stretch, near, q%stretch_far, ys, stat, msg); if (stat /= 0) return
+        call graded_axis(l, min(dx, dy)/q%hc_over_hs, m, q%stretch, near, q%stretch_far, zs, stat, msg)
+        if (stat /= 0) return
+        ncx = ubound(xs, 1); ncy = ubound(ys, 1); ncz = ubound(zs, 1)
+        count = int(ncx + 1, i8)*(ncy + 1)*(ncz + 1)
+        if (q%order == 2) then
+            count = count + int(ncx, i8)*(ncy + 1)*(ncz + 1) + int(ncx + 1, i8)*ncy*(ncz + 1) + &
+                int(ncx + 1, i8)*(ncy + 1)*ncz
+            if (q%mesh == 'prism') count = count + int(ncx + 1, i8)*ncy*ncz
+        end if
+    end function model_nodes
 
     !> Domain size L [mm] of the model for cells dx×dy.
     pure real(dp) function fem_domain(p, dx, dy) result(l)

@@ -101,7 +101,7 @@ contains
         call check_settings(hier, settings, stat, errmsg)
         if (stat /= 0) return
         if (present(approach) .eqv. present(fn)) then
-            stat = 1; errmsg = 'fmg: give exactly one of approach and fn'; return
+            stat = FC_ERR_VALUE; errmsg = 'fmg: give exactly one of approach and fn'; return
         end if
         call system_clock(t0, rate)
         if (present(approach)) then
@@ -120,24 +120,24 @@ contains
         character(len=*), intent(out) :: errmsg
         stat = 0; errmsg = ''
         if (hier%nlev < 1) then
-            stat = 1; errmsg = 'fmg: hierarchy not built'; return
+            stat = FC_ERR_NOT_READY; errmsg = 'fmg: hierarchy not built'; return
         end if
         if (settings%nu1 < 0 .or. settings%nu2 < 0 .or. settings%nu1 + settings%nu2 == 0) then
-            stat = 1; write (errmsg, '(a,i0,a,i0,a)') 'solver: cycle V(', settings%nu1, ',', settings%nu2, &
+            stat = FC_ERR_VALUE; write (errmsg, '(a,i0,a,i0,a)') 'solver: cycle V(', settings%nu1, ',', settings%nu2, &
                 ') needs nu1, nu2 >= 0 and nu1 + nu2 > 0'
             return
         end if
         if (.not. (settings%omega > 0 .and. settings%omega < 2)) then
-            stat = 1; write (errmsg, '(a,g0.4,a)') 'solver: omega = ', settings%omega, ' must lie in (0, 2)'; return
+            stat = FC_ERR_VALUE; write (errmsg, '(a,g0.4,a)') 'solver: omega = ', settings%omega, ' must lie in (0, 2)'; return
         end if
         if (.not. (settings%beta >= 0)) then
-            stat = 1; write (errmsg, '(a,g0.4,a)') 'solver: beta = ', settings%beta, ' must be >= 0'; return
+            stat = FC_ERR_VALUE; write (errmsg, '(a,g0.4,a)') 'solver: beta = ', settings%beta, ' must be >= 0'; return
         end if
         if (.not. (settings%tol > 0)) then
-            stat = 1; write (errmsg, '(a,es12.4,a)') 'solver: tol = ', settings%tol, ' must be > 0'; return
+            stat = FC_ERR_VALUE; write (errmsg, '(a,es12.4,a)') 'solver: tol = ', settings%tol, ' must be > 0'; return
         end if
         if (settings%maxit < 1 .or. settings%maxit_level < 1) then
-            stat = 1; write (errmsg, '(a,i0,a,i0,a)') 'solver: maxit = ', settings%maxit, ', maxit_level = ', &
+            stat = FC_ERR_VALUE; write (errmsg, '(a,i0,a,i0,a)') 'solver: maxit = ', settings%maxit, ', maxit_level = ', &
                 settings%maxit_level, ' must be >= 1'
             return
         end if
@@ -146,7 +146,8 @@ contains
         case ('fft-rsm')
             if (.not. hier%has_prec) call build_preconditioners(hier)
         case default
-            stat = 1; errmsg = "solver: smoother = '"//trim(settings%smoother)//"' is not one of 'gs', 'jacobi', 'fft-rsm'"
+            stat = FC_ERR_VALUE
+            errmsg = "solver: smoother = '"//trim(settings%smoother)//"' is not one of 'gs', 'jacobi', 'fft-rsm'"
         end select
     end subroutine check_settings
 
@@ -168,7 +169,7 @@ contains
         nlev = hier%nlev
         associate (top => hier%lev(nlev))
             if (.not. any(top%allowed .and. top%h0 - delta <= 0)) then
-                stat = 1; write (errmsg, '(a,es12.4,a)') 'normal: approach = ', delta, &
+                stat = FC_ERR_VALUE; write (errmsg, '(a,es12.4,a)') 'normal: approach = ', delta, &
                     ' gives no contact (h0 − approach > 0 everywhere)'
                 return
             end if
@@ -283,7 +284,7 @@ contains
         integer :: it, nsolve, iters
         stat = 0; errmsg = ''
         if (.not. (fn > 0)) then
-            stat = 1; write (errmsg, '(a,es12.4,a)') 'normal: fn = ', fn, ' must be > 0'; return
+            stat = FC_ERR_VALUE; write (errmsg, '(a,es12.4,a)') 'normal: fn = ', fn, ' must be > 0'; return
         end if
         associate (top => hier%lev(hier%nlev))
             hmin = minval(top%h0, mask=top%allowed)

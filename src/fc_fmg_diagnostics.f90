@@ -29,7 +29,8 @@ contains
         stat = 0; errmsg = ''
         n = grid%n()
         if (n > 2048) then
-            stat = 1; write (errmsg, '(a,i0,a)') 'smoother_eigenvalues: n = ', n, ' > 2048 (dense analysis)'; return
+            stat = FC_ERR_UNSUPPORTED
+            write (errmsg, '(a,i0,a)') 'smoother_eigenvalues: n = ', n, ' > 2048 (dense analysis)'; return
         end if
         call ic_kernel(IC_ZZ, mat, grid, kernel)
         allocate (a(n, n), w(n, n), r(n, n))
@@ -52,7 +53,7 @@ contains
                 w(j, j) = a(j, j)/omega
             end do
         case default
-            stat = 1; errmsg = "smoother_eigenvalues: smoother '"//trim(smoother)//"' is not 'jacobi' or 'gs'"; return
+            stat = FC_ERR_VALUE; errmsg = "smoother_eigenvalues: smoother '"//trim(smoother)//"' is not 'jacobi' or 'gs'"; return
         end select
         ! R = I − W⁻¹A: solve W X = A (W lower triangular), R = I − X
         r = a

@@ -84,7 +84,7 @@ contains
             end if
         end if
         if (ios /= 0 .or. nu1 < 0 .or. nu2 < 0 .or. nu1 + nu2 == 0) then
-            stat = 1; errmsg = "solver: cycle = '"//trim(name)//"' is not 'V(n1,n2)' with n1, n2 >= 0, n1 + n2 > 0"
+            stat = FC_ERR_VALUE; errmsg = "solver: cycle = '"//trim(name)//"' is not 'V(n1,n2)' with n1, n2 >= 0, n1 + n2 > 0"
             nu1 = 1; nu2 = 1
         end if
     end subroutine fmg_cycle_from_name
@@ -108,15 +108,15 @@ contains
         stat = 0; errmsg = ''
         call hier%destroy()
         if (size(h0, 1) /= grid%nx .or. size(h0, 2) /= grid%ny) then
-            stat = 1; write (errmsg, '(a,2(i0,1x),a,2(i0,1x))') 'fmg: h0 has shape ', shape(h0), &
+            stat = FC_ERR_SHAPE; write (errmsg, '(a,2(i0,1x),a,2(i0,1x))') 'fmg: h0 has shape ', shape(h0), &
                 'but the grid is ', grid%nx, grid%ny
             return
         end if
         if (.not. (mat%g > 0)) then
-            stat = 1; errmsg = 'fmg: material not combined (call combine_material first)'; return
+            stat = FC_ERR_NOT_READY; errmsg = 'fmg: material not combined (call combine_material first)'; return
         end if
         if (settings%coarsest < 1) then
-            stat = 1; write (errmsg, '(a,i0,a)') 'solver: coarsest = ', settings%coarsest, ' must be >= 1'; return
+            stat = FC_ERR_VALUE; write (errmsg, '(a,i0,a)') 'solver: coarsest = ', settings%coarsest, ' must be >= 1'; return
         end if
         ! level sizes, finest first
         nlev = 1; nx = grid%nx; ny = grid%ny

@@ -5,7 +5,7 @@
 !! (xmin+(i-½)dx, ymin+(j-½)dy).  The undeformed distance `h0` returned here does not
 !! contain the approach: the solvers use h = h0 − δ.
 module fc_geometry
-    use fc_kinds, only: dp, i8, pi, msg_len
+    use fc_kinds, only: dp, i8, pi, msg_len, FC_ERR_VALUE, FC_ERR_IO
     use fc_table_io, only: read_real_table
     implicit none
     private
@@ -35,7 +35,7 @@ module fc_geometry
         integer :: seed = 2015        !! seed of the portable generator
     end type fc_rough_params
 
-    public :: make_grid, quadratic_gap, rough_heights, punch_rough_gap, wavy_gap, read_gap_table
+    public :: make_grid, quadratic_gap, rough_heights, rough_heights_rows, punch_rough_gap, wavy_gap, read_gap_table
 
     integer(i8), parameter :: rng_a = 48271_i8, rng_m = 2147483647_i8
 
@@ -50,11 +50,12 @@ contains
         character(len=*), intent(out) :: errmsg
         stat = 0; errmsg = ''
         if (nx < 1 .or. ny < 1) then
-            stat = 1; write (errmsg, '(a,i0,a,i0)') 'grid: nx and ny must be >= 1, got nx = ', nx, ', ny = ', ny
+            stat = FC_ERR_VALUE; write (errmsg, '(a,i0,a,i0)') 'grid: nx and ny must be >= 1, got nx = ', nx, ', ny = ', ny
             return
         end if
         if (.not. (xmax > xmin) .or. .not. (ymax > ymin)) then
-            stat = 1; write (errmsg, '(a,4(es12.4))') 'grid: need xmax > xmin and ymax > ymin, got ', xmin, xmax, ymin, ymax
+            stat = FC_ERR_VALUE
+            write (errmsg, '(a,4(es12.4))') 'grid: need xmax > xmin and ymax > ymin, got ', xmin, xmax, ymin, ymax
             return
         end if
         grid%nx = nx; grid%ny = ny
@@ -129,6 +130,16 @@ contains
         type(fc_grid), intent(in) :: grid
         type(fc_rough_params), intent(in) :: par
         real(dp), intent(out) :: z(grid%nx, grid%ny)
+        call rough_heights_rows(grid, par, 1, grid%ny, z)
+    end subroutine rough_heights
+
+    !> Rows jfirst…jlast of [[rough_heights]] (a distributed run generates its own slab;
+    !! the values equal the whole-grid ones bit for bit: same modes, same arithmetic).
+    subroutine rough_heights_rows(grid, par, jfirst, jlast, z)
+        type(fc_grid), intent(in) :: grid
+        type(fc_rough_params), intent(in) :: par
+        integer, intent(in) :: jfirst, jlast
+        real(dp), intent(out) :: z(grid%nx, jfirst:jlast)
         real(dp) :: amp(par%m_modes, par%n_modes), phx(par%m_modes, par%n_modes), phy(par%m_modes, par%n_modes)
         real(dp) :: r, lx, ly, r00, xi, yj
         real(dp), allocatable :: cx(:), cy(:)
@@ -146,7 +157,7 @@ contains
         amp = amp*par%sigma/sqrt(r00)                     ! eq. (2.16)
         lx = grid%xmax - grid%xmin
         ly = grid%ymax - grid%ymin
-        allocate (cx(grid%nx), cy(grid%ny))
+        allocate (cx(grid%nx), cy(jfirst:jlast))
         z = 0
         do n = 1, par%n_modes
             do m = 1, par%m_modes
@@ -154,16 +165,16 @@ contains
                     xi = grid%x(i) - grid%xmin
                     cx(i) = cos(2*pi*m*xi/lx + phx(m, n))
                 end do
-                do j = 1, grid%ny
+                do j = jfirst, jlast
                     yj = grid%y(j) - grid%ymin
                     cy(j) = cos(2*pi*n*yj/ly + phy(m, n))
                 end do
-                do j = 1, grid%ny
+                do j = jfirst, jlast
                     z(:, j) = z(:, j) + amp(m, n)*cx*cy(j)
                 end do
             end do
         end do
-    end subroutine rough_heights
+    end subroutine rough_heights_rows
 
     !> Flat rigid circular punch of diameter `diameter` on a rough surface (thesis §2.5.2):
     !! h0 = −z inside the punch, `h_no_contact` outside (the approach δ is added by the solver).

@@ -7,7 +7,8 @@
 !!     lquasid  xyzorder        0 (general: 9 columns), 312 (component order n, x, y)
 !!     lsymmx   lsymmy          1 (only ix >= 0 stored, mirrored), 0 (all iy stored)
 !!     mx  my  dx  dy           grid size (offsets 0..mx-1 and -(my-1)..my-1), cell size [mm]
-!!   then for each iy = -(my-1) … my-1 two comment lines and mx rows
+!!   then for each iy = -(my-1) … my-1 two header lines (comments; any line that does not
+!!   start with a number is skipped) and mx rows
 !!     ixofs  xrel  Czz Czx Czy  Cxz Cxx Cxy  Cyz Cyx Cyy
 !!   with xrel = ixofs·dx and C_ab the displacement difference in direction a due to a unit
 !!   traction in direction b (combined coefficients of both bodies, mm per N/mm²).
@@ -166,13 +167,19 @@ contains
         subroutine next_data(ios)
             integer, intent(out) :: ios
             integer :: p
+            character(len=1) :: first
             do
                 read (u, '(a)', iostat=ios) buf
                 if (ios /= 0) return
                 line = line + 1
                 p = index(buf, '%')
                 if (p > 0) buf(p:) = ' '
-                if (len_trim(buf) > 0) return
+                ! a line not starting with a number is a comment too (block headers)
+                if (len_trim(buf) > 0) then
+                    first = adjustl(buf)
+                    if (index('0123456789+-.', first) == 0) cycle
+                    return
+                end if
             end do
         end subroutine next_data
         subroutine store(jx, iy, s)

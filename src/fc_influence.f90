@@ -13,7 +13,7 @@
 !! A^xy = A^yx is even in (u,v), so the tangential block matrix [A^xx A^xy; A^xy A^yy]
 !! is symmetric.
 module fc_influence
-    use fc_kinds, only: dp, pi, msg_len
+    use fc_kinds, only: dp, pi, msg_len, FC_ERR_VALUE
     use fc_geometry, only: fc_grid
     use fc_toeplitz
     implicit none
@@ -50,25 +50,25 @@ contains
         real(dp) :: c1, c2
         stat = 0; errmsg = ''
         if (.not. (mat%g1 > 0)) then
-            stat = 1; write (errmsg, '(a,es12.4,a)') 'material: g1 = ', mat%g1, ' must be > 0'
+            stat = FC_ERR_VALUE; write (errmsg, '(a,es12.4,a)') 'material: g1 = ', mat%g1, ' must be > 0'
             return
         end if
         if (.not. (mat%g2 > 0)) then
-            stat = 1; write (errmsg, '(a,es12.4,a)') 'material: g2 = ', mat%g2, ' must be > 0'
+            stat = FC_ERR_VALUE; write (errmsg, '(a,es12.4,a)') 'material: g2 = ', mat%g2, ' must be > 0'
             return
         end if
         if (.not. (mat%nu1 >= 0 .and. mat%nu1 < 0.5_dp)) then
-            stat = 1; write (errmsg, '(a,g0.6,a)') 'material: nu1 = ', mat%nu1, ' must lie in [0, 0.5)'
+            stat = FC_ERR_VALUE; write (errmsg, '(a,g0.6,a)') 'material: nu1 = ', mat%nu1, ' must lie in [0, 0.5)'
             return
         end if
         if (.not. (mat%nu2 >= 0 .and. mat%nu2 < 0.5_dp)) then
-            stat = 1; write (errmsg, '(a,g0.6,a)') 'material: nu2 = ', mat%nu2, ' must lie in [0, 0.5)'
+            stat = FC_ERR_VALUE; write (errmsg, '(a,g0.6,a)') 'material: nu2 = ', mat%nu2, ' must lie in [0, 0.5)'
             return
         end if
         c1 = 1/mat%g1; if (mat%g1 >= rigid_modulus) c1 = 0
         c2 = 1/mat%g2; if (mat%g2 >= rigid_modulus) c2 = 0
         if (c1 + c2 <= 0) then
-            stat = 1; errmsg = 'material: both bodies are rigid (g1 and g2 >= 1e29)'
+            stat = FC_ERR_VALUE; errmsg = 'material: both bodies are rigid (g1 and g2 >= 1e29)'
             return
         end if
         mat%g = 2/(c1 + c2)
@@ -220,6 +220,8 @@ contains
             real(dp), intent(in) :: factor
             integer :: ii, jj
             if (factor == 0) return
+            ! rows are independent: shared among threads (fc_threads)
+            !$omp parallel do default(shared) private(jj) schedule(static)
             do jj = -my, my + 1
                 select case (which)
                 case (1); fc(:, jj) = f_inv_rho(cx, cy(jj))
@@ -230,11 +232,14 @@ contains
                 case default; fc(:, jj) = f_u_rho2(cy(jj), cx)
                 end select
             end do
+            !$omp end parallel do
+            !$omp parallel do default(shared) private(ii, jj) schedule(static)
             do jj = -my, my
                 do ii = -mx, mx
                     kernel(ii, jj) = kernel(ii, jj) + factor*(fc(ii + 1, jj + 1) - fc(ii + 1, jj) - fc(ii, jj + 1) + fc(ii, jj))
                 end do
             end do
+            !$omp end parallel do
         end subroutine add_primitive
     end subroutine ic_kernel_extended
 

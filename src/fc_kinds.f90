@@ -1,7 +1,6 @@
 !> Kinds, constants and status codes shared by every fastcontact module.
 module fc_kinds
     use, intrinsic :: iso_fortran_env, only: real64, int64
-    use fc_errors, only: FC_ERR_VALUE
     implicit none
     private
 
@@ -16,6 +15,21 @@ module fc_kinds
     integer, parameter, public :: FC_ERROR = 3          !! invalid input or internal error
 
     integer, parameter, public :: msg_len = 512         !! length of error messages
+
+    !> Error codes returned in `stat` (0: success); use them through [[fc_errors]].
+    integer, parameter, public :: FC_OK = 0                 !! success
+    integer, parameter, public :: FC_ERR_VALUE = 1          !! an argument is out of range or invalid
+    integer, parameter, public :: FC_ERR_NOT_READY = 2      !! required data missing (operator not built, order)
+    integer, parameter, public :: FC_ERR_SHAPE = 3          !! an array does not match the grid
+    integer, parameter, public :: FC_ERR_UNSUPPORTED = 4    !! a valid combination the solvers do not offer
+    integer, parameter, public :: FC_ERR_IO = 5             !! a file cannot be read or written
+    integer, parameter, public :: FC_ERR_NO_CONTACT = 6     !! the loading brings no element into contact
+    integer, parameter, public :: FC_ERR_FRICTION_BOUND = 7 !! prescribed |(Fx, Fy)| ≥ μ·Fn: no unique shift
+    integer, parameter, public :: FC_ERR_GRID = 8           !! the grid does not suit the chosen solver
+    integer, parameter, public :: FC_ERR_ALLOC = 9          !! memory allocation failed
+    integer, parameter, public :: FC_ERR_INTERNAL = 10      !! unexpected internal error
+    integer, parameter, public :: FC_ERR_GEOMETRY = 11      !! the geometry cannot touch on this grid
+
 
     public :: status_name, check_iteration_settings
 

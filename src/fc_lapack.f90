@@ -5,6 +5,7 @@
 !! of smoother iteration matrices on small grids (research diagnostics and tests).
 module fc_lapack
     use fc_kinds, only: dp
+    use fc_errors, only: FC_ERR_SHAPE, FC_ERR_INTERNAL
     implicit none
     private
 
@@ -63,7 +64,7 @@ contains
         stat = 0; errmsg = ''
         n = size(a, 1)
         if (size(a, 2) /= n .or. size(b, 1) /= n) then
-            stat = 1
+            stat = FC_ERR_SHAPE
             write (errmsg, '(a,i0,a,i0,a,i0,a)') 'solve_spd: matrix ', size(a, 1), 'x', size(a, 2), &
                 ' and right-hand side of length ', size(b, 1), ' do not match'
             return
@@ -86,7 +87,7 @@ contains
         stat = 0; errmsg = ''
         n = size(a, 1)
         if (size(a, 2) /= n) then
-            stat = 1
+            stat = FC_ERR_SHAPE
             write (errmsg, '(a,i0,a,i0,a)') 'eigenvalues_general: matrix ', size(a, 1), 'x', size(a, 2), ' is not square'
             return
         end if
@@ -108,7 +109,7 @@ contains
         character(len=*), intent(out) :: errmsg
         stat = 0; errmsg = ''
         if (info == 0) return
-        stat = 1
+        stat = FC_ERR_INTERNAL   ! a numerical failure of a routine the caller gave a valid matrix
         if (info < 0) then
             write (errmsg, '(a,i0,a,i0,a)') 'LAPACK '//routine//': argument ', -info, ' is invalid (n = ', n, ')'
         else if (routine == 'dposv') then

@@ -29,6 +29,7 @@ module fc_norm
     use fc_influence
     use fc_icfile, only: fc_ic_set, ic_set_kernel
     use, intrinsic :: iso_c_binding, only: c_loc, c_associated
+    use fc_errors, only: FC_ERR_VALUE
     implicit none
     private
 
@@ -41,7 +42,7 @@ module fc_norm
         logical :: precondition = .true.      !! BCCG: FFT-based preconditioner
         logical :: deflation = .false.        !! BCCG: coarse correction on the contact indicator (measured: no gain)
         logical :: elastic_start = .true.     !! BCCG cold start: elastic estimate −M(h0 − δ) on the penetration set
-        !> NORM: reading of the active-set step (thesis §2.3, §2.4.1) — '' (ours: warm-started
+        !> Reading of NORM's active-set step (thesis §2.3, §2.4.1) — '' (ours: warm-started
         !! CG, drop p < 0 and add e < 0 in one step); research alternatives for thesis Table 2.8
         !! (bench/norm_table28.f90): 'restart' (CG from p = 0), 'keep_negative' (dropped
         !! elements keep p), 'add_if_no_drop', 'add_on_zero' (add e ≤ 0), 'continue_cg'
@@ -174,26 +175,26 @@ contains
         stat = 0; errmsg = ''
         nx = nop%grid%nx; ny = nop%grid%ny
         if (.not. nop%a_zz%built()) then
-            stat = 1; errmsg = 'solve_normal: operator not built'; return
+            stat = FC_ERR_NOT_READY; errmsg = 'solve_normal: operator not built'; return
         end if
         if (size(h0, 1) /= nx .or. size(h0, 2) /= ny) then
-            stat = 1; write (errmsg, '(a,2(i0,1x),a,2(i0,1x))') 'solve_normal: h0 has shape ', shape(h0), &
+            stat = FC_ERR_SHAPE; write (errmsg, '(a,2(i0,1x),a,2(i0,1x))') 'solve_normal: h0 has shape ', shape(h0), &
                 'but the grid is ', nx, ny
             return
         end if
         if (present(approach) .eqv. present(fn)) then
-            stat = 1; errmsg = 'solve_normal: give exactly one of approach and fn'; return
+            stat = FC_ERR_VALUE; errmsg = 'solve_normal: give exactly one of approach and fn'; return
         end if
         force_mode = present(fn)
         if (force_mode) then
             if (.not. (fn > 0)) then
-                stat = 1; write (errmsg, '(a,es12.4,a)') 'normal: fn = ', fn, ' must be > 0'; return
+                stat = FC_ERR_VALUE; write (errmsg, '(a,es12.4,a)') 'normal: fn = ', fn, ' must be > 0'; return
             end if
             delta = 0
         else
             delta = approach
             if (.not. any(h0 - delta <= 0 .and. h0 < 0.5_dp*h_no_contact)) then
-                stat = 1; write (errmsg, '(a,es12.4,a)') 'normal: approach = ', approach, &
+                stat = FC_ERR_VALUE; write (errmsg, '(a,es12.4,a)') 'normal: approach = ', approach, &
                     ' gives no contact (h0 − approach > 0 everywhere)'
                 return
             end if
@@ -203,7 +204,7 @@ contains
         select case (settings%norm_reading)
         case ('', 'restart', 'keep_negative', 'add_if_no_drop', 'add_on_zero', 'continue_cg', 'recompute_u')
         case default
-            stat = 1; errmsg = "solve_normal: norm_reading = '"//trim(settings%norm_reading)//"' is not one of '', "// &
+            stat = FC_ERR_VALUE; errmsg = "solve_normal: norm_reading = '"//trim(settings%norm_reading)//"' is not one of '', "// &
                 "'restart', 'keep_negative', 'add_if_no_drop', 'add_on_zero', 'continue_cg', 'recompute_u'"
             return
         end select
@@ -223,7 +224,7 @@ contains
         case ('norm')
             call run_norm(nop, h0, settings, force_mode, delta, fn_or_zero(), res)
         case default
-            stat = 1; errmsg = "solver: normal = '"//trim(settings%solver)//"' is not one of 'bccg', 'norm'"
+            stat = FC_ERR_VALUE; errmsg = "solver: normal = '"//trim(settings%solver)//"' is not one of 'bccg', 'norm'"
             return
         end select
         call system_clock(t1)

@@ -60,7 +60,7 @@ module fc_output
         !! accuracy, reductions, warnings, analytic answers) and the final solution; strip
         !! model problems fill grid, material and model only
         type(fc_auto_outcome) :: outcome
-        ! ---- multigrid (issue 4)
+        ! ---- multigrid
         real(dp) :: work_units = -1                  !! FMG / strip solvers: work units (−1: not a multigrid solve)
         real(dp) :: convergence_factor = -1          !! FMG / strip solvers: convergence factor (−1: n/a)
         character(len=16) :: cycle = ''              !! multigrid cycle used ('' for one-grid solvers)

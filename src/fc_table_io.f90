@@ -21,7 +21,7 @@
 module fc_table_io
     use, intrinsic :: iso_fortran_env, only: int32, int64
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
-    use fc_kinds, only: dp
+    use fc_kinds, only: dp, FC_ERR_IO
     implicit none
     private
 
@@ -542,18 +542,18 @@ contains
         open (newunit=unit, file=filename, status='old', action='read', access='stream', form='unformatted', &
               iostat=ios)
         if (ios /= 0) then
-            stat = 1; errmsg = "cannot open table file '"//trim(filename)//"'"; return
+            stat = FC_ERR_IO; errmsg = "cannot open table file '"//trim(filename)//"'"; return
         end if
         inquire (unit=unit, size=fsize)
         if (fsize < 0 .or. fsize > 2_int64**31 - 2) then
-            stat = 1; errmsg = "table file '"//trim(filename)//"': cannot determine its size or larger than 2 GB"
+            stat = FC_ERR_IO; errmsg = "table file '"//trim(filename)//"': cannot determine its size or larger than 2 GB"
             close (unit); return
         end if
         allocate (character(len=int(fsize)) :: text)
         if (fsize > 0) read (unit, iostat=ios) text
         close (unit)
         if (ios /= 0) then
-            stat = 1; errmsg = "cannot read table file '"//trim(filename)//"'"; return
+            stat = FC_ERR_IO; errmsg = "cannot read table file '"//trim(filename)//"'"; return
         end if
         n = len(text)
         nread = 0; lineno = 1; i = 1
@@ -578,12 +578,12 @@ contains
             end do
             call parse_real(text(start:i - 1), v, ok)
             if (.not. ok) then
-                stat = 1; write (errmsg, '(a,i0,a)') "table file '"//trim(filename)//"', line ", lineno, &
+                stat = FC_ERR_IO; write (errmsg, '(a,i0,a)') "table file '"//trim(filename)//"', line ", lineno, &
                     ": not a number: '"//text(start:min(i - 1, start + 39))//"'"
                 return
             end if
             if (nread >= size(vals)) then
-                stat = 1; write (errmsg, '(a,i0,a)') "table file '"//trim(filename)//"' has more than nx*ny = ", &
+                stat = FC_ERR_IO; write (errmsg, '(a,i0,a)') "table file '"//trim(filename)//"' has more than nx*ny = ", &
                     size(vals), ' values'
                 return
             end if
@@ -592,7 +592,7 @@ contains
         end do
         k = nread
         if (k /= size(vals)) then
-            stat = 1; write (errmsg, '(a,i0,a,i0)') "table file '"//trim(filename)//"' has ", k, &
+            stat = FC_ERR_IO; write (errmsg, '(a,i0,a,i0)') "table file '"//trim(filename)//"' has ", k, &
                 ' values, expected nx*ny = ', size(vals)
         end if
     end subroutine read_real_table

@@ -26,9 +26,7 @@ module fc_tangcg
     use fc_kinds
     use fc_geometry, only: fc_grid
     use fc_influence
-    use fc_icfile, only: fc_ic_set, ic_set_kernel
-    use, intrinsic :: iso_c_binding, only: c_loc, c_associated
-    use fc_tangprec, only: fc_block_inverse, build_block_inverse
+    use fc_tangcg_operator, only: fc_tangential_operator, build_tangential_operator, coupling_displacements
     implicit none
     private
 
@@ -44,29 +42,6 @@ module fc_tangcg
         character(len=8) :: preconditioner = 'fft'  !! TangCG: 'fft' (block Toeplitz inverse on adhesion,
                                                  !! diagonal on slip, elastic start) or 'diagonal' (eq. 4.43)
     end type fc_tangential_settings
-
-    !> Tangential influence blocks on one grid (and the coupling blocks when K ≠ 0).  All
-    !! blocks share a_xx's FFT plans and buffers (one set per grid); even blocks store real
-    !! symbols, the odd coupling blocks their imaginary parts.  Plans are released by
-    !! `destroy` or when the operator is dropped; a copy is independent of the original.
-    type, public :: fc_tangential_operator
-        type(fc_grid) :: grid
-        type(fc_material) :: material
-        type(fc_bttb) :: a_xx, a_xy, a_yy   !! tangential blocks (A^yx = A^xy)
-        type(fc_bttb) :: a_xz, a_yz         !! u_t from pn (built only when K ≠ 0)
-        type(fc_bttb) :: a_zx, a_zy         !! u_z from p_t (built only when K ≠ 0)
-        complex(dp), allocatable :: spec_x(:, :), spec_y(:, :), work(:, :)
-        type(fc_block_inverse) :: prec      !! TangCG's FFT preconditioner (fc_tangprec)
-        integer :: nproducts = 0            !! combined 2×2 block products
-        real(dp) :: setup_seconds = 0
-    contains
-        procedure :: apply => tangential_apply
-        procedure :: destroy => tangential_destroy
-        procedure :: coupled => tangential_coupled
-        procedure :: matches => tangential_matches
-        procedure, private :: tangential_assign
-        generic :: assignment(=) => tangential_assign
-    end type fc_tangential_operator
 
     !> Result of a tangential solve.
     type, public :: fc_tangential_result
@@ -98,167 +73,12 @@ module fc_tangcg
         logical :: force_prescribed = .false.
     end type fc_tangential_loading
 
-    public :: build_tangential_operator, solve_tangential, coupling_displacements
+    ! the operator (fc_tangcg_operator) is part of this module's interface
+    public :: fc_tangential_operator, build_tangential_operator, coupling_displacements
+    public :: solve_tangential
     public :: solve_tangential_loading
 
 contains
-
-    !> Build the tangential blocks (and coupling blocks if K ≠ 0) for `grid`.
-    subroutine build_tangential_operator(top, material, grid, ic)
-        type(fc_tangential_operator), intent(inout) :: top
-        type(fc_material), intent(in) :: material
-        type(fc_grid), intent(in) :: grid
-        type(fc_ic_set), intent(in), optional :: ic   !! coefficients instead of the half-space ones
-        integer :: t0, t1, rate
-        call system_clock(t0, rate)
-        call top%destroy()
-        top%grid = grid
-        top%material = material
-        ! one coefficient evaluation per block serves A (offsets < n) and TangCG's
-        ! preconditioner (offsets ≤ n)
-        block
-            real(dp), allocatable :: kxx(:, :), kxy(:, :), kyy(:, :)
-            call block_kernel(IC_XX, kxx); call block_kernel(IC_XY, kxy); call block_kernel(IC_YY, kyy)
-            call build_from(top%a_xx, kxx)
-            call build_from(top%a_xy, kxy, top%a_xx)
-            call build_from(top%a_yy, kyy, top%a_xx)
-            call build_block_inverse(top%prec, kxx, kxy, kyy, grid%nx, grid%ny)
-        end block
-        if (material%k /= 0) then
-            call build_block(top%a_xz, IC_XZ, top%a_xx)
-            call build_block(top%a_yz, IC_YZ, top%a_xx)
-            call build_block(top%a_zx, IC_ZX, top%a_xx)
-            call build_block(top%a_zy, IC_ZY, top%a_xx)
-        end if
-        allocate (top%spec_x(top%a_xx%mx/2 + 1, top%a_xx%my))
-        allocate (top%spec_y, top%work, mold=top%spec_x)
-        top%nproducts = 0
-        call system_clock(t1)
-        top%setup_seconds = real(t1 - t0, dp)/rate
-    contains
-        !> One block from the half-space formulas or from `ic`, sharing the plans of `plans_from`.
-        subroutine build_block(op, block, plans_from)
-            type(fc_bttb), intent(inout) :: op
-            integer, intent(in) :: block
-            type(fc_bttb), intent(in), optional :: plans_from
-            real(dp), allocatable :: k(:, :)
-            integer :: stat
-            character(len=msg_len) :: msg
-            if (present(ic)) then
-                call ic_set_kernel(ic, block, grid, k, stat, msg)
-                call build_bttb_from_kernel(op, k(-(grid%nx - 1):grid%nx - 1, -(grid%ny - 1):grid%ny - 1), grid%nx, grid%ny, &
-                    plans_from)
-            else
-                call build_bttb(op, block, material, grid, plans_from=plans_from)
-            end if
-        end subroutine build_block
-        !> Coefficients of one block for offsets −n…n (half-space formulas or `ic`).
-        subroutine block_kernel(block, k)
-            integer, intent(in) :: block
-            real(dp), allocatable, intent(out) :: k(:, :)
-            integer :: stat
-            character(len=msg_len) :: msg
-            if (present(ic)) then
-                call ic_set_kernel(ic, block, grid, k, stat, msg)
-            else
-                call ic_kernel_extended(block, material, grid, grid%nx, grid%ny, k)
-            end if
-        end subroutine block_kernel
-        subroutine build_from(op, k, plans_from)
-            type(fc_bttb), intent(inout) :: op
-            real(dp), intent(in) :: k(-grid%nx:, -grid%ny:)
-            type(fc_bttb), intent(in), optional :: plans_from
-            call build_bttb_from_kernel(op, k(-(grid%nx - 1):grid%nx - 1, -(grid%ny - 1):grid%ny - 1), grid%nx, grid%ny, &
-                plans_from)
-        end subroutine build_from
-    end subroutine build_tangential_operator
-
-    subroutine tangential_destroy(self)
-        class(fc_tangential_operator), intent(inout) :: self
-        call self%a_xx%destroy(); call self%a_xy%destroy(); call self%a_yy%destroy()
-        call self%a_xz%destroy(); call self%a_yz%destroy()
-        call self%a_zx%destroy(); call self%a_zy%destroy()
-        if (allocated(self%spec_x)) deallocate (self%spec_x, self%spec_y, self%work)
-        self%prec = fc_block_inverse()
-    end subroutine tangential_destroy
-
-    !> Whether the built blocks serve `grid` and `material`: same element count and size
-    !! (relative 1e−12) and the same G, ν and K (K decides the coupling blocks).
-    pure logical function tangential_matches(self, grid, material) result(ok)
-        class(fc_tangential_operator), intent(in) :: self
-        type(fc_grid), intent(in) :: grid
-        type(fc_material), intent(in) :: material
-        ok = self%a_xx%built() .and. self%grid%nx == grid%nx .and. self%grid%ny == grid%ny .and. &
-            abs(self%grid%dx - grid%dx) <= 1e-12_dp*grid%dx .and. abs(self%grid%dy - grid%dy) <= 1e-12_dp*grid%dy &
-            .and. self%material%g == material%g .and. self%material%nu == material%nu .and. self%material%k == material%k
-    end function tangential_matches
-    !> `lhs = rhs`: deep copy; the copy's blocks share their own new plan set.
-    !! (Explicit rather than component-wise: gfortran 12 finalizes a shallow temporary in
-    !! the intrinsic assignment of a type with finalizable components.)
-    subroutine tangential_assign(lhs, rhs)
-        class(fc_tangential_operator), intent(inout) :: lhs
-        type(fc_tangential_operator), intent(in) :: rhs
-        if (same_object(lhs, rhs)) return
-        call lhs%destroy()
-        lhs%grid = rhs%grid
-        lhs%material = rhs%material
-        lhs%nproducts = rhs%nproducts
-        lhs%setup_seconds = rhs%setup_seconds
-        call copy_bttb(lhs%a_xx, rhs%a_xx)
-        call copy_bttb(lhs%a_xy, rhs%a_xy, plans_from=lhs%a_xx)
-        call copy_bttb(lhs%a_yy, rhs%a_yy, plans_from=lhs%a_xx)
-        call copy_bttb(lhs%a_xz, rhs%a_xz, plans_from=lhs%a_xx)
-        call copy_bttb(lhs%a_yz, rhs%a_yz, plans_from=lhs%a_xx)
-        call copy_bttb(lhs%a_zx, rhs%a_zx, plans_from=lhs%a_xx)
-        call copy_bttb(lhs%a_zy, rhs%a_zy, plans_from=lhs%a_xx)
-        if (allocated(rhs%spec_x)) allocate (lhs%spec_x, lhs%spec_y, lhs%work, mold=rhs%spec_x)
-        lhs%prec = rhs%prec
-    contains
-        logical function same_object(a, b)
-            class(fc_tangential_operator), intent(in), target :: a
-            type(fc_tangential_operator), intent(in), target :: b
-            same_object = c_associated(c_loc(a%setup_seconds), c_loc(b%setup_seconds))
-        end function same_object
-    end subroutine tangential_assign
-
-    !> True when the normal and tangential problems are coupled (K ≠ 0).
-    pure logical function tangential_coupled(self)
-        class(fc_tangential_operator), intent(in) :: self
-        tangential_coupled = self%a_xz%built()
-    end function tangential_coupled
-
-    !> (ux, uy) = [A^xx A^xy; A^xy A^yy]·(px, py): two forward and two inverse FFTs.
-    subroutine tangential_apply(self, px, py, ux, uy)
-        class(fc_tangential_operator), intent(inout) :: self
-        real(dp), intent(in) :: px(:, :), py(:, :)
-        real(dp), intent(out) :: ux(:, :), uy(:, :)
-        call self%a_xx%forward(px, self%spec_x)
-        call self%a_xx%forward(py, self%spec_y)
-        call spectrum_pair_product(self%a_xx, self%spec_x, self%a_xy, self%spec_y, self%work)
-        call self%a_xx%backward(self%work, ux)
-        call spectrum_pair_product(self%a_xy, self%spec_x, self%a_yy, self%spec_y, self%work)
-        call self%a_xx%backward(self%work, uy)
-        self%nproducts = self%nproducts + 1
-    end subroutine tangential_apply
-
-    !> Coupling displacements for K ≠ 0: tangential (A^xz pn, A^yz pn) and normal
-    !! A^zx px + A^zy py.  Zero when the bodies are quasi-identical.
-    subroutine coupling_displacements(top, pn, px, py, ux_from_pn, uy_from_pn, uz_from_pt)
-        type(fc_tangential_operator), intent(inout) :: top
-        real(dp), intent(in) :: pn(:, :), px(:, :), py(:, :)
-        real(dp), intent(out) :: ux_from_pn(:, :), uy_from_pn(:, :), uz_from_pt(:, :)
-        real(dp), allocatable :: tmp(:, :)
-        if (.not. top%coupled()) then
-            ux_from_pn = 0; uy_from_pn = 0; uz_from_pt = 0
-            return
-        end if
-        allocate (tmp, mold=pn)
-        call top%a_xz%apply(pn, ux_from_pn)
-        call top%a_yz%apply(pn, uy_from_pn)
-        call top%a_zx%apply(px, uz_from_pt)
-        call top%a_zy%apply(py, tmp)
-        uz_from_pt = uz_from_pt + tmp
-    end subroutine coupling_displacements
 
     !> Solve the tangential problem for pressure `pn` [N/mm²] and friction `mu`, with the
     !! rigid shift (ξ, η, φ) prescribed.  Optional: previous displacements (ux_prev, uy_prev)
@@ -281,21 +101,21 @@ contains
         stat = 0; errmsg = ''
         nx = top%grid%nx; ny = top%grid%ny
         if (.not. top%a_xx%built()) then
-            stat = 1; errmsg = 'solve_tangential: operator not built'; return
+            stat = FC_ERR_NOT_READY; errmsg = 'solve_tangential: operator not built'; return
         end if
         if (size(pn, 1) /= nx .or. size(pn, 2) /= ny) then
-            stat = 1; errmsg = 'solve_tangential: pn does not match the grid'; return
+            stat = FC_ERR_SHAPE; errmsg = 'solve_tangential: pn does not match the grid'; return
         end if
         if (.not. (mu >= 0)) then
-            stat = 1; write (errmsg, '(a,g0.6,a)') 'tangential: mu = ', mu, ' must be >= 0'; return
+            stat = FC_ERR_VALUE; write (errmsg, '(a,g0.6,a)') 'tangential: mu = ', mu, ' must be >= 0'; return
         end if
         call check_iteration_settings(settings%tol, settings%maxit, stat, errmsg)
         if (stat /= 0) return
         if (settings%inner_k < 1) then
-            stat = 1; write (errmsg, '(a,i0,a)') 'solver: inner_k = ', settings%inner_k, ' must be >= 1'; return
+            stat = FC_ERR_VALUE; write (errmsg, '(a,i0,a)') 'solver: inner_k = ', settings%inner_k, ' must be >= 1'; return
         end if
         if (settings%solver /= 'tangcg' .and. settings%solver /= 'convexgs') then
-            stat = 1; errmsg = "solver: tangential = '"//trim(settings%solver)//"' is not one of 'tangcg', 'convexgs'"
+            stat = FC_ERR_VALUE; errmsg = "solver: tangential = '"//trim(settings%solver)//"' is not one of 'tangcg', 'convexgs'"
             return
         end if
         allocate (wx(nx, ny), wy(nx, ny), g(nx, ny))
@@ -376,7 +196,7 @@ contains
         fn = sum(max(pn, 0.0_dp))*top%grid%area()
         flimit = load%mu*fn
         if (.not. (hypot(load%fx, load%fy) < flimit)) then
-            stat = 1
+            stat = FC_ERR_FRICTION_BOUND
             write (errmsg, '(a,es12.5,a,es12.5,a)') 'tangential: |(fx, fy)| = ', hypot(load%fx, load%fy), &
                 ' must be < mu*fn = ', flimit, ' (full slip has no unique shift)'
             return

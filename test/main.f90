@@ -16,6 +16,7 @@ program tester
     use test_table_io, only: collect_table_io
     use test_operators, only: collect_operators
     use test_fem_ic, only: collect_fem_ic
+    use test_parallel, only: collect_parallel
     implicit none
     character(len=64) :: suite, only
     integer :: npass, nfail
@@ -65,6 +66,9 @@ program tester
     end if
     if (want('fem_ic')) then
         call collect_fem_ic(tests); call run_suite('fem_ic', tests, only, npass, nfail)
+    end if
+    if (want('parallel')) then
+        call collect_parallel(tests); call run_suite('parallel', tests, only, npass, nfail)
     end if
     write (*, '(i0,a,i0,a)') npass, ' passed, ', nfail, ' failed'
     if (nfail > 0 .or. npass == 0) stop 1   ! non-zero exit status (no backtrace, unlike error stop)

@@ -1,4 +1,4 @@
-!> Suite `auto` (issue 7): accuracy-targeted refinement against analytic Hertz, Cattaneo and a
+!> Suite `auto`: accuracy-targeted refinement against analytic Hertz, Cattaneo and a
 !! finer rough-punch reference; the automatic potential contact area; model reductions against
 !! the full model; and the user guide's key tables against the keys the reader accepts.
 !! Cases are read from namelist text exactly as the driver reads them ([[fc_input]]), built into

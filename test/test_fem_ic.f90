@@ -7,7 +7,8 @@ module test_fem_ic
     use fc_influence
     use fc_icfile
     use fc_icfile_contact
-    use fc_fem_mesh, only: fc_fem_params
+    use fc_fem_mesh, only: fc_fem_params, fc_fem_mesh_t, fem_defaults, fem_validate, build_fem_mesh, write_fem_deck, &
+        FEM_LOAD_Z, FEM_LOAD_X
     use fc_fem_ic, only: compute_fem_ic, fc_fem_info
     use fc_icfile_load, only: load_influence_source
     use fc_geometry, only: quadratic_gap
@@ -29,6 +30,7 @@ contains
             new_unittest('nonsymmetric_file_rejected', test_reject_nonsymmetric), &
             new_unittest('non_spd_file_rejected', test_reject_non_spd), &
             new_unittest('bad_header_rejected', test_reject_header), &
+            new_unittest('nodal_forces_equal_the_load', test_nodal_forces), &
             new_unittest('missing_ccx_clear_error', test_missing_ccx), &
             new_unittest('file_with_analytic_kernel_equals_analytic_solve', test_file_solve), &
             new_unittest('file_refused_by_fmg_and_other_cells', test_file_refusals), &
@@ -191,6 +193,57 @@ contains
         call check(error, stat /= 0 .and. index(msg, 'lsymmx = 0') > 0, 'lsymmx = 0 accepted: '//trim(msg))
         call delete('test_fem_ic_hdr.fcic')
     end subroutine test_reject_header
+
+    !> The equivalent nodal forces of the deck add up to the load on the quarter cell:
+    !! dx·dy/4 for the unit constant traction and for the tent (volume dx·dy over the whole
+    !! support, a quarter of it modelled), Mesh1 and Mesh2, quadratic and linear; normal
+    !! loads point into the body (−z), x loads along +x.
+    subroutine test_nodal_forces(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_fem_params) :: p
+        type(fc_fem_mesh_t) :: mesh
+        integer :: stat, k, u, ios, node, dof, ndof
+        real(dp) :: f, total, dx, dy
+        character(len=msg_len) :: msg
+        character(len=256) :: line
+        logical :: in_cload
+        character(len=8), parameter :: meshes(4) = ['hex  ', 'prism', 'hex  ', 'hex  ']
+        character(len=8), parameter :: loads(4) = ['constant', 'constant', 'bilinear', 'constant']
+        integer, parameter :: orders(4) = [2, 2, 2, 1]
+        dx = 0.3_dp; dy = 0.2_dp
+        do k = 1, 4
+            p = fc_fem_params()
+            p%mesh = meshes(k); p%load = loads(k); p%order = orders(k); p%stretch = 2
+            call fem_defaults(p, 4, 4, dx, dy)
+            call fem_validate(p, 4, 4, dx, dy, stat, msg)
+            call check(error, stat == 0, msg); if (allocated(error)) return
+            call build_fem_mesh(p, 4, 4, dx, dy, mesh, stat, msg)
+            call check(error, stat == 0, msg); if (allocated(error)) return
+            call write_fem_deck('test_fem_ic_deck.inp', p, mesh, merge(FEM_LOAD_Z, FEM_LOAD_X, k /= 3), 200.0_dp, &
+                0.3_dp, dx, dy, stat, msg)
+            call check(error, stat == 0, msg); if (allocated(error)) return
+            open (newunit=u, file='test_fem_ic_deck.inp', status='old', action='read')
+            total = 0; in_cload = .false.; ndof = 0
+            do
+                read (u, '(a)', iostat=ios) line
+                if (ios /= 0) exit
+                if (line(1:1) == '*') then
+                    in_cload = line(1:6) == '*CLOAD'; cycle
+                end if
+                if (.not. in_cload) cycle
+                read (line, *) node, dof, f
+                total = total + f; ndof = dof
+            end do
+            close (u, status='delete')
+            write (msg, '(a,i0,a,es12.4,a,es12.4)') 'case ', k, ': nodal forces sum to ', total, ', load ', dx*dy/4
+            if (k /= 3) then
+                call check(error, ndof == 3 .and. abs(-total - dx*dy/4) < 1e-12_dp, msg)
+            else
+                call check(error, ndof == 1 .and. abs(total - dx*dy/4) < 1e-12_dp, msg)
+            end if
+            if (allocated(error)) return
+        end do
+    end subroutine test_nodal_forces
 
     !> A missing CalculiX command gives an error naming the command and the log.
     subroutine test_missing_ccx(error)
