@@ -14,6 +14,7 @@ program tester
     use test_stability, only: collect_stability
     use test_legacy, only: collect_legacy
     use test_table_io, only: collect_table_io
+    use test_rolling, only: collect_rolling
     use test_operators, only: collect_operators
     use test_fem_ic, only: collect_fem_ic
     use test_parallel, only: collect_parallel
@@ -60,6 +61,9 @@ program tester
     end if
     if (want('table_io')) then
         call collect_table_io(tests); call run_suite('table_io', tests, only, npass, nfail)
+    end if
+    if (want('rolling')) then
+        call collect_rolling(tests); call run_suite('rolling', tests, only, npass, nfail)
     end if
     if (want('operators')) then
         call collect_operators(tests); call run_suite('operators', tests, only, npass, nfail)
