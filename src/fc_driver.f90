@@ -37,7 +37,7 @@ module fc_driver
     use fc_strings, only: fmt_int, fmt_real
     use fc_errors, only: FC_ERR_VALUE, FC_ERR_FRICTION_BOUND, FC_ERR_NO_CONTACT, FC_ERR_GEOMETRY, FC_ERR_IO, FC_ERR_ALLOC, &
         FC_ERR_GRID
-    use fc_output, only: fc_case_summary, write_case_json, write_case_csv, write_case_report
+    use fc_output, only: fc_case_summary, write_case_json, write_case_csv, write_case_npy, write_case_report
     use fc_auto, only: fc_auto_outcome, solve_case_auto
     implicit none
     private
@@ -284,12 +284,20 @@ contains
             end if
             ! ---- outputs
             if (state%table) then
+                stat = 0
                 associate (res => s%outcome%result%normal, tres => s%outcome%result%tangential)
-                    if (tang) then
+                    if (state%table_format /= 'npy' .and. tang) then
                         call write_case_csv(dir//'/'//trim(state%name)//'.csv', s%outcome%grid, res%pn, res%gap, stat, &
                             errmsg, tres%state, tres%px, tres%py, tres%sx, tres%sy)
-                    else
+                    else if (state%table_format /= 'npy') then
                         call write_case_csv(dir//'/'//trim(state%name)//'.csv', s%outcome%grid, res%pn, res%gap, stat, &
+                            errmsg)
+                    end if
+                    if (stat == 0 .and. state%table_format /= 'csv' .and. tang) then
+                        call write_case_npy(dir//'/'//trim(state%name)//'.npy', s%outcome%grid, res%pn, res%gap, stat, &
+                            errmsg, tres%state, tres%px, tres%py, tres%sx, tres%sy)
+                    else if (stat == 0 .and. state%table_format /= 'csv') then
+                        call write_case_npy(dir//'/'//trim(state%name)//'.npy', s%outcome%grid, res%pn, res%gap, stat, &
                             errmsg)
                     end if
                 end associate
@@ -354,8 +362,11 @@ contains
             allocate (zero(sgrid%nx, 1))
             zero = 0
             if (state%table .and. final_status /= FC_DIVERGED) then
-                call write_case_csv(dir//'/'//trim(state%name)//'.csv', sgrid, zero, zero, stat, errmsg, el, px, &
-                    zero, zero, zero)
+                stat = 0
+                if (state%table_format /= 'npy') call write_case_csv(dir//'/'//trim(state%name)//'.csv', sgrid, zero, &
+                    zero, stat, errmsg, el, px, zero, zero, zero)
+                if (stat == 0 .and. state%table_format /= 'csv') call write_case_npy(dir//'/'//trim(state%name)// &
+                    '.npy', sgrid, zero, zero, stat, errmsg, el, px, zero, zero, zero)
                 if (stat /= 0) then
                     call case_error(); return
                 end if

@@ -6,6 +6,7 @@
 !! contain the approach: the solvers use h = h0 − δ.
 module fc_geometry
     use fc_kinds, only: dp, i8, pi, msg_len, FC_ERR_VALUE, FC_ERR_IO
+    use fc_table_io, only: read_real_table
     implicit none
     private
 
@@ -224,72 +225,11 @@ contains
         real(dp), intent(out) :: h0(grid%nx, grid%ny)
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
-        character(len=4096) :: line
-        real(dp) :: vals(grid%nx*grid%ny)
-        real(dp) :: buf(512)
-        integer :: unit, ios, nread, k, nline, lineno
-        stat = 0; errmsg = ''
-        open (newunit=unit, file=filename, status='old', action='read', iostat=ios)
-        if (ios /= 0) then
-            stat = FC_ERR_IO; errmsg = "cannot open table file '"//trim(filename)//"'"
-            return
-        end if
-        nread = 0; lineno = 0
-        do
-            read (unit, '(a)', iostat=ios) line
-            if (ios /= 0) exit
-            lineno = lineno + 1
-            line = adjustl(line)
-            if (len_trim(line) == 0) cycle
-            if (line(1:1) == '#' .or. line(1:1) == '!') cycle
-            nline = count_numbers(line)
-            if (nline < 0) then
-                stat = FC_ERR_IO; write (errmsg, '(a,i0,a)') "table file '"//trim(filename)//"', line ", lineno, ': not a number'
-                close (unit); return
-            end if
-            if (nread + nline > size(vals)) then
-                stat = FC_ERR_IO; write (errmsg, '(a,i0,a)') "table file '"//trim(filename)//"' has more than nx*ny = ", &
-                    size(vals), ' values'
-                close (unit); return
-            end if
-            read (line, *) (buf(k), k=1, nline)
-            vals(nread + 1:nread + nline) = buf(1:nline)
-            nread = nread + nline
-        end do
-        close (unit)
-        if (nread /= size(vals)) then
-            stat = FC_ERR_IO; write (errmsg, '(a,i0,a,i0)') "table file '"//trim(filename)//"' has ", nread, &
-                ' values, expected nx*ny = ', size(vals)
-            return
-        end if
+        real(dp), allocatable :: vals(:)
+        allocate (vals(grid%nx*grid%ny))
+        call read_real_table(filename, vals, stat, errmsg)
+        if (stat /= 0) return
         h0 = reshape(vals, [grid%nx, grid%ny])
     end subroutine read_gap_table
-
-    !> Count whitespace/comma separated reals on a line; −1 if one does not parse.
-    integer function count_numbers(line) result(cnt)
-        character(len=*), intent(in) :: line
-        integer :: i, start, ios
-        real(dp) :: v
-        logical :: in_tok
-        cnt = 0; in_tok = .false.; start = 1
-        do i = 1, len_trim(line) + 1
-            if (i <= len_trim(line)) then
-                if (line(i:i) /= ' ' .and. line(i:i) /= ',' .and. line(i:i) /= char(9)) then
-                    if (.not. in_tok) then
-                        in_tok = .true.; start = i
-                    end if
-                    cycle
-                end if
-            end if
-            if (in_tok) then
-                read (line(start:i - 1), *, iostat=ios) v
-                if (ios /= 0) then
-                    cnt = -1; return
-                end if
-                cnt = cnt + 1; in_tok = .false.
-            end if
-        end do
-        if (cnt > 512) cnt = -1
-    end function count_numbers
 
 end module fc_geometry

@@ -45,7 +45,8 @@
 !!   'transient_rolling': dq (travelled distance per step, default dx) and nsteps (default:
 !!   four times the area length travelled, ≤ 100000); per step the shift is creepage·dq; one
 !!   CSV row per step in NAME_steps.csv.
-!! * `&output dir, table` — dir = 'out' (the command line `--out` wins), table = .true.
+!! * `&output dir, table, table_format` — dir = 'out' (the command line `--out` wins), table = .true.,
+!!   table_format = 'csv' ('npy': NumPy structured array; 'both')
 !!
 !! Every value persists from case to case except `name`.  A case with an input error does
 !! not change the inherited state: the next case inherits from the last good case.
@@ -131,7 +132,8 @@ module fc_input
         integer :: threads = 0                     !! threads (0: OMP_NUM_THREADS, else 1)
         ! &output
         character(len=path_len) :: dir = 'out'     !! output directory
-        logical :: table = .true.                  !! write the CSV table
+        logical :: table = .true.                  !! write the element table
+        character(len=8) :: table_format = 'csv'   !! 'csv', 'npy' or 'both'
         ! bookkeeping
         character(len=2*key_len + 1), allocatable :: given(:)  !! 'group:key' given so far
         character(len=:), allocatable :: notes     !! remarks for the report (ignored keys)
@@ -468,11 +470,12 @@ contains
         character(len=*), intent(out) :: iomsg
         character(len=path_len) :: dir
         logical :: table
-        namelist /output/ dir, table
-        dir = s%dir; table = s%table
+        character(len=8) :: table_format
+        namelist /output/ dir, table, table_format
+        dir = s%dir; table = s%table; table_format = s%table_format
         read (text, nml=output, iostat=ios, iomsg=iomsg)
         if (ios /= 0) return
-        s%dir = dir; s%table = table
+        s%dir = dir; s%table = table; s%table_format = lower(table_format)
     end subroutine read_output_group
 
     !> Keys of a group, blank separated.
@@ -490,7 +493,7 @@ contains
         case ('solver')
             keys = 'normal tangential tol maxit inner_maxit inner_k precondition precondition_tangential deflation '// &
                 'cycle omega beta smoother strip target target_pmax max_levels model rolling threads'
-        case ('output');     keys = 'dir table'
+        case ('output');     keys = 'dir table table_format'
         case default;        keys = ''
         end select
     end function keys_of

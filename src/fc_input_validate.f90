@@ -356,6 +356,8 @@ contains
         character(len=*), intent(out) :: errmsg
         errmsg = ''
         if (len_trim(s%dir) == 0) errmsg = "&output dir = '': must not be empty"
+        if (len_trim(errmsg) == 0 .and. all(s%table_format /= [character(len=8) :: 'csv', 'npy', 'both'])) &
+            errmsg = "&output table_format = '"//trim(s%table_format)//"': must be 'csv', 'npy' or 'both'"
     end subroutine validate_output
 
     !> Rolling keys (&tangential mu_kinetic, dq, nsteps, sweep*, &solver rolling): values

@@ -10,6 +10,7 @@ module fc_output
     use fc_influence, only: fc_material
     use fc_hertz, only: fc_hertz_solution, fc_cattaneo_solution
     use fc_case_result, only: fc_auto_outcome
+    use fc_table_io, only: write_element_table_csv, write_element_table_npy
     implicit none
     private
 
@@ -68,7 +69,7 @@ module fc_output
     integer, parameter, public :: map_max_cols = 100  !! widest contact map
     integer, parameter, public :: map_max_rows = 50   !! tallest contact map
 
-    public :: write_case_json, write_case_csv, write_case_report, json_string, contact_map, state_map
+    public :: write_case_json, write_case_csv, write_case_npy, write_case_report, json_string, contact_map, state_map
 
 contains
 
@@ -297,37 +298,35 @@ contains
         character(len=*), intent(out) :: errmsg
         integer, intent(in), optional :: state(:, :)        !! EL_EXTERIOR, EL_ADHESION, EL_SLIP
         real(dp), intent(in), optional :: px(:, :), py(:, :), sx(:, :), sy(:, :)
-        integer :: u, i, j
-        character(len=256) :: iomsg
-        character(len=1) :: st
-        character(len=:), allocatable :: mid
-        character(len=*), parameter :: zero4 = ',0,0,0,0,'
-        logical :: tang
-        tang = present(state) .and. present(px) .and. present(py) .and. present(sx) .and. present(sy)
-        open (newunit=u, file=path, status='replace', action='write', iostat=stat, iomsg=iomsg)
-        if (stat /= 0) then
-            errmsg = "cannot write '"//trim(path)//"': "//trim(iomsg); return
+        integer :: i, j
+        if (present(state) .and. present(px) .and. present(py) .and. present(sx) .and. present(sy)) then
+            call write_element_table_csv(path, [(grid%x(i), i=1, grid%nx)], [(grid%y(j), j=1, grid%ny)], pn, gap, &
+                stat, errmsg, state, px, py, sx, sy)
+        else
+            call write_element_table_csv(path, [(grid%x(i), i=1, grid%nx)], [(grid%y(j), j=1, grid%ny)], pn, gap, &
+                stat, errmsg)
         end if
-        write (u, '(a)') 'ix,iy,x,y,status,pn,px,py,sx,sy,gap'
-        do j = 1, grid%ny
-            do i = 1, grid%nx
-                if (tang) then
-                    st = state_char(state(i, j))
-                    mid = ','//json_real(px(i, j))//','//json_real(py(i, j))//','//json_real(sx(i, j))//','// &
-                        json_real(sy(i, j))//','
-                else
-                    st = 'E'
-                    if (pn(i, j) > 0) st = 'A'
-                    mid = zero4
-                end if
-                write (u, '(i0,a,i0,a)', advance='no') i, ',', j, ','
-                write (u, '(a)') json_real(grid%x(i))//','//json_real(grid%y(j))//','//st//','// &
-                    json_real(pn(i, j))//mid//json_real(gap(i, j))
-            end do
-        end do
-        close (u, iostat=stat, iomsg=iomsg)
-        if (stat /= 0) errmsg = "cannot close '"//trim(path)//"': "//trim(iomsg)
     end subroutine write_case_csv
+
+    !> Write the element table of [[write_case_csv]] as a NumPy `.npy` structured array
+    !! (fields ix, iy, x, y, status, pn, px, py, sx, sy, gap; see fc_table_io).
+    subroutine write_case_npy(path, grid, pn, gap, stat, errmsg, state, px, py, sx, sy)
+        character(len=*), intent(in) :: path
+        type(fc_grid), intent(in) :: grid
+        real(dp), intent(in) :: pn(:, :), gap(:, :)
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        integer, intent(in), optional :: state(:, :)
+        real(dp), intent(in), optional :: px(:, :), py(:, :), sx(:, :), sy(:, :)
+        integer :: i, j
+        if (present(state) .and. present(px) .and. present(py) .and. present(sx) .and. present(sy)) then
+            call write_element_table_npy(path, [(grid%x(i), i=1, grid%nx)], [(grid%y(j), j=1, grid%ny)], pn, gap, &
+                stat, errmsg, state, px, py, sx, sy)
+        else
+            call write_element_table_npy(path, [(grid%x(i), i=1, grid%nx)], [(grid%y(j), j=1, grid%ny)], pn, gap, &
+                stat, errmsg)
+        end if
+    end subroutine write_case_npy
 
     !> Status letter of an element state: E exterior (0), A adhesion (1), S slip (2).
     pure character function state_char(state)

@@ -9,6 +9,7 @@ module fc_tangcg_operator
     use fc_influence
     use fc_icfile, only: fc_ic_set, ic_set_kernel
     use, intrinsic :: iso_c_binding, only: c_loc, c_associated
+    use fc_tangprec, only: fc_block_inverse, build_block_inverse
     implicit none
     private
 
@@ -23,6 +24,7 @@ module fc_tangcg_operator
         type(fc_bttb) :: a_xz, a_yz         !! u_t from pn (built only when K ≠ 0)
         type(fc_bttb) :: a_zx, a_zy         !! u_z from p_t (built only when K ≠ 0)
         complex(dp), allocatable :: spec_x(:, :), spec_y(:, :), work(:, :)
+        type(fc_block_inverse) :: prec      !! TangCG's FFT preconditioner (fc_tangprec)
         integer :: nproducts = 0            !! combined 2×2 block products
         real(dp) :: setup_seconds = 0
     contains
@@ -49,9 +51,16 @@ contains
         call top%destroy()
         top%grid = grid
         top%material = material
-        call build_block(top%a_xx, IC_XX)
-        call build_block(top%a_xy, IC_XY, top%a_xx)
-        call build_block(top%a_yy, IC_YY, top%a_xx)
+        ! one coefficient evaluation per block serves A (offsets < n) and TangCG's
+        ! preconditioner (offsets ≤ n)
+        block
+            real(dp), allocatable :: kxx(:, :), kxy(:, :), kyy(:, :)
+            call block_kernel(IC_XX, kxx); call block_kernel(IC_XY, kxy); call block_kernel(IC_YY, kyy)
+            call build_from(top%a_xx, kxx)
+            call build_from(top%a_xy, kxy, top%a_xx)
+            call build_from(top%a_yy, kyy, top%a_xx)
+            call build_block_inverse(top%prec, kxx, kxy, kyy, grid%nx, grid%ny)
+        end block
         if (material%k /= 0) then
             call build_block(top%a_xz, IC_XZ, top%a_xx)
             call build_block(top%a_yz, IC_YZ, top%a_xx)
@@ -80,6 +89,25 @@ contains
                 call build_bttb(op, block, material, grid, plans_from=plans_from)
             end if
         end subroutine build_block
+        !> Coefficients of one block for offsets −n…n (half-space formulas or `ic`).
+        subroutine block_kernel(block, k)
+            integer, intent(in) :: block
+            real(dp), allocatable, intent(out) :: k(:, :)
+            integer :: stat
+            character(len=msg_len) :: msg
+            if (present(ic)) then
+                call ic_set_kernel(ic, block, grid, k, stat, msg)
+            else
+                call ic_kernel_extended(block, material, grid, grid%nx, grid%ny, k)
+            end if
+        end subroutine block_kernel
+        subroutine build_from(op, k, plans_from)
+            type(fc_bttb), intent(inout) :: op
+            real(dp), intent(in) :: k(-grid%nx:, -grid%ny:)
+            type(fc_bttb), intent(in), optional :: plans_from
+            call build_bttb_from_kernel(op, k(-(grid%nx - 1):grid%nx - 1, -(grid%ny - 1):grid%ny - 1), grid%nx, grid%ny, &
+                plans_from)
+        end subroutine build_from
     end subroutine build_tangential_operator
 
     subroutine tangential_destroy(self)
@@ -88,6 +116,7 @@ contains
         call self%a_xz%destroy(); call self%a_yz%destroy()
         call self%a_zx%destroy(); call self%a_zy%destroy()
         if (allocated(self%spec_x)) deallocate (self%spec_x, self%spec_y, self%work)
+        self%prec = fc_block_inverse()
     end subroutine tangential_destroy
 
     !> Whether the built blocks serve `grid` and `material`: same element count and size
@@ -120,6 +149,7 @@ contains
         call copy_bttb(lhs%a_zx, rhs%a_zx, plans_from=lhs%a_xx)
         call copy_bttb(lhs%a_zy, rhs%a_zy, plans_from=lhs%a_xx)
         if (allocated(rhs%spec_x)) allocate (lhs%spec_x, lhs%spec_y, lhs%work, mold=rhs%spec_x)
+        lhs%prec = rhs%prec
     contains
         logical function same_object(a, b)
             class(fc_tangential_operator), intent(in), target :: a

@@ -384,7 +384,7 @@ contains
         call solve_tangential(top, pn, mu_cattaneo, ts, half, stat, msg, xi/2, 0.0_dp, 0.0_dp)
         call solve_tangential(top, pn, mu_cattaneo, ts, still, stat, msg, 0.0_dp, 0.0_dp, 0.0_dp, &
                               ux_prev=half%ux, uy_prev=half%uy, px_start=0*half%px, py_start=0*half%py)
-        call check(error, still%status == FC_CONVERGED, 'zero-increment step converged')
+        call check(error, still%status == FC_CONVERGED, "zero-increment step converged: "//trim(still%message))
         call check(error, sqrt(sum((still%px - half%px)**2 + (still%py - half%py)**2)/sum(half%px**2 + half%py**2)), &
             0.0_dp, 'zero increment keeps the previous state', abs=1e-8_dp)
         call solve_tangential(top, pn, mu_cattaneo, ts, two, stat, msg, xi/2, 0.0_dp, 0.0_dp, &

@@ -1,0 +1,129 @@
+!> FFT-based preconditioner for the tangential 2×2 block operator (TangCG's adhesion part).
+!!
+!! The construction of thesis §3.3.1, as used for the normal problem's BCCG preconditioner,
+!! applied to the block operator [A^xx A^xy; A^xy A^yy]: the coefficients of the three
+!! blocks for offsets −n…n fill 2nx×2ny circulants (the wrap-around slot holds the true
+!! coefficient at offset n for the even blocks A^xx, A^yy and zero for the odd block A^xy,
+!! which keeps every circulant symmetric); at each frequency the real symmetric 2×2 symbol
+!! matrix is inverted.  Applied to data on the nx×ny grid (zero-padded to the doubled grid)
+!! and restricted back, this is a product with the block Toeplitz matrix formed by the
+!! central coefficients of the inverse circulant: a principal block of a symmetric positive
+!! definite matrix, hence SPD.  Symbol eigenvalues are floored at 1e−8 of the largest.
+module fc_tangprec
+    use fc_kinds, only: dp
+    use fc_fftw
+    implicit none
+    private
+
+    !> Symbols of M ≈ [A^xx A^xy; A^xy A^yy]⁻¹ on the doubled grid, scaled like fc_bttb's
+    !! symbols (including 1/(mx·my)), so that they multiply the spectra of `forward`.
+    type, public :: fc_block_inverse
+        integer :: nx = 0, ny = 0
+        real(dp), allocatable :: mxx(:, :), mxy(:, :), myy(:, :)   !! real: the circulants are even
+    contains
+        procedure :: built => block_inverse_built
+    end type fc_block_inverse
+
+    public :: build_block_inverse
+
+contains
+
+    pure logical function block_inverse_built(self)
+        class(fc_block_inverse), intent(in) :: self
+        block_inverse_built = allocated(self%mxx)
+    end function block_inverse_built
+
+    !> Build the preconditioner from the blocks' coefficients for offsets −n…n (see module
+    !! header): k_xx, k_xy, k_yy(−nx:nx, −ny:ny) as [[ic_kernel_extended]] returns them.
+    subroutine build_block_inverse(prec, kxx, kxy, kyy, nx, ny)
+        type(fc_block_inverse), intent(inout) :: prec
+        integer, intent(in) :: nx, ny
+        real(dp), intent(in) :: kxx(-nx:, -ny:), kxy(-nx:, -ny:), kyy(-nx:, -ny:)
+        real(dp), allocatable :: rbuf(:, :)
+        complex(dp), allocatable :: sxx(:, :), sxy(:, :), syy(:, :)
+        real(dp) :: a, b, c, det, tr, disc, l1, l2, lmax, floor_, scale
+        integer :: mx, my, i, k
+        type(c_ptr) :: plan
+        mx = 2*nx; if (nx == 1) mx = 1
+        my = 2*ny; if (ny == 1) my = 1
+        allocate (rbuf(mx, my), sxx(mx/2 + 1, my), sxy(mx/2 + 1, my), syy(mx/2 + 1, my))
+        plan = fftw_plan_dft_r2c_2d(int(my, c_int), int(mx, c_int), rbuf, sxx, FFTW_ESTIMATE)
+        call fill(kxx, .false.); call fftw_execute_dft_r2c(plan, rbuf, sxx)
+        call fill(kxy, .true.); call fftw_execute_dft_r2c(plan, rbuf, sxy)
+        call fill(kyy, .false.); call fftw_execute_dft_r2c(plan, rbuf, syy)
+        call fftw_destroy_plan(plan)
+        ! largest eigenvalue over all frequencies, for the floor
+        lmax = 0
+        do k = 1, my
+            do i = 1, mx/2 + 1
+                a = real(sxx(i, k), dp); b = real(sxy(i, k), dp); c = real(syy(i, k), dp)
+                lmax = max(lmax, 0.5_dp*(a + c) + sqrt(0.25_dp*(a - c)**2 + b**2))
+            end do
+        end do
+        floor_ = 1.0e-8_dp*lmax
+        scale = 1/real(mx*my, dp)
+        prec%nx = nx; prec%ny = ny
+        if (allocated(prec%mxx)) deallocate (prec%mxx, prec%mxy, prec%myy)
+        allocate (prec%mxx(mx/2 + 1, my), prec%mxy(mx/2 + 1, my), prec%myy(mx/2 + 1, my))
+        do k = 1, my
+            do i = 1, mx/2 + 1
+                a = real(sxx(i, k), dp); b = real(sxy(i, k), dp); c = real(syy(i, k), dp)
+                tr = a + c; det = a*c - b*b
+                disc = sqrt(0.25_dp*(a - c)**2 + b**2)
+                l1 = 0.5_dp*tr + disc; l2 = 0.5_dp*tr - disc
+                if (l2 >= floor_) then
+                    prec%mxx(i, k) = c/det*scale
+                    prec%myy(i, k) = a/det*scale
+                    prec%mxy(i, k) = -b/det*scale
+                else
+                    ! floor the eigenvalues: M = Σ v vᵀ / max(λ, floor)
+                    call floored_inverse(a, b, c, max(l1, floor_), max(l2, floor_), scale, prec%mxx(i, k), &
+                        prec%mxy(i, k), prec%myy(i, k))
+                end if
+            end do
+        end do
+    contains
+        !> rbuf ← circulant of kernel k(−n…n) on the doubled grid; the wrap-around slot
+        !! (offset ±n) holds k(n) for an even kernel, 0 for an odd one.
+        subroutine fill(kern, odd)
+            real(dp), intent(in) :: kern(-nx:, -ny:)
+            logical, intent(in) :: odd
+            integer :: ii, jj, di, dj
+            do jj = 0, my - 1
+                dj = jj; if (jj > my/2) dj = jj - my
+                do ii = 0, mx - 1
+                    di = ii; if (ii > mx/2) di = ii - mx
+                    if (odd .and. ((mx > 1 .and. ii == mx/2) .or. (my > 1 .and. jj == my/2))) then
+                        rbuf(ii + 1, jj + 1) = 0
+                    else
+                        rbuf(ii + 1, jj + 1) = kern(di, dj)
+                    end if
+                end do
+            end do
+        end subroutine fill
+    end subroutine build_block_inverse
+
+    !> Inverse of the symmetric 2×2 matrix [a b; b c] with its eigenvalues replaced by
+    !! l1 ≥ l2 > 0, times `scale`.
+    pure subroutine floored_inverse(a, b, c, l1, l2, scale, mxx, mxy, myy)
+        real(dp), intent(in) :: a, b, c, l1, l2, scale
+        real(dp), intent(out) :: mxx, mxy, myy
+        real(dp) :: vx, vy, nrm, e1
+        ! eigenvector of the larger eigenvalue of [a b; b c]
+        e1 = 0.5_dp*(a + c) + sqrt(0.25_dp*(a - c)**2 + b**2)
+        if (abs(b) > 0) then
+            vx = b; vy = e1 - a
+        else if (a >= c) then
+            vx = 1; vy = 0
+        else
+            vx = 0; vy = 1
+        end if
+        nrm = hypot(vx, vy)
+        vx = vx/nrm; vy = vy/nrm
+        ! M = v vᵀ/l1 + w wᵀ/l2 with w = (−vy, vx)
+        mxx = scale*(vx*vx/l1 + vy*vy/l2)
+        myy = scale*(vy*vy/l1 + vx*vx/l2)
+        mxy = scale*(vx*vy/l1 - vx*vy/l2)
+    end subroutine floored_inverse
+
+end module fc_tangprec
