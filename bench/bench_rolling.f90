@@ -284,7 +284,7 @@ contains
             do k2 = 1, 20
                 val = 0.006_dp*(k2 - 1)/19.0_dp
                 rl = fc_rolling_loading(); rl%mu = 0.4_dp; rl%xi = val; rl%eta = 0.001_dp; rl%phi = 0.003_dp
-                rs = fc_rolling_settings()
+                rs = fc_rolling_settings(); rs%forcing = forcing
                 call solve_rolling(top, nr%pn, rl, rs, tr, stat, msg, pxw, pyw)
                 pxw = tr%px; pyw = tr%py
                 warm = warm + tr%cpu_seconds

@@ -351,7 +351,9 @@ contains
             if (dnorm == 0) then
                 dx_ = 0; dy_ = 0; nit = 0
             else
-                tol_in = settings%forcing*dnorm
+                ! inexact Newton with an absolute floor tied to the outer tolerance: a residual
+                ! worth a traction error of 0.3·tol needs no further Krylov work
+                tol_in = max(settings%forcing*dnorm, 0.3_dp*settings%tol*axx*sqrt(sum(px**2 + py**2)))
                 call gmres(nit)
             end if
             it_total = it_total + nit
