@@ -299,8 +299,10 @@ contains
         real(dp), allocatable :: vb(:, :, :, :), hess(:, :), cs(:), sn(:), gvec(:), yv(:), hist(:)
         real(dp), allocatable :: wkx(:, :), wky(:, :), qsx(:, :), qsy(:, :), zx(:, :), zy(:, :)
         real(dp) :: dxx, dyy, axx, gdx, yscale, change, dnorm, beta, rnorm, tol_in, h, tmp
-        integer :: it_total, newton, k, kk, nit
-        logical :: changed, converged
+        integer :: it_total, newton, k, kk, nit, idle
+        logical :: changed, converged, stagnated
+        real(dp), parameter :: bound_slack = 1.0e-12_dp  !! relative slack on |p|² > g²
+        integer, parameter :: max_idle = 20               !! Newton steps without a Krylov step
         nx = size(gs, 1); ny = size(gs, 2)
         m = settings%restart
         allocate (vb(nx, ny, 2, m + 1), hess(m + 1, m), cs(m), sn(m), gvec(m + 1), yv(m))
@@ -328,7 +330,7 @@ contains
         res%status = FC_NOT_CONVERGED
         change = huge(1.0_dp)
         res%outer_iterations = 0
-        newton = 0
+        newton = 0; idle = 0; stagnated = .false.
         do
             newton = newton + 1
             ! defect d = −F: adhesion −s, slip −(px·sy − py·sx)
@@ -374,9 +376,11 @@ contains
             end if
             ! active set (TangCG step 11): adhesion above the static bound → slip on the
             ! kinetic circle; slip whose traction does not oppose the slip → adhesion
+            ! (the relative slack keeps an element projected onto the circle by rounding from
+            ! flipping between the sets without a Newton step)
             changed = .false.
-            if (any(adh .and. px**2 + py**2 > gs**2)) then
-                where (adh .and. px**2 + py**2 > gs**2)
+            if (any(adh .and. px**2 + py**2 > gs**2*(1 + bound_slack))) then
+                where (adh .and. px**2 + py**2 > gs**2*(1 + bound_slack))
                     slp = .true.; adh = .false.
                     tnorm = sqrt(px**2 + py**2)
                     px = gk*px/tnorm; py = gk*py/tnorm
@@ -396,9 +400,26 @@ contains
                 exit
             end if
             if (it_total >= settings%maxit) exit
+            ! stagnation: active-set changes that no Krylov step follows, or more Newton steps
+            ! than the Krylov budget, cannot converge
+            if (changed .and. nit == 0) then
+                idle = idle + 1
+            else
+                idle = 0
+            end if
+            if (idle >= max_idle .or. newton >= max(max_idle, settings%maxit)) then
+                write (res%message, '(a,i0,a,i0,a)') 'Newton-GMRES stagnated: ', newton, &
+                    ' Newton steps, the active set keeps changing without a Krylov step (', idle, ' in a row)'
+                stagnated = .true.
+                exit
+            end if
         end do
         res%iterations = it_total
-        call finish(res, converged, 'Newton-GMRES', settings%maxit, 'Krylov iterations', change)
+        if (stagnated) then
+            res%residual = change
+        else
+            call finish(res, converged, 'Newton-GMRES', settings%maxit, 'Krylov iterations', change)
+        end if
         res%px = px; res%py = py; res%ux = ux; res%uy = uy; res%sx = sx; res%sy = sy
         res%state = EL_EXTERIOR
         where (adh) res%state = EL_ADHESION
