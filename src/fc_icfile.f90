@@ -238,9 +238,13 @@ contains
                 r(i + 1, j + 1) = k(di, dj)
             end do
         end do
+        !$omp critical (fc_fftw_planner)
         plan = fftw_plan_dft_r2c_2d(int(ny, c_int), int(nx, c_int), r, c, FFTW_ESTIMATE)
+        !$omp end critical (fc_fftw_planner)
         call fftw_execute_dft_r2c(plan, r, c)
+        !$omp critical (fc_fftw_planner)
         call fftw_destroy_plan(plan)
+        !$omp end critical (fc_fftw_planner)
         sym = real(c, dp)
     end subroutine kernel_symbol
 

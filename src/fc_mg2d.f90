@@ -158,8 +158,10 @@ contains
         real(dp) :: smax
         nn = 2*n - 1
         allocate (rbuf(nn, 1), cbuf(nn/2 + 1, 1))
+        !$omp critical (fc_fftw_planner)
         pf = fftw_plan_dft_r2c_2d(1_c_int, int(nn, c_int), rbuf, cbuf, FFTW_ESTIMATE)
         pb = fftw_plan_dft_c2r_2d(1_c_int, int(nn, c_int), cbuf, rbuf, FFTW_ESTIMATE)
+        !$omp end critical (fc_fftw_planner)
         do d = -(n - 1), n - 1
             rbuf(modulo(d, nn) + 1, 1) = a(d)
         end do
@@ -171,8 +173,10 @@ contains
         do d = -(n - 1), n - 1
             m(d) = rbuf(modulo(d, nn) + 1, 1)
         end do
+        !$omp critical (fc_fftw_planner)
         call fftw_destroy_plan(pf)
         call fftw_destroy_plan(pb)
+        !$omp end critical (fc_fftw_planner)
     end subroutine strip_toeplitz_inverse
 
     ! ---- hierarchy -------------------------------------------------------------------------

@@ -130,8 +130,10 @@ contains
         call build_bttb_from_kernel(nop%a_zz, kt, nx, ny)
         ! exact inverse on mean-free vectors: symbol 1/ŵ, zero mode dropped
         allocate (rb(nx, ny), cb(nx/2 + 1, ny))
+        !$omp critical (fc_fftw_planner)
         plan_f = fftw_plan_dft_r2c_2d(int(ny, c_int), int(nx, c_int), rb, cb, FFTW_ESTIMATE)
         plan_b = fftw_plan_dft_c2r_2d(int(ny, c_int), int(nx, c_int), cb, rb, FFTW_ESTIMATE)
+        !$omp end critical (fc_fftw_planner)
         rb = w
         call fftw_execute_dft_r2c(plan_f, rb, cb)
         smax = maxval(real(cb, dp))
@@ -143,7 +145,9 @@ contains
             end do
         end do
         call fftw_execute_dft_c2r(plan_b, cb, rb)
+        !$omp critical (fc_fftw_planner)
         call fftw_destroy_plan(plan_f); call fftw_destroy_plan(plan_b)
+        !$omp end critical (fc_fftw_planner)
         w = rb
         call circulant_as_toeplitz(w, kt)
         call build_bttb_from_kernel(nop%precond, kt, nx, ny)

@@ -47,11 +47,15 @@ contains
         mx = 2*nx; if (nx == 1) mx = 1
         my = 2*ny; if (ny == 1) my = 1
         allocate (rbuf(mx, my), sxx(mx/2 + 1, my), sxy(mx/2 + 1, my), syy(mx/2 + 1, my))
+        !$omp critical (fc_fftw_planner)
         plan = fftw_plan_dft_r2c_2d(int(my, c_int), int(mx, c_int), rbuf, sxx, FFTW_ESTIMATE)
+        !$omp end critical (fc_fftw_planner)
         call fill(kxx, .false.); call fftw_execute_dft_r2c(plan, rbuf, sxx)
         call fill(kxy, .true.); call fftw_execute_dft_r2c(plan, rbuf, sxy)
         call fill(kyy, .false.); call fftw_execute_dft_r2c(plan, rbuf, syy)
+        !$omp critical (fc_fftw_planner)
         call fftw_destroy_plan(plan)
+        !$omp end critical (fc_fftw_planner)
         ! largest eigenvalue over all frequencies, for the floor
         lmax = 0
         do k = 1, my

@@ -6,9 +6,12 @@
 !! thread per core, would also apply to machines shared with other jobs).
 !! FFTW plans made after [[set_thread_count]] split each transform over that many threads
 !! (FFTW's threaded library, `fftw3_omp`); plans made before keep their count, so the
-!! driver sets the count before it builds the operators of a case.  The planner is made
-!! thread-safe once (`fftw_make_planner_thread_safe`), so handles of the flat API may be
-!! built from different threads.  Built without OpenMP, every routine here reports one
+!! driver sets the count before it builds the operators of a case.  Every plan creation and
+!! destruction in the package, and the thread count of the planner, run inside the one named
+!! critical section `fc_fftw_planner` (FFTW's planner is not re-entrant; its own
+!! `fftw_make_planner_thread_safe` is also called, but four flat-API handles planning at once
+!! still corrupted the heap without the section), so handles may be built from different
+!! threads.  Built without OpenMP, every routine here reports one
 !! thread and does nothing else.
 !!
 !! What runs in parallel: FFT products (FFTW), the influence-coefficient loops, the
@@ -105,7 +108,9 @@ contains
         !$ if (present(elements)) then
         !$     if (elements < fftw_thread_min_elements) nfft = 1
         !$ end if
+        !$omp critical (fc_fftw_planner)
         !$ if (fftw_threads_ready) call fftw_plan_with_nthreads(int(nfft, c_int))
+        !$omp end critical (fc_fftw_planner)
         ok = 0
     end subroutine set_thread_count
 

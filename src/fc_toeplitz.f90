@@ -19,7 +19,8 @@
 !!   (defined assignment), so a copy stays valid after the original is destroyed and two
 !!   copies never write into each other's buffers.  A copied operator made of several
 !!   blocks therefore owns one plan set per block; build in place to share.
-!! Blocks sharing a plan set must not be applied concurrently (one set of buffers).
+!! Blocks sharing a plan set must not be applied concurrently (one set of buffers).  Plans
+!! are made and destroyed inside the critical section `fc_fftw_planner` (see fc_threads).
 module fc_toeplitz
     use fc_kinds, only: dp
     use, intrinsic :: iso_c_binding, only: c_loc
@@ -175,7 +176,9 @@ contains
             end if
         end if
         allocate (op%fft)
+        !$omp critical (fc_fftw_planner)
         call plans_create(op%fft, nx, ny, mx, my)
+        !$omp end critical (fc_fftw_planner)
     end subroutine setup_plans
 
     !> Create FFTW plans (FFTW_ESTIMATE: no measurement, deterministic) on new buffers.
@@ -344,7 +347,9 @@ contains
         if (associated(self%fft)) then
             self%fft%refs = self%fft%refs - 1
             if (self%fft%refs <= 0) then
+                !$omp critical (fc_fftw_planner)
                 call plans_free(self%fft)
+                !$omp end critical (fc_fftw_planner)
                 deallocate (self%fft)
             end if
             nullify (self%fft)
