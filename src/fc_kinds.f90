@@ -16,6 +16,10 @@ module fc_kinds
 
     integer, parameter, public :: msg_len = 512         !! length of error messages
 
+    !> Largest iteration limit (`maxit`) any solver accepts: bounds the per-iteration history
+    !! buffers (8 bytes per iteration) and the run time of a solve that never converges.
+    integer, parameter, public :: max_iterations = 1000000
+
     public :: status_name, check_iteration_settings
 
 contains
@@ -42,8 +46,8 @@ contains
         stat = 0; errmsg = ''
         if (.not. (tol > 0)) then
             stat = 1; write (errmsg, '(a,es12.4,a)') 'solver: tol = ', tol, ' must be > 0'
-        else if (maxit < 1) then
-            stat = 1; write (errmsg, '(a,i0,a)') 'solver: maxit = ', maxit, ' must be >= 1'
+        else if (maxit < 1 .or. maxit > max_iterations) then
+            stat = 1; write (errmsg, '(a,i0,a,i0,a)') 'solver: maxit = ', maxit, ' must lie in [1, ', max_iterations, ']'
         end if
     end subroutine check_iteration_settings
 
