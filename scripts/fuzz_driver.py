@@ -89,7 +89,7 @@ GOOD_VALUES = {
 FORBIDDEN = [re.compile(p, re.I) for p in (
     r'Fortran runtime error', r'Backtrace', r'Program received signal', r'runtime error',
     r'Error termination', r'Operating system error', r'^At line \d+ of file', r'Segmentation',
-    r'AddressSanitizer', r'Out of memory', r'Cannot allocate', r'Allocation would exceed',
+    r'AddressSanitizer', r'LeakSanitizer', r'Out of memory', r'Cannot allocate', r'Allocation would exceed',
     r'floating point exception', r'SIGFPE', r'SIGSEGV', r'core dumped', r'ERROR STOP')]
 NONFINITE = re.compile(r'(?<![A-Za-z_])([+-]?nan|[+-]?inf(inity)?)(?![A-Za-z_])', re.I)
 # a clean input error names where: '&group' and a key ('key = value', 'key:', "unknown key 'k'"),
@@ -208,7 +208,8 @@ def mutate(text, rng):
 
 def limit(mem_mb, cpu_s):
     def f():
-        resource.setrlimit(resource.RLIMIT_AS, (mem_mb * 2**20, mem_mb * 2**20))
+        if mem_mb > 0:                 # 0: no address-space limit (AddressSanitizer builds)
+            resource.setrlimit(resource.RLIMIT_AS, (mem_mb * 2**20, mem_mb * 2**20))
         resource.setrlimit(resource.RLIMIT_CPU, (cpu_s, cpu_s + 1))
         resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
         os.setsid()

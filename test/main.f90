@@ -12,6 +12,7 @@ program tester
     use test_auto, only: collect_auto
     use test_stability, only: collect_stability
     use test_legacy, only: collect_legacy
+    use test_api_fuzz, only: collect_api_fuzz
     implicit none
     character(len=64) :: suite, only
     integer :: npass, nfail
@@ -43,6 +44,9 @@ program tester
     end if
     if (want('legacy')) then
         call collect_legacy(tests); call run_suite('legacy', tests, only, npass, nfail)
+    end if
+    if (want('api_fuzz')) then
+        call collect_api_fuzz(tests); call run_suite('api_fuzz', tests, only, npass, nfail)
     end if
     if (want('stability')) then
         call collect_stability(tests); call run_suite('stability', tests, only, npass, nfail)
