@@ -7,6 +7,7 @@
 module fc_geometry
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use fc_kinds, only: dp, i8, pi, msg_len
+    use fc_limits, only: max_length
     implicit none
     private
 
@@ -26,9 +27,8 @@ module fc_geometry
     !> Undeformed distance that keeps an element out of contact (outside a punch).
     real(dp), parameter, public :: h_no_contact = 1.0e20_dp
 
-    !> Largest |xmin|, |xmax|, |ymin|, |ymax| of a potential contact area [mm] (1 km), and the
-    !! smallest element size [mm]: beyond them the influence coefficients lose every digit.
-    real(dp), parameter, public :: max_grid_coordinate = 1.0e6_dp, min_element_size = 1.0e-9_dp
+    !> Smallest element size [mm]: below it the influence coefficients lose every digit.
+    real(dp), parameter, public :: min_element_size = 1.0e-9_dp
 
     !> Parameters of the random rough surface, thesis eqs. (2.13)–(2.16).
     type, public :: fc_rough_params
@@ -63,9 +63,9 @@ contains
                 xmin, xmax, ymin, ymax
             return
         end if
-        if (maxval(abs([xmin, xmax, ymin, ymax])) > max_grid_coordinate) then
+        if (maxval(abs([xmin, xmax, ymin, ymax])) > max_length) then
             stat = 1; write (errmsg, '(a,4(1x,g0.6),a,es8.1,a)') 'grid: xmin, xmax, ymin, ymax =', xmin, xmax, ymin, ymax, &
-                ' exceed the limit |x|, |y| <= ', max_grid_coordinate, ' mm'
+                ' exceed the limit |x|, |y| <= ', max_length, ' mm'
             return
         end if
         if (.not. (xmax > xmin) .or. .not. (ymax > ymin)) then

@@ -13,6 +13,7 @@ program tester
     use test_stability, only: collect_stability
     use test_legacy, only: collect_legacy
     use test_api_fuzz, only: collect_api_fuzz
+    use test_reliability, only: collect_reliability
     implicit none
     character(len=64) :: suite, only
     integer :: npass, nfail
@@ -47,6 +48,9 @@ program tester
     end if
     if (want('api_fuzz')) then
         call collect_api_fuzz(tests); call run_suite('api_fuzz', tests, only, npass, nfail)
+    end if
+    if (want('reliability')) then
+        call collect_reliability(tests); call run_suite('reliability', tests, only, npass, nfail)
     end if
     if (want('stability')) then
         call collect_stability(tests); call run_suite('stability', tests, only, npass, nfail)
