@@ -14,7 +14,7 @@ module test_reliability
     use fc_kinds, only: dp, pi, msg_len, FC_CONVERGED, FC_NOT_CONVERGED
     use fc_testing, only: error_type, unittest_type, new_unittest, check, rel_diff
     use fc_geometry, only: fc_grid, make_grid, quadratic_gap
-    use fc_influence, only: fc_material, combine_material, element_coefficient, IC_XZ, IC_YZ, IC_ZZ
+    use fc_influence, only: fc_material, combine_material, element_coefficient, ic_kernel, IC_XZ, IC_YZ, IC_ZX, IC_ZY
     use fc_norm, only: fc_normal_operator, fc_normal_settings, fc_normal_result, build_normal_operator, &
         solve_normal, contact_on_edge
     use fc_legacy
@@ -38,35 +38,46 @@ contains
                  new_unittest('bccg_iteration_bound_hertz', bccg_iteration_bound_hertz)]
     end subroutine collect_reliability
 
-    !> A^xz and A^yz far from the loaded element against the point-load (Boussinesq) surface
-    !! displacement.  A normal point load P pressing the bodies together moves the surface of
-    !! each body radially toward the load by (1 − 2ν)P/(4πG r) (Johnson, Contact Mechanics,
-    !! 1985, eq. 3.19a), so the tangential displacement difference u(body 1) − u(body 2) at
-    !! (x, y) from the load is −P/(4π) [(1−2ν1)/G1 − (1−2ν2)/G2]·(x, y)/r².  At 20 element
+    !> The four coupling blocks far from the loaded element against the point-load solutions,
+    !! as the solver builds them (ic_kernel) and element by element (element_coefficient).
+    !! A normal point load P pressing the bodies together moves the surface of each body
+    !! radially toward the load by (1 − 2ν)P/(4πG r) (Boussinesq; Johnson, Contact Mechanics,
+    !! 1985, eq. 3.19a), so u_t(body 1) − u_t(body 2) = −P/(4π)·D·(x, y)/r² with
+    !! D = (1−2ν1)/G1 − (1−2ν2)/G2.  By reciprocity (Maxwell–Betti) a tangential load Q_x on
+    !! body 1 (−Q_x on body 2) opens the gap by +Q_x/(4π)·D·x/r² (Cerruti).  At 20 element
     !! widths the element integral equals the point-load value to O((dx/r)²) ≈ 1e-3.
     subroutine coupling_matches_boussinesq(error)
         type(error_type), allocatable, intent(out) :: error
         type(fc_material) :: mat
-        integer :: stat
+        type(fc_grid) :: grid
+        integer :: stat, k
         character(len=msg_len) :: msg
         real(dp), parameter :: dx = 0.1_dp, dy = 0.15_dp
-        real(dp) :: x, y, r2, dnu, a_ref_x, a_ref_y, a_x, a_y
+        integer, parameter :: ix = 20, iy = 12
+        real(dp) :: x, y, r2, d, ref(4)
+        real(dp), allocatable :: kernel(:, :)
+        integer, parameter :: blocks(4) = [IC_XZ, IC_YZ, IC_ZX, IC_ZY]
+        character(len=4), parameter :: names(4) = ['A^xz', 'A^yz', 'A^zx', 'A^zy']
         mat%g1 = 1.0e30_dp; mat%g2 = 82000; mat%nu1 = 0.3_dp; mat%nu2 = 0.28_dp   ! rigid on steel-like
         call combine_material(mat, stat, msg)
-        call check(error, stat == 0, 'material: '//trim(msg))
+        call make_grid(grid, 41, 41, 0.0_dp, 41*dx, 0.0_dp, 41*dy, stat, msg)
+        call check(error, stat == 0, 'set-up: '//trim(msg))
         if (allocated(error)) return
-        dnu = 0 - (1 - 2*mat%nu2)/mat%g2        ! (1−2ν1)/G1 − (1−2ν2)/G2, body 1 rigid
-        x = 20*dx; y = 12*dy; r2 = x**2 + y**2
-        a_ref_x = -dx*dy/(4*pi)*dnu*x/r2
-        a_ref_y = -dx*dy/(4*pi)*dnu*y/r2
-        a_x = element_coefficient(IC_XZ, mat, x, y, dx, dy)
-        a_y = element_coefficient(IC_YZ, mat, x, y, dx, dy)
-        call check(error, a_x, a_ref_x, 'A^xz at (20dx, 12dy) vs Boussinesq point load', rel=3.0e-3_dp)
-        call check(error, a_y, a_ref_y, 'A^yz at (20dx, 12dy) vs Boussinesq point load', rel=3.0e-3_dp)
+        d = 0 - (1 - 2*mat%nu2)/mat%g2        ! body 1 rigid
+        x = ix*dx; y = iy*dy; r2 = x**2 + y**2
+        ref = dx*dy/(4*pi)*d/r2*[-x, -y, x, y]
+        do k = 1, 4
+            call ic_kernel(blocks(k), mat, grid, kernel)
+            call check(error, kernel(ix, iy), ref(k), names(k)//' (solver kernel) at (20dx, 12dy) vs point load', &
+                rel=3.0e-3_dp)
+            call check(error, element_coefficient(blocks(k), mat, x, y, dx, dy), ref(k), &
+                names(k)//' (element coefficient) at (20dx, 12dy) vs point load', rel=3.0e-3_dp)
+        end do
         ! the swapped pair reverses the coupling
         mat%g1 = 82000; mat%g2 = 1.0e30_dp; mat%nu1 = 0.28_dp; mat%nu2 = 0.3_dp
         call combine_material(mat, stat, msg)
-        call check(error, element_coefficient(IC_XZ, mat, x, y, dx, dy), -a_ref_x, 'A^xz, bodies swapped', rel=3.0e-3_dp)
+        call ic_kernel(IC_XZ, mat, grid, kernel)
+        call check(error, kernel(ix, iy), -ref(1), 'A^xz, bodies swapped', rel=3.0e-3_dp)
     end subroutine coupling_matches_boussinesq
 
     !> Full stick (no shift) between a rigid sphere (body 1) and a compressible elastic
