@@ -13,8 +13,7 @@ program bench_auto
     use, intrinsic :: iso_fortran_env, only: int64
     use fc_kinds, only: dp, msg_len
     use fc_input, only: fc_case_input, fc_case_chunk, read_case_file, apply_case, validate_case
-    use fc_norm, only: fc_normal_operator
-    use fc_tangcg, only: fc_tangential_operator
+    use fc_contact, only: fc_contact_operators
     use fc_hertz, only: fc_hertz_solution, hertz_from_approach, hertz_from_force
     use fc_auto, only: fc_auto_outcome, fc_level, solve_case_auto, plane_strain_hertz, level_estimate, &
         certify_coarsest, target_quantities, estimate_safety, estimate_safety_h2
@@ -498,8 +497,7 @@ contains
         type(fc_case_input), intent(out), optional :: state_out  !! the validated case, before solving
         type(fc_case_chunk), allocatable :: cases(:)
         type(fc_case_input) :: state
-        type(fc_normal_operator) :: nop
-        type(fc_tangential_operator) :: top
+        type(fc_contact_operators) :: ops
         character(len=64) :: name
         character(len=msg_len) :: msg
         integer :: u, stat, k
@@ -515,12 +513,11 @@ contains
         if (stat == 0) call validate_case(state, stat, msg)
         if (present(state_out)) state_out = state
         call system_clock(t0, rate)
-        if (stat == 0) call solve_case_auto(state, nop, top, out, stat, msg)
+        if (stat == 0) call solve_case_auto(state, ops, out, stat, msg)
         call system_clock(t1)
         seconds = real(t1 - t0, dp)/rate
         if (stat /= 0) write (*, '(a)') 'bench-auto: case failed: '//trim(msg)
-        call nop%destroy()
-        call top%destroy()
+        call ops%destroy()
     end subroutine solve_text
 
 end program bench_auto

@@ -1,12 +1,13 @@
-!> fastcontact — the public modern API (SPEC §6).
+!> fastcontact — the public modern API (doc/legacy_api.md describes the flat one).
 !!
 !! A contact problem is a [[fc_problem]]: material, grid, undeformed distance, loading and
-!! solver settings.  [[solve]] builds (or reuses) the influence operator and its
-!! preconditioner and solves the normal contact problem; errors come back through
-!! `stat`/`errmsg`, never by stopping.  The tangential (frictional) problem is solved with
-!! the operators of [[fc_tangcg]] re-exported here: [[build_tangential_operator]] and
-!! [[solve_normal_tangential]] (normal + tangential, Panagiotopoulos coupling for K ≠ 0) or
-!! [[solve_tangential]] for a given pressure.
+!! solver settings.  [[solve]] builds (or reuses) the influence operators and solves it
+!! through the one orchestrator [[solve_contact]] (also public here, with its loading,
+!! settings, operator, state and result types): normal contact, or normal + tangential
+!! (Panagiotopoulos coupling for K ≠ 0) when `prob%load%problem = FC_PROBLEM_TANGENTIAL`.
+!! Errors come back through `stat`/`errmsg`, never by stopping.  `prob%destroy()` releases the
+!! operators (FFT plans).  The operator-level routines of [[fc_norm]] and [[fc_tangcg]]
+!! stay available for callers that manage operators themselves.
 !!
 !! ```fortran
 !! use fastcontact
@@ -15,8 +16,9 @@
 !! call set_material(prob, 82000.0_dp, 82000.0_dp, 0.28_dp, 0.28_dp, stat, errmsg)
 !! call make_grid(prob%grid, 64, 64, -10.0_dp, 10.0_dp, -6.0_dp, 6.0_dp, stat, errmsg)
 !! prob%h0 = quadratic_gap(prob%grid, 300.0_dp, 163.0_dp)
-!! prob%approach = 0.1091_dp
+!! prob%load%normal%approach = 0.1091_dp
 !! call solve(prob, res, stat, errmsg)
+!! call prob%destroy()
 !! ```
 module fastcontact
     use fc_kinds
@@ -27,6 +29,7 @@ module fastcontact
     use fc_tangcg
     use fc_fmg
     use fc_mg2d
+    use fc_contact
     implicit none
     private
 
@@ -46,17 +49,22 @@ module fastcontact
     public :: solve_normal_fmg, build_fmg_hierarchy, fmg_solve_lcp, fmg_cycle_from_name
     public :: fc_strip_problem, fc_mg2d_settings, fc_mg2d_result
     public :: strip_model_problem, solve_strip_mg, solve_strip_fft_rsm
+    ! the orchestrator
+    public :: fc_normal_loading, fc_contact_loading, fc_contact_settings, fc_contact_operators, fc_contact_state
+    public :: fc_contact_result, solve_contact, ensure_operators
+    public :: FC_PROBLEM_NORMAL, FC_PROBLEM_TANGENTIAL, FC_FROM_REST, FC_TRANSIENT_SHIFT, FC_TRANSIENT_ROLLING
 
-    !> One normal contact problem and its reusable operator.
+    !> One contact problem, its reusable operators and its previous solution.
     type, public :: fc_problem
         type(fc_material) :: material            !! body constants (combined by set_material)
         type(fc_grid) :: grid                    !! potential contact area
         real(dp), allocatable :: h0(:, :)        !! undeformed distance without approach [mm]
-        logical :: force_prescribed = .false.    !! .true.: use fn, else approach
-        real(dp) :: approach = 0                 !! prescribed approach δ [mm]
-        real(dp) :: fn = 0                       !! prescribed total normal force [N]
-        type(fc_normal_settings) :: settings     !! solver choice and tolerances
-        type(fc_normal_operator) :: operator     !! cached A^zz and preconditioner
+        type(fc_contact_loading) :: load         !! normal (and tangential) loading
+        type(fc_contact_settings) :: settings    !! solver choice and tolerances
+        type(fc_contact_operators) :: operators  !! cached influence operators
+        type(fc_contact_state) :: state          !! previous solution (warm start, transient steps)
+    contains
+        procedure :: destroy => problem_destroy
     end type fc_problem
 
     public :: set_material, solve
@@ -74,11 +82,12 @@ contains
         call combine_material(prob%material, stat, errmsg)
     end subroutine set_material
 
-    !> Solve the normal contact problem of `prob`.  The operator is rebuilt only when the
-    !! grid or the material changed since the previous call.
+    !> Solve the contact problem of `prob`.  The operators are rebuilt only when the grid
+    !! spacing or the material changed since the previous call; the previous solution
+    !! warm-starts the next (`prob%state%warm_start`).
     subroutine solve(prob, res, stat, errmsg)
         type(fc_problem), intent(inout) :: prob
-        type(fc_normal_result), intent(out) :: res
+        type(fc_contact_result), intent(out) :: res
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
         if (.not. allocated(prob%h0)) then
@@ -88,20 +97,15 @@ contains
             call combine_material(prob%material, stat, errmsg)
             if (stat /= 0) return
         end if
-        if (needs_rebuild(prob)) call build_normal_operator(prob%operator, prob%material, prob%grid)
-        if (prob%force_prescribed) then
-            call solve_normal(prob%operator, prob%h0, prob%settings, res, stat, errmsg, fn=prob%fn)
-        else
-            call solve_normal(prob%operator, prob%h0, prob%settings, res, stat, errmsg, approach=prob%approach)
-        end if
+        call solve_contact(prob%operators, prob%grid, prob%material, prob%h0, prob%load, prob%settings, res, &
+                           stat, errmsg, state=prob%state)
     end subroutine solve
 
-    logical function needs_rebuild(prob)
-        type(fc_problem), intent(in) :: prob
-        associate (og => prob%operator%grid, g => prob%grid, om => prob%operator%material, m => prob%material)
-            needs_rebuild = .not. prob%operator%a_zz%built() .or. og%nx /= g%nx .or. og%ny /= g%ny &
-                .or. og%dx /= g%dx .or. og%dy /= g%dy .or. om%g /= m%g .or. om%nu /= m%nu
-        end associate
-    end function needs_rebuild
+    !> Release the operators (FFT plans and buffers) and the previous solution of `prob`.
+    subroutine problem_destroy(prob)
+        class(fc_problem), intent(inout) :: prob
+        call prob%operators%destroy()
+        call prob%state%reset()
+    end subroutine problem_destroy
 
 end module fastcontact

@@ -44,13 +44,13 @@ module fc_auto
     use fc_kinds, only: dp, i8, pi, FC_CONVERGED, status_name
     use fc_geometry, only: fc_grid, h_no_contact
     use fc_influence, only: fc_material, combine_material
-    use fc_norm, only: fc_normal_operator, fc_normal_result, fc_normal_settings, build_normal_operator, solve_normal
-    use fc_tangcg, only: fc_tangential_operator, fc_tangential_result, fc_tangential_loading, &
-        build_tangential_operator, solve_normal_tangential, solve_tangential_loading
+    use fc_norm, only: fc_normal_result
+    use fc_tangcg, only: fc_tangential_result
+    use fc_contact, only: fc_contact_operators, fc_contact_loading, fc_contact_settings, fc_contact_result, &
+        solve_contact, FC_PROBLEM_TANGENTIAL
     use fc_hertz, only: fc_hertz_solution, fc_cattaneo_solution, hertz_from_approach, hertz_from_force, &
         cattaneo_mindlin
-    use fc_fmg, only: fc_fmg_stats, fc_surface, fc_quadratic_surface, fc_punch_rough_surface, fc_wavy_surface, &
-        solve_normal_fmg
+    use fc_fmg, only: fc_quadratic_surface, fc_punch_rough_surface, fc_wavy_surface
     use fc_input, only: fc_case_input, setup_case, is_tangential, tangential_loading, fmt_real, grid_is_auto, &
         is_line_contact, is_given
     implicit none
@@ -98,6 +98,7 @@ module fc_auto
         type(fc_normal_result) :: res                      !! final normal solution
         type(fc_tangential_result) :: tres                 !! final tangential solution
         logical :: tangential = .false.                    !! a tangential solve was done
+        logical :: tangential_run = .false.                !! the final grid's tangential stage ran
         integer :: rounds = 0                              !! Panagiotopoulos rounds (final grid)
         real(dp) :: setup_seconds = 0, setup_seconds_tangential = 0  !! final grid's set-up [s]
         logical :: analytic = .false.                      !! answered by the analytic Hertz solution
@@ -123,12 +124,11 @@ module fc_auto
 contains
 
     !> Solve one validated case with the automatic layer: model choice, potential area,
-    !! accuracy target.  `nop`, `top` are reused when grid and material match.  stat ≠ 0:
+    !! accuracy target.  The operators in `ops` are reused when grid and material match.  stat ≠ 0:
     !! input-type error with a message naming group and key.
-    subroutine solve_case_auto(s_in, nop, top, out, stat, errmsg)
+    subroutine solve_case_auto(s_in, ops, out, stat, errmsg)
         type(fc_case_input), intent(in) :: s_in
-        type(fc_normal_operator), intent(inout) :: nop
-        type(fc_tangential_operator), intent(inout) :: top
+        type(fc_contact_operators), intent(inout) :: ops
         type(fc_auto_outcome), intent(out) :: out
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
@@ -213,7 +213,7 @@ contains
         end if
         out%tol = s%settings%tol
         do attempt = 1, max_enlargements + 1
-            call solve_levels(s, tang, nop, top, out, stat, errmsg)
+            call solve_levels(s, tang, ops, out, stat, errmsg)
             if (stat /= 0) return
             out%touches_boundary = contact_touches_boundary(out%res%pn, out%model == 'strip2d' .or. &
                 s%kind == 'cylinder' .or. (s%kind == 'quadratic' .and. s%ry == 0))
@@ -246,11 +246,10 @@ contains
     end subroutine solve_case_auto
 
     !> Solve on the grid of `s` or, with a target, on a sequence of grids refined by two.
-    subroutine solve_levels(s, tang, nop, top, out, stat, errmsg)
+    subroutine solve_levels(s, tang, ops, out, stat, errmsg)
         type(fc_case_input), intent(inout) :: s
         logical, intent(in) :: tang
-        type(fc_normal_operator), intent(inout) :: nop
-        type(fc_tangential_operator), intent(inout) :: top
+        type(fc_contact_operators), intent(inout) :: ops
         type(fc_auto_outcome), intent(inout) :: out
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
@@ -281,7 +280,7 @@ contains
             if (k > 1) then
                 sl%nx = 2*sl%nx; sl%ny = fy*sl%ny
                 call prolong_copy(out%res%pn, 2, fy, p0)
-                if (out%tangential .and. allocated(out%tres%px)) then
+                if (out%tangential_run) then
                     call prolong_copy(out%tres%px, 2, fy, px0)
                     call prolong_copy(out%tres%py, 2, fy, py0)
                 end if
@@ -290,10 +289,10 @@ contains
                 call add(out%warnings, 'accuracy target: the next grid would exceed 4096^2 elements; stopped')
                 exit
             end if
-            call solve_one(sl, tang, nop, top, out, p0, px0, py0, stat, errmsg)
+            call solve_one(sl, tang, ops, out, p0, px0, py0, stat, errmsg)
             if (stat /= 0) return
             if (out%res%status /= FC_CONVERGED) exit
-            if (out%tangential .and. allocated(out%tres%px)) then
+            if (out%tangential_run) then
                 if (out%tres%status /= FC_CONVERGED) exit
             end if
             if (s%target > 0 .and. k >= 2) then
@@ -321,25 +320,24 @@ contains
 
     !> Solve the case on the grid of `sl` (warm start from p0, px0, py0 when allocated);
     !! append a level record; keep the solution in `out`.
-    subroutine solve_one(sl, tang, nop, top, out, p0, px0, py0, stat, errmsg)
+    subroutine solve_one(sl, tang, ops, out, p0, px0, py0, stat, errmsg)
         type(fc_case_input), intent(in) :: sl
         logical, intent(in) :: tang
-        type(fc_normal_operator), intent(inout) :: nop
-        type(fc_tangential_operator), intent(inout) :: top
+        type(fc_contact_operators), intent(inout) :: ops
         type(fc_auto_outcome), intent(inout) :: out
         real(dp), allocatable, intent(in) :: p0(:, :), px0(:, :), py0(:, :)
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
         type(fc_material) :: mat
         type(fc_level) :: lev
-        type(fc_tangential_loading) :: load
-        type(fc_fmg_stats) :: st
+        type(fc_contact_loading) :: load
+        type(fc_contact_settings) :: settings
+        type(fc_contact_result) :: res
         integer(i8) :: t0, t1, rate
-        logical :: use_fmg
+        logical :: use_fmg, decoupled
         call system_clock(t0, rate)
         call setup_case(sl, mat, out%grid, out%h0, stat, errmsg)
         if (stat /= 0) return
-        out%setup_seconds = 0; out%setup_seconds_tangential = 0
         use_fmg = sl%settings%solver == 'fmg'
         if (use_fmg .and. tang .and. mat%k /= 0) then
             stat = 1
@@ -347,49 +345,41 @@ contains
                 " /= 0): the Panagiotopoulos loop alternates normal and tangential solves; use normal = 'bccg'"
             return
         end if
-        if (use_fmg) then
-            ! FMG builds its own hierarchy; the BCCG operator is not needed
-        else if (needs_rebuild(nop, mat, out%grid)) then
-            call build_normal_operator(nop, mat, out%grid)
-            out%setup_seconds = nop%setup_seconds
-        end if
-        out%rounds = 0
+        settings%normal = sl%settings; settings%tangential = sl%tsettings; settings%fmg = sl%fmg
+        load%normal%force_prescribed = sl%force_prescribed
+        load%normal%fn = sl%fn; load%normal%approach = sl%approach
         if (tang) then
-            if (needs_rebuild_tangential(top, mat, out%grid)) then
-                call build_tangential_operator(top, mat, out%grid)
-                out%setup_seconds_tangential = top%setup_seconds
-            end if
-            load = tangential_loading(sl)
-            if (mat%k == 0 .and. (sl%model == 'auto' .or. use_fmg)) then
-                ! decoupled: one normal and one tangential solve, both warm-started (FMG: cold)
-                call normal(p0)
-                if (stat /= 0) return
-                out%rounds = 1
-                if (out%res%status == FC_CONVERGED) then
-                    if (allocated(px0) .and. allocated(py0)) then
-                        call solve_tangential_loading(top, out%res%pn, load, sl%tsettings, out%tres, stat, errmsg, &
-                            px_start=px0, py_start=py0)
-                    else
-                        call solve_tangential_loading(top, out%res%pn, load, sl%tsettings, out%tres, stat, errmsg)
-                    end if
-                end if
-            else if (sl%force_prescribed) then
-                call solve_normal_tangential(nop, top, out%h0, sl%settings, sl%tsettings, load, out%res, out%tres, &
-                    stat, errmsg, fn=sl%fn, rounds=out%rounds)
-            else
-                call solve_normal_tangential(nop, top, out%h0, sl%settings, sl%tsettings, load, out%res, out%tres, &
-                    stat, errmsg, approach=sl%approach, rounds=out%rounds)
-            end if
+            load%problem = FC_PROBLEM_TANGENTIAL
+            load%tangential = tangential_loading(sl)
+        end if
+        ! warm starts from the previous grid: the normal stage (not FMG, which starts from its
+        ! own nested iteration) of normal and decoupled problems, the tangential stage of
+        ! decoupled ones; coupled problems and model = 'full' solve each grid from zero
+        decoupled = tang .and. mat%k == 0 .and. (sl%model == 'auto' .or. use_fmg)
+        if (allocated(p0) .and. .not. use_fmg .and. (decoupled .or. .not. tang)) load%normal%p_start = p0
+        if (decoupled .and. allocated(px0) .and. allocated(py0)) then
+            load%px_start = px0; load%py_start = py0
+        end if
+        if (use_fmg) then
+            call fmg_solve()
         else
-            call normal(p0)
+            call solve_contact(ops, out%grid, mat, out%h0, load, settings, res, stat, errmsg)
         end if
         if (stat /= 0) return
+        out%setup_seconds = res%setup_seconds_normal; out%setup_seconds_tangential = res%setup_seconds_tangential
+        out%rounds = res%rounds
+        out%tangential_run = res%tangential_run
+        call move_normal(res%normal, out%res)
+        if (tang) out%tres = res%tangential
+        if (use_fmg) then
+            out%work_units = res%work_units; out%convergence_factor = res%convergence_factor
+        end if
         call system_clock(t1)
         lev%nx = out%grid%nx; lev%ny = out%grid%ny
         lev%fn = out%res%fn; lev%approach = out%res%approach; lev%pmax = out%res%pmax; lev%ncon = out%res%ncon
         lev%iterations = out%res%iterations
         lev%status = status_name(out%res%status)
-        if (tang .and. allocated(out%tres%px)) then
+        if (out%tangential_run) then
             lev%fx = out%tres%fx; lev%fy = out%tres%fy; lev%xi = out%tres%xi; lev%eta = out%tres%eta
             lev%iterations = lev%iterations + out%tres%iterations
             lev%status = status_name(max(out%res%status, out%tres%status))
@@ -398,32 +388,9 @@ contains
         out%total_seconds = out%total_seconds + lev%seconds
         out%levels = [out%levels, lev]
     contains
-        subroutine normal(start_in)
-            real(dp), allocatable, intent(in) :: start_in(:, :)
-            real(dp), allocatable :: start(:, :)
-            if (use_fmg) then
-                call fmg_normal()   ! FMG starts from its own nested iteration
-                return
-            end if
-            if (.not. allocated(start_in)) then
-                if (sl%force_prescribed) then
-                    call solve_normal(nop, out%h0, sl%settings, out%res, stat, errmsg, fn=sl%fn)
-                else
-                    call solve_normal(nop, out%h0, sl%settings, out%res, stat, errmsg, approach=sl%approach)
-                end if
-                return
-            end if
-            ! no start pressure where contact is impossible (solve_normal would keep it there)
-            start = merge(start_in, 0.0_dp, out%h0 < 0.5_dp*h_no_contact)
-            if (sl%force_prescribed) then
-                call solve_normal(nop, out%h0, sl%settings, out%res, stat, errmsg, fn=sl%fn, p_start=start)
-            else
-                call solve_normal(nop, out%h0, sl%settings, out%res, stat, errmsg, approach=sl%approach, p_start=start)
-            end if
-        end subroutine normal
-
-        !> Normal stage by FMG; the geometry gives h0 on the coarse levels (tables: averaged).
-        subroutine fmg_normal()
+        !> The solve with the normal stage by FMG; the geometry gives h0 on the coarse levels
+        !! (tables: averaged).
+        subroutine fmg_solve()
             type(fc_quadratic_surface) :: quad
             type(fc_punch_rough_surface) :: punch
             type(fc_wavy_surface) :: wavy
@@ -431,15 +398,15 @@ contains
             case ('quadratic', 'strip2d', 'cylinder')
                 quad%rx = sl%rx; quad%ry = 0
                 if (sl%kind == 'quadratic') quad%ry = sl%ry
-                call fmg_run(quad)
+                call solve_contact(ops, out%grid, mat, out%h0, load, settings, res, stat, errmsg, surface=quad)
             case ('punch_rough')
                 punch%diameter = sl%diameter; punch%rough = sl%rough
-                call fmg_run(punch)
+                call solve_contact(ops, out%grid, mat, out%h0, load, settings, res, stat, errmsg, surface=punch)
             case ('wavy')
                 wavy%amplitude = sl%amplitude; wavy%wavelength_x = sl%wavelength_x; wavy%wavelength_y = sl%wavelength_y
-                call fmg_run(wavy)
+                call solve_contact(ops, out%grid, mat, out%h0, load, settings, res, stat, errmsg, surface=wavy)
             case default
-                call fmg_run()
+                call solve_contact(ops, out%grid, mat, out%h0, load, settings, res, stat, errmsg)
             end select
             if (stat /= 0) then
                 if (index(errmsg, 'fmg: grid') == 1) then
@@ -448,23 +415,15 @@ contains
                 else if (index(errmsg, 'fmg: ') == 1) then
                     errmsg = "&solver normal = 'fmg': "//trim(errmsg(6:))
                 end if
-                return
             end if
-            out%work_units = st%work_units
-            out%convergence_factor = st%convergence_factor
-        end subroutine fmg_normal
-
-        subroutine fmg_run(surface)
-            class(fc_surface), intent(in), optional :: surface
-            if (sl%force_prescribed) then
-                call solve_normal_fmg(mat, out%grid, out%h0, sl%fmg, out%res, stat, errmsg, fn=sl%fn, surface=surface, &
-                    stats=st)
-            else
-                call solve_normal_fmg(mat, out%grid, out%h0, sl%fmg, out%res, stat, errmsg, approach=sl%approach, &
-                    surface=surface, stats=st)
-            end if
-        end subroutine fmg_run
+        end subroutine fmg_solve
     end subroutine solve_one
+
+    subroutine move_normal(from, to)
+        type(fc_normal_result), intent(inout) :: from
+        type(fc_normal_result), intent(inout) :: to
+        to = from
+    end subroutine move_normal
 
     !> Estimate of the last level's relative error over the target quantities (the largest
     !! over fn or approach, the tangential quantity and, with `target_pmax`, pmax).  Public so
@@ -791,23 +750,5 @@ contains
         write (buf, '(i0)') i
         s = trim(buf)
     end function fmt_int
-
-    logical function needs_rebuild(nop, mat, grid)
-        type(fc_normal_operator), intent(in) :: nop
-        type(fc_material), intent(in) :: mat
-        type(fc_grid), intent(in) :: grid
-        needs_rebuild = .not. nop%a_zz%built() .or. nop%grid%nx /= grid%nx .or. nop%grid%ny /= grid%ny &
-            .or. nop%grid%dx /= grid%dx .or. nop%grid%dy /= grid%dy .or. nop%material%g /= mat%g &
-            .or. nop%material%nu /= mat%nu
-    end function needs_rebuild
-
-    logical function needs_rebuild_tangential(top, mat, grid)
-        type(fc_tangential_operator), intent(in) :: top
-        type(fc_material), intent(in) :: mat
-        type(fc_grid), intent(in) :: grid
-        needs_rebuild_tangential = .not. top%a_xx%built() .or. top%grid%nx /= grid%nx .or. top%grid%ny /= grid%ny &
-            .or. top%grid%dx /= grid%dx .or. top%grid%dy /= grid%dy .or. top%material%g /= mat%g &
-            .or. top%material%nu /= mat%nu .or. top%material%k /= mat%k
-    end function needs_rebuild_tangential
 
 end module fc_auto

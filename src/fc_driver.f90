@@ -8,7 +8,7 @@
 !! driver continues with the next case.
 !!
 !! Problems: 'normal' ([[solve_normal]], or FMG with `&solver normal = 'fmg'`) and
-!! 'normal+tangential' / 'tangential' (the same: [[solve_normal_tangential]], normal then
+!! 'normal+tangential' / 'tangential' (the same: [[solve_contact]], normal then
 !! tangential, Panagiotopoulos rounds when K ≠ 0; FMG only when K = 0), through [[fc_auto]].
 !! 'strip_mp1' … 'strip_mp3': the 2D no-slip model problems of thesis §3.2.5 solved by
 !! [[fc_mg2d]] (`&solver strip`), see [[solve_strip_case]].
@@ -22,9 +22,9 @@ module fc_driver
     use fc_kinds, only: dp, msg_len, FC_CONVERGED, FC_DIVERGED, FC_ERROR, status_name
     use fc_geometry, only: fc_grid
     use fc_influence, only: fc_material
-    use fc_norm, only: fc_normal_operator, fc_normal_result, build_normal_operator, solve_normal
-    use fc_tangcg, only: fc_tangential_operator, fc_tangential_result, build_tangential_operator, &
-        solve_normal_tangential, EL_EXTERIOR, EL_ADHESION
+    use fc_norm, only: fc_normal_result
+    use fc_tangcg, only: fc_tangential_result, EL_EXTERIOR, EL_ADHESION
+    use fc_contact, only: fc_contact_operators
     use fc_mg2d, only: fc_strip_problem, fc_mg2d_settings, fc_mg2d_result, strip_model_problem, solve_strip_mg, &
         solve_strip_fft_rsm
     use fc_hertz, only: hertz_from_approach, hertz_from_force
@@ -71,8 +71,7 @@ contains
         character(len=64), allocatable :: used(:)
         character(len=64) :: name
         character(len=msg_len) :: errmsg
-        type(fc_normal_operator) :: nop
-        type(fc_tangential_operator) :: top
+        type(fc_contact_operators) :: ops
         integer :: case_status, nused_before
         rep = output_unit; err = error_unit_default
         if (present(report_unit)) rep = report_unit
@@ -134,8 +133,7 @@ contains
             case default; ncase_fail = ncase_fail + 1
             end select
         end do
-        call nop%destroy()
-        call top%destroy()
+        call ops%destroy()
         write (rep, '(a,i0,a,i0,a,i0,a,i0,a)') 'fastcontact: ', size(cases), ' case(s): ', &
             size(cases) - ncase_err - ncase_fail, ' converged, ', ncase_fail, ' not converged, ', ncase_err, &
             ' with input errors'
@@ -200,7 +198,7 @@ contains
             end if
             ! ---- solve: model choice, potential area, accuracy target (fc_auto); operators reused
             call system_clock(t1)
-            call solve_case_auto(state, nop, top, auto, stat, errmsg)
+            call solve_case_auto(state, ops, auto, stat, errmsg)
             call system_clock(t2)
             if (stat /= 0) then
                 call library_message(errmsg, state)
@@ -265,7 +263,7 @@ contains
             s%cpu_seconds_normal = s%setup_seconds + res%cpu_seconds
             if (size(auto%levels) > 1) s%cpu_seconds_normal = real(t2 - t1, dp)/rate
             final_status = res%status
-            if (tang) call tangential_summary(s, state, res, tres, grid, rounds, final_status)
+            if (tang) call tangential_summary(s, state, res, tres, auto%tangential_run, rounds, final_status)
             if (mat%k /= 0 .and. .not. tang) s%notes = s%notes//'K = '//fmt_real(mat%k)// &
                 ' /= 0: the normal problem is solved without the tangential coupling. '
             if (state%kind == 'quadratic' .and. state%rx > 0 .and. state%ry > 0) then
@@ -481,25 +479,15 @@ contains
         end if
     end subroutine analytic_summary
 
-    !> Whether the operator must be (re)built for this material and grid.
-    logical function needs_rebuild(nop, mat, grid)
-        type(fc_normal_operator), intent(in) :: nop
-        type(fc_material), intent(in) :: mat
-        type(fc_grid), intent(in) :: grid
-        needs_rebuild = .not. nop%a_zz%built() .or. nop%grid%nx /= grid%nx .or. nop%grid%ny /= grid%ny &
-            .or. nop%grid%dx /= grid%dx .or. nop%grid%dy /= grid%dy .or. nop%material%g /= mat%g &
-            .or. nop%material%nu /= mat%nu
-    end function needs_rebuild
-
     !> Tangential part of the summary; status = worst of both stages.  When the normal
     !! stage failed the tangential stage was not run: zero tractions, states from the
     !! pressure (adhesion where pn > 0), status of the normal stage.
-    subroutine tangential_summary(s, state, res, tres, grid, rounds, final_status)
+    subroutine tangential_summary(s, state, res, tres, tangential_run, rounds, final_status)
         type(fc_case_summary), intent(inout) :: s
         type(fc_case_input), intent(in) :: state
         type(fc_normal_result), intent(in) :: res
-        type(fc_tangential_result), intent(inout) :: tres
-        type(fc_grid), intent(in) :: grid
+        type(fc_tangential_result), intent(in) :: tres
+        logical, intent(in) :: tangential_run
         integer, intent(in) :: rounds
         integer, intent(inout) :: final_status
         s%tangential = .true.
@@ -509,12 +497,9 @@ contains
         s%fx_prescribed = state%fx; s%fy_prescribed = state%fy
         s%panagiotopoulos_rounds = rounds
         s%cpu_seconds_normal = s%setup_seconds + res%cpu_seconds
-        s%tangential_run = allocated(tres%px)
+        s%tangential_run = tangential_run
         if (.not. s%tangential_run) then
-            allocate (tres%px(grid%nx, grid%ny), tres%py(grid%nx, grid%ny), tres%sx(grid%nx, grid%ny), &
-                tres%sy(grid%nx, grid%ny), tres%state(grid%nx, grid%ny))
-            tres%px = 0; tres%py = 0; tres%sx = 0; tres%sy = 0
-            tres%state = merge(EL_ADHESION, EL_EXTERIOR, res%pn > 0)
+            ! (the orchestrator's result has zero tractions and adhesion where pn > 0)
             s%status_tangential = 'not_run'
             s%message = trim(res%message)//' (tangential stage not run)'
             s%xi = state%xi; s%eta = state%eta; s%phi = state%phi
@@ -556,17 +541,6 @@ contains
             errmsg = '&'//trim(errmsg)
         end if
     end subroutine library_message
-
-    !> Whether the tangential operator must be (re)built: the blocks depend on G, ν and,
-    !! through the coupling blocks, on K.
-    logical function needs_rebuild_tangential(top, mat, grid)
-        type(fc_tangential_operator), intent(in) :: top
-        type(fc_material), intent(in) :: mat
-        type(fc_grid), intent(in) :: grid
-        needs_rebuild_tangential = .not. top%a_xx%built() .or. top%grid%nx /= grid%nx .or. top%grid%ny /= grid%ny &
-            .or. top%grid%dx /= grid%dx .or. top%grid%dy /= grid%dy .or. top%material%g /= mat%g &
-            .or. top%material%nu /= mat%nu .or. top%material%k /= mat%k
-    end function needs_rebuild_tangential
 
     !> mkdir -p DIR.
     subroutine make_directory(dir, stat)

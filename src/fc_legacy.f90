@@ -30,6 +30,7 @@ module fc_legacy
     use fc_influence
     use fc_norm
     use fc_tangcg
+    use fc_contact
     implicit none
     private
 
@@ -49,8 +50,6 @@ module fc_legacy
     integer(c_int), parameter, public :: FCL_ROLLING = 2     !! u', p' = previous step moved by the rolling step
 
     integer, parameter :: GAP_NONE = 0, GAP_ARRAY = 1, GAP_QUADRATIC = 2
-    integer, parameter :: TANG_NONE = 0, TANG_SHIFTS = 1, TANG_FORCES = 2
-    integer, parameter :: max_rounds = 50   !! Panagiotopoulos rounds (dissimilar materials)
 
     !> State of one contact problem behind a handle.
     type :: legacy_state
@@ -61,33 +60,15 @@ module fc_legacy
         integer :: gap_kind = GAP_NONE
         real(dp), allocatable :: h0(:, :)          !! undeformed distance (GAP_ARRAY)
         real(dp) :: rx = 0, ry = 0                 !! radii (GAP_QUADRATIC)
-        logical :: force_mode = .false.
-        real(dp) :: approach = 0, fn = 0
-        real(dp) :: mu = 0
-        integer :: tang_kind = TANG_NONE
-        real(dp) :: xi = 0, eta = 0, phi = 0, fx = 0, fy = 0
-        type(fc_normal_settings) :: ns
-        type(fc_tangential_settings) :: ts
-        integer :: transient = FCL_FROM_REST
-        real(dp) :: dq = 0
-        logical :: reuse_operators = .true., warm_start = .true.
-        ! --- reusable operators ---
-        type(fc_normal_operator) :: nop
-        type(fc_tangential_operator) :: top
-        logical :: nop_ok = .false., top_ok = .false.
-        integer :: rebuilds_normal = 0, rebuilds_tangential = 0, calculations = 0
-        ! --- previous state (warm start, u' and p' of transient steps) ---
-        logical :: has_prev_n = .false., has_prev_t = .false.
-        real(dp), allocatable :: pn_prev(:, :), px_prev(:, :), py_prev(:, :), ux_prev(:, :), uy_prev(:, :)
-        integer, allocatable :: st_prev(:, :)       !! element status of the previous state
-        real(dp) :: xi_prev = 0, eta_prev = 0, fx_prev = 0, fy_prev = 0
-        ! --- results of the last calculation ---
-        logical :: has_result = .false., tang_solved = .false.
-        real(dp), allocatable :: pn(:, :), gap(:, :), px(:, :), py(:, :), sx(:, :), sy(:, :)
-        integer, allocatable :: status(:, :)
-        real(dp) :: r_fn = 0, r_fx = 0, r_fy = 0, r_mz = 0, r_approach = 0, r_pmax = 0
-        real(dp) :: r_xi = 0, r_eta = 0, r_phi = 0
-        integer :: r_ncon = 0, r_nadh = 0, r_nslip = 0, r_it_n = 0, r_it_t = 0, r_rounds = 0
+        type(fc_contact_loading) :: load           !! normal and tangential loading, transient mode
+        type(fc_contact_settings) :: settings      !! solver choice and tolerances
+        ! --- reusable operators and previous state (warm start, u' and p' of transient steps) ---
+        type(fc_contact_operators) :: ops
+        type(fc_contact_state) :: prev
+        integer :: calculations = 0
+        ! --- result of the last calculation ---
+        logical :: has_result = .false.
+        type(fc_contact_result) :: result
         ! --- last error ---
         character(len=msg_len) :: message = ''
     end type legacy_state
@@ -207,8 +188,7 @@ contains
         type(legacy_state), pointer :: s
         call lookup(handle, 'fc_finalize', s, ierr)
         if (ierr /= FCL_OK) return
-        call s%nop%destroy()
-        call s%top%destroy()
+        call s%ops%destroy()
         deallocate (registry(handle)%s)
         registry(handle)%s => null()
         handle = 0
@@ -280,7 +260,7 @@ contains
             if (same_spacing(s%grid, g)) then
                 if (s%gap_kind == GAP_ARRAY .and. .not. same_area(s%grid, g)) s%gap_kind = GAP_NONE
             else
-                s%has_prev_n = .false.; s%has_prev_t = .false.
+                call s%prev%reset()
                 if (s%gap_kind == GAP_ARRAY) s%gap_kind = GAP_NONE
                 s%has_result = .false.
             end if
@@ -358,7 +338,7 @@ contains
             call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_normal_approach: approach = '//num(approach)// &
                 ' is not finite'); return
         end if
-        s%approach = approach; s%force_mode = .false.; s%has_normal = .true.
+        s%load%normal%approach = approach; s%load%normal%force_prescribed = .false.; s%has_normal = .true.
     end subroutine fc_set_normal_approach
 
     !> Prescribe the total normal force Fn > 0 [N].
@@ -372,7 +352,7 @@ contains
         if (.not. (fn > 0 .and. finite(fn))) then
             call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_normal_force: fn = '//num(fn)//' must be > 0'); return
         end if
-        s%fn = fn; s%force_mode = .true.; s%has_normal = .true.
+        s%load%normal%fn = fn; s%load%normal%force_prescribed = .true.; s%has_normal = .true.
     end subroutine fc_set_normal_force
 
     !> Coefficient of friction μ ≥ 0 (required before a tangential problem is solved).
@@ -386,7 +366,7 @@ contains
         if (.not. (mu >= 0 .and. finite(mu))) then
             call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_friction: mu = '//num(mu)//' must be >= 0'); return
         end if
-        s%mu = mu; s%has_friction = .true.
+        s%load%tangential%mu = mu; s%has_friction = .true.
     end subroutine fc_set_friction
 
     !> Prescribe the rigid shift (ξ, η) [mm] and spin φ [rad] of body 1 relative to body 2.
@@ -404,7 +384,8 @@ contains
             call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_shifts: xi = '//num(xi)//', eta = '//num(eta)//', phi = ' &
                 //num(phi)//' must be finite'); return
         end if
-        s%xi = xi; s%eta = eta; s%phi = phi; s%tang_kind = TANG_SHIFTS
+        s%load%tangential%xi = xi; s%load%tangential%eta = eta; s%load%tangential%phi = phi
+        s%load%tangential%force_prescribed = .false.; s%load%problem = FC_PROBLEM_TANGENTIAL
     end subroutine fc_set_shifts
 
     !> Prescribe the total tangential forces (Fx, Fy) [N] on body 1, |F| < μ·Fn, and the
@@ -421,7 +402,8 @@ contains
             call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_forces: fx = '//num(fx)//', fy = '//num(fy)//', phi = ' &
                 //num(phi)//' must be finite'); return
         end if
-        s%fx = fx; s%fy = fy; s%phi = phi; s%tang_kind = TANG_FORCES
+        s%load%tangential%fx = fx; s%load%tangential%fy = fy; s%load%tangential%phi = phi
+        s%load%tangential%force_prescribed = .true.; s%load%problem = FC_PROBLEM_TANGENTIAL
     end subroutine fc_set_forces
 
     !> Solver choice and tolerances.  normal_solver: 0 or 1 = BCCG, 2 = NORM; tangential_solver:
@@ -458,13 +440,15 @@ contains
             call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_solver: precondition = '//inum(precondition)// &
                 ' must be 0 or 1'); return
         end if
-        s%ns%solver = merge('norm    ', 'bccg    ', normal_solver == 2)
-        s%ts%solver = merge('convexgs', 'tangcg  ', tangential_solver == 2)
-        s%ns%tol = tol; s%ts%tol = tol
-        s%ns%maxit = maxit; s%ts%maxit = maxit
-        s%ts%inner_k = inner_k
-        s%ns%precondition = precondition == 1
-        s%ts%precondition = precondition == 1
+        associate (ns => s%settings%normal, ts => s%settings%tangential)
+            ns%solver = merge('norm    ', 'bccg    ', normal_solver == 2)
+            ts%solver = merge('convexgs', 'tangcg  ', tangential_solver == 2)
+            ns%tol = tol; ts%tol = tol
+            ns%maxit = maxit; ts%maxit = maxit
+            ts%inner_k = inner_k
+            ns%precondition = precondition == 1
+            ts%precondition = precondition == 1
+        end associate
     end subroutine fc_set_solver
 
     !> Transient mode: 0 from rest (u' = 0), 1 continue from the previous step's u' and p',
@@ -480,7 +464,11 @@ contains
             call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_transient: mode = '//inum(mode)// &
                 ' is not 0 (from rest), 1 (continue) or 2 (rolling)'); return
         end if
-        s%transient = mode
+        select case (mode)
+        case (FCL_CONTINUE); s%load%transient = FC_TRANSIENT_SHIFT
+        case (FCL_ROLLING);  s%load%transient = FC_TRANSIENT_ROLLING
+        case default;        s%load%transient = FC_FROM_REST
+        end select
     end subroutine fc_set_transient
 
     !> Rolling step dq [mm] of mode 2: the contact area moves by dq along +x relative to the
@@ -496,7 +484,7 @@ contains
         if (.not. finite(dq)) then
             call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_rolling_step: dq = '//num(dq)//' is not finite'); return
         end if
-        s%dq = dq
+        s%load%dq = dq
     end subroutine fc_set_rolling_step
 
     !> Reuse switches (both 1 by default): reuse_operators = 0 rebuilds kernels and FFT plans
@@ -513,8 +501,8 @@ contains
             call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_reuse: reuse_operators = '//inum(reuse_operators)// &
                 ', warm_start = '//inum(warm_start)//' must be 0 or 1'); return
         end if
-        s%reuse_operators = reuse_operators == 1
-        s%warm_start = warm_start == 1
+        s%ops%reuse = reuse_operators == 1
+        s%prev%warm_start = warm_start == 1
     end subroutine fc_set_reuse
 
     ! =====================================================================================
@@ -536,15 +524,9 @@ contains
     subroutine calculate(s, ierr)
         type(legacy_state), intent(inout) :: s
         integer(c_int), intent(out) :: ierr
-        real(dp), allocatable :: h0(:, :), uzt(:, :), uxn(:, :), uyn(:, :), uxp(:, :), uyp(:, :), pxs(:, :), pys(:, :)
-        real(dp), allocatable :: ox(:, :), oy(:, :), pn_old(:, :), px_old(:, :), py_old(:, :)
-        type(fc_normal_result) :: nres
-        type(fc_tangential_result) :: tres
-        type(fc_tangential_loading) :: load
-        integer :: stat, nx, ny, round
+        real(dp), allocatable :: h0(:, :)
+        integer :: stat
         character(len=msg_len) :: msg
-        logical :: tangential, coupled, lift_slip
-        real(dp) :: cx, cy, k0, a, dn, dt
         ierr = FCL_OK
         ! --- required data ---
         if (.not. s%has_material) then
@@ -561,209 +543,32 @@ contains
             call fail(s, ierr, FCL_ORDER, 'fc_calculate: normal loading not set (call fc_set_normal_force or '// &
                 'fc_set_normal_approach)'); return
         end if
-        tangential = s%tang_kind /= TANG_NONE
-        if (tangential .and. .not. s%has_friction) then
+        if (s%load%problem == FC_PROBLEM_TANGENTIAL .and. .not. s%has_friction) then
             call fail(s, ierr, FCL_ORDER, 'fc_calculate: shifts or forces set but no friction (call fc_set_friction)')
             return
         end if
-        nx = s%grid%nx; ny = s%grid%ny
         s%has_result = .false.
-        ! --- operators: rebuilt only when grid spacing or material changed ---
-        if (.not. s%reuse_operators) then
-            s%nop_ok = .false.; s%top_ok = .false.
-        end if
-        if (s%nop_ok) s%nop_ok = same_spacing(s%nop%grid, s%grid) .and. same_material(s%nop%material, s%mat)
-        if (.not. s%nop_ok) then
-            call build_normal_operator(s%nop, s%mat, s%grid)
-            s%rebuilds_normal = s%rebuilds_normal + 1
-            s%nop_ok = .true.
-        end if
-        s%nop%grid = s%grid
-        if (tangential) then
-            if (s%top_ok) s%top_ok = same_spacing(s%top%grid, s%grid) .and. same_material(s%top%material, s%mat)
-            if (.not. s%top_ok) then
-                call build_tangential_operator(s%top, s%mat, s%grid)
-                s%rebuilds_tangential = s%rebuilds_tangential + 1
-                s%top_ok = .true.
-            end if
-            s%top%grid = s%grid          ! coordinates of a moved area (same spacing)
-        end if
-        coupled = tangential .and. s%mat%k /= 0
-        ! --- undeformed distance ---
         if (s%gap_kind == GAP_QUADRATIC) then
             h0 = quadratic_gap(s%grid, s%rx, s%ry)
         else
             h0 = s%h0
         end if
-        allocate (uzt(nx, ny), uxn(nx, ny), uyn(nx, ny))
-        uzt = 0; uxn = 0; uyn = 0
-        ! --- previous state u', p' of the step ---
-        allocate (uxp(nx, ny), uyp(nx, ny), pxs(nx, ny), pys(nx, ny))
-        uxp = 0; uyp = 0; pxs = 0; pys = 0
-        lift_slip = .false.
-        if (tangential .and. s%has_prev_t) then
-            select case (s%transient)
-            case (FCL_CONTINUE)
-                uxp = s%ux_prev; uyp = s%uy_prev
-                pxs = s%px_prev; pys = s%py_prev
-            case (FCL_ROLLING)
-                call shift_along_x(s%ux_prev, s%dq/s%grid%dx, uxp)
-                call shift_along_x(s%uy_prev, s%dq/s%grid%dx, uyp)
-                call shift_along_x(s%px_prev, s%dq/s%grid%dx, pxs)
-                call shift_along_x(s%py_prev, s%dq/s%grid%dx, pys)
-            case default
-                if (s%warm_start) then
-                    pxs = s%px_prev; pys = s%py_prev
-                end if
-            end select
-            lift_slip = s%transient /= FCL_ROLLING .and. (s%warm_start .or. s%transient == FCL_CONTINUE)
+        ! --- the solve: operators reused while grid spacing and material match; the previous
+        !     state (warm start, u', p') advances only when every stage converged
+        call solve_contact(s%ops, s%grid, s%mat, h0, s%load, s%settings, s%result, stat, msg, state=s%prev)
+        if (stat /= 0) then
+            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_calculate: '//trim(msg)); return
         end if
-        if (s%transient == FCL_FROM_REST .and. .not. s%warm_start) then
-            pxs = 0; pys = 0
-        end if
-        ! --- normal (+ tangential) solve; Panagiotopoulos rounds only for K ≠ 0 ---
-        allocate (pn_old(nx, ny), px_old(nx, ny), py_old(nx, ny))
-        s%r_it_n = 0; s%r_it_t = 0
-        do round = 1, max_rounds
-            s%r_rounds = round
-            if (round == 1 .and. .not. (s%warm_start .and. s%has_prev_n)) then
-                call normal_solve(h0 + uzt)
-            else if (round == 1) then
-                call normal_solve(h0 + uzt, s%pn_prev)
-            else
-                pn_old = nres%pn
-                call normal_solve(h0 + uzt, pn_old)
-            end if
-            if (stat /= 0) then
-                call fail(s, ierr, FCL_INVALID_VALUE, 'fc_calculate: '//trim(msg)); return
-            end if
-            s%r_it_n = s%r_it_n + nres%iterations
-            if (nres%status /= FC_CONVERGED) exit
-            if (.not. tangential) exit
-            if (coupled) call coupling_displacements(s%top, nres%pn, pxs, pys, uxn, uyn, uzt)
-            if (round > 1) then
-                px_old = tres%px; py_old = tres%py
-            end if
-            if (round == 1 .and. lift_slip) call lift_slip_start(nres%pn)
-            ox = uxn; oy = uyn
-            if (s%tang_kind == TANG_SHIFTS) then
-                call solve_tangential(s%top, nres%pn, s%mu, s%ts, tres, stat, msg, s%xi, s%eta, s%phi, &
-                                      ux_prev=uxp, uy_prev=uyp, px_start=pxs, py_start=pys, offset_x=ox, offset_y=oy)
-                cx = 0; cy = 0
-            else
-                ! Start the force loop from the predicted shift: the previous shift (mode 0) or
-                ! zero increment (modes 1, 2) corrected by the force change over the initial
-                ! stiffness k0 = 8Ga/(2−ν).  The library's loop starts at −F/k0, so the guess
-                ! enters as a constant slip offset c and the shift used is ξ + c.
-                a = sqrt(count(nres%pn > 0)*s%grid%area()/pi)
-                k0 = 8*s%mat%g*a/(2 - s%mat%nu)
-                if (s%transient == FCL_FROM_REST .and. s%has_prev_t .and. s%warm_start) then
-                    cx = s%xi_prev - (s%fx - s%fx_prev)/k0 + s%fx/k0
-                    cy = s%eta_prev - (s%fy - s%fy_prev)/k0 + s%fy/k0
-                else if (s%transient /= FCL_FROM_REST .and. s%has_prev_t) then
-                    cx = -(s%fx - s%fx_prev)/k0 + s%fx/k0
-                    cy = -(s%fy - s%fy_prev)/k0 + s%fy/k0
-                else
-                    cx = 0; cy = 0
-                end if
-                ox = ox + cx; oy = oy + cy
-                load%mu = s%mu; load%fx = s%fx; load%fy = s%fy; load%phi = s%phi; load%force_prescribed = .true.
-                call solve_tangential_loading(s%top, nres%pn, load, s%ts, tres, stat, msg, ux_prev=uxp, uy_prev=uyp, &
-                                              px_start=pxs, py_start=pys, offset_x=ox, offset_y=oy)
-            end if
-            if (stat /= 0) then
-                call fail(s, ierr, FCL_INVALID_VALUE, 'fc_calculate: '//trim(msg)); return
-            end if
-            tres%xi = tres%xi + cx; tres%eta = tres%eta + cy
-            s%r_it_t = s%r_it_t + tres%iterations
-            if (.not. coupled .or. tres%status /= FC_CONVERGED) exit
-            pxs = tres%px; pys = tres%py
-            call coupling_displacements(s%top, nres%pn, tres%px, tres%py, uxn, uyn, uzt)
-            if (round > 1) then
-                dn = sqrt(sum((nres%pn - pn_old)**2)/max(sum(nres%pn**2), tiny(1.0_dp)))
-                dt = sqrt(sum((tres%px - px_old)**2 + (tres%py - py_old)**2)/max(sum(tres%px**2 + tres%py**2), tiny(1.0_dp)))
-                if (max(dn, dt) < 10*max(s%ns%tol, s%ts%tol)) exit
-            end if
-            if (round == max_rounds) then
-                tres%status = FC_NOT_CONVERGED
-                tres%message = 'Panagiotopoulos process not converged in 50 rounds'
-            end if
-        end do
         s%calculations = s%calculations + 1
-        ! --- results ---
-        s%pn = nres%pn; s%gap = nres%gap
-        s%r_fn = nres%fn; s%r_approach = nres%approach; s%r_pmax = nres%pmax
-        s%tang_solved = tangential .and. allocated(tres%px)
-        if (s%tang_solved) then
-            s%px = tres%px; s%py = tres%py; s%sx = tres%sx; s%sy = tres%sy
-            s%status = tres%state
-            s%r_fx = tres%fx; s%r_fy = tres%fy; s%r_mz = tres%mz
-            s%r_xi = tres%xi; s%r_eta = tres%eta; s%r_phi = tres%phi
-            s%r_ncon = tres%ncon; s%r_nadh = tres%nadh; s%r_nslip = tres%nslip
-        else
-            ! no tangential loading: zero tractions, full adhesion is the exact solution
-            s%px = 0*nres%pn; s%py = s%px; s%sx = s%px; s%sy = s%px
-            s%status = merge(EL_ADHESION, EL_EXTERIOR, nres%pn > 0)
-            s%r_fx = 0; s%r_fy = 0; s%r_mz = 0; s%r_xi = 0; s%r_eta = 0; s%r_phi = 0
-            s%r_ncon = nres%ncon; s%r_nadh = nres%ncon; s%r_nslip = 0
-        end if
         s%has_result = .true.
-        if (nres%status /= FC_CONVERGED) then
-            call fail(s, ierr, status_code(nres%status), 'fc_calculate: normal problem: '//trim(nres%message))
-            return
+        if (s%result%normal%status /= FC_CONVERGED) then
+            call fail(s, ierr, status_code(s%result%normal%status), 'fc_calculate: normal problem: '// &
+                trim(s%result%normal%message))
+        else if (s%result%tangential_run .and. s%result%tangential%status /= FC_CONVERGED) then
+            call fail(s, ierr, status_code(s%result%tangential%status), 'fc_calculate: tangential problem: '// &
+                trim(s%result%tangential%message))
         end if
-        if (s%tang_solved) then
-            if (tres%status /= FC_CONVERGED) then
-                call fail(s, ierr, status_code(tres%status), 'fc_calculate: tangential problem: '//trim(tres%message))
-                return
-            end if
-        end if
-        ! --- advance the previous state ---
-        s%pn_prev = nres%pn; s%has_prev_n = .true.
-        if (s%tang_solved) then
-            s%px_prev = tres%px; s%py_prev = tres%py; s%st_prev = tres%state
-            s%ux_prev = tres%ux + uxn; s%uy_prev = tres%uy + uyn
-            s%xi_prev = tres%xi; s%eta_prev = tres%eta
-            s%fx_prev = tres%fx; s%fy_prev = tres%fy
-            s%has_prev_t = .true.
-        end if
-    contains
-        !> Warm start: elements that slipped in the previous state start on the new traction
-        !! bound (slightly outside, so that TangCG starts them in slip) in their previous
-        !! direction; without this a converged start loses its subdivision to rounding.
-        subroutine lift_slip_start(pn)
-            real(dp), intent(in) :: pn(:, :)
-            real(dp), allocatable :: mag(:, :)
-            mag = hypot(pxs, pys)
-            where (s%st_prev == EL_SLIP .and. mag > 0 .and. pn > 0)
-                pxs = (1 + 1e-10_dp)*s%mu*pn*pxs/mag
-                pys = (1 + 1e-10_dp)*s%mu*pn*pys/mag
-            end where
-        end subroutine lift_slip_start
-
-        subroutine normal_solve(h, p_start)
-            real(dp), intent(in) :: h(:, :)
-            real(dp), intent(in), optional :: p_start(:, :)
-            real(dp), allocatable :: p0(:, :)
-            if (s%force_mode) then
-                if (present(p_start)) then
-                    ! fc_norm keeps the sum of a warm start in force mode: scale it to Fn
-                    p0 = max(p_start, 0.0_dp)
-                    if (sum(p0) > 0) p0 = p0*(s%fn/(sum(p0)*s%grid%area()))
-                    call solve_normal(s%nop, h, s%ns, nres, stat, msg, fn=s%fn, p_start=p0)
-                else
-                    call solve_normal(s%nop, h, s%ns, nres, stat, msg, fn=s%fn)
-                end if
-            else
-                call solve_normal(s%nop, h, s%ns, nres, stat, msg, approach=s%approach, p_start=p_start)
-            end if
-        end subroutine normal_solve
     end subroutine calculate
-
-    pure logical function same_material(a, b)
-        type(fc_material), intent(in) :: a, b
-        same_material = a%g == b%g .and. a%nu == b%nu .and. a%k == b%k
-    end function same_material
 
     pure integer(c_int) function status_code(status)
         integer, intent(in) :: status
@@ -774,27 +579,6 @@ contains
         case default; status_code = FCL_INTERNAL
         end select
     end function status_code
-
-    !> g(i, j) = f at x_i + shift·dx: linear interpolation between element centres along x;
-    !! samples beyond the grid are 0 (undeformed material enters the area).  A whole-element
-    !! shift moves values exactly.
-    pure subroutine shift_along_x(f, shift, g)
-        real(dp), intent(in) :: f(:, :)
-        real(dp), intent(in) :: shift   !! shift in elements (dq/dx)
-        real(dp), intent(out) :: g(:, :)
-        integer :: i, k, nx, i0
-        real(dp) :: w
-        nx = size(f, 1)
-        g = 0
-        if (.not. abs(shift) < nx + 1) return
-        k = floor(shift)
-        w = shift - k
-        do i = 1, nx
-            i0 = i + k
-            if (i0 >= 1 .and. i0 <= nx) g(i, :) = g(i, :) + (1 - w)*f(i0, :)
-            if (w > 0 .and. i0 + 1 >= 1 .and. i0 + 1 <= nx) g(i, :) = g(i, :) + w*f(i0 + 1, :)
-        end do
-    end subroutine shift_along_x
 
     ! =====================================================================================
     ! results
@@ -831,7 +615,7 @@ contains
         fn = 0; fx = 0; fy = 0; mz = 0
         call lookup_result(handle, 'fc_get_forces', s, ierr)
         if (ierr /= FCL_OK) return
-        fn = s%r_fn; fx = s%r_fx; fy = s%r_fy; mz = s%r_mz
+        fn = s%result%normal%fn; fx = s%result%tangential%fx; fy = s%result%tangential%fy; mz = s%result%tangential%mz
     end subroutine fc_get_forces
 
     !> Approach δ [mm] (prescribed or found for the prescribed force).
@@ -843,7 +627,7 @@ contains
         approach = 0
         call lookup_result(handle, 'fc_get_approach', s, ierr)
         if (ierr /= FCL_OK) return
-        approach = s%r_approach
+        approach = s%result%normal%approach
     end subroutine fc_get_approach
 
     !> Maximum pressure [N/mm²].
@@ -855,7 +639,7 @@ contains
         pmax = 0
         call lookup_result(handle, 'fc_get_pmax', s, ierr)
         if (ierr /= FCL_OK) return
-        pmax = s%r_pmax
+        pmax = s%result%normal%pmax
     end subroutine fc_get_pmax
 
     !> Rigid shift (ξ, η, φ) actually used, also when forces are prescribed (transient
@@ -868,7 +652,7 @@ contains
         xi = 0; eta = 0; phi = 0
         call lookup_result(handle, 'fc_get_shifts', s, ierr)
         if (ierr /= FCL_OK) return
-        xi = s%r_xi; eta = s%r_eta; phi = s%r_phi
+        xi = s%result%tangential%xi; eta = s%result%tangential%eta; phi = s%result%tangential%phi
     end subroutine fc_get_shifts
 
     !> Elements in contact, in adhesion and in slip.
@@ -880,7 +664,12 @@ contains
         ncon = 0; nadh = 0; nslip = 0
         call lookup_result(handle, 'fc_get_contact_stats', s, ierr)
         if (ierr /= FCL_OK) return
-        ncon = s%r_ncon; nadh = s%r_nadh; nslip = s%r_nslip
+        if (allocated(s%result%tangential%state)) then
+            ncon = s%result%tangential%ncon; nadh = s%result%tangential%nadh; nslip = s%result%tangential%nslip
+        else
+            ! no tangential loading: zero tractions, full adhesion is the exact solution
+            ncon = s%result%normal%ncon; nadh = ncon; nslip = 0
+        end if
     end subroutine fc_get_contact_stats
 
     !> Pressure and tangential tractions [N/mm²] per element (x fastest).
@@ -896,7 +685,12 @@ contains
         call check_size(s, 'fc_get_tractions', n, ierr)
         if (ierr /= FCL_OK) return
         m = s%grid%n()
-        pn(1:m) = reshape(s%pn, [m]); px(1:m) = reshape(s%px, [m]); py(1:m) = reshape(s%py, [m])
+        pn(1:m) = reshape(s%result%normal%pn, [m])
+        if (allocated(s%result%tangential%px)) then
+            px(1:m) = reshape(s%result%tangential%px, [m]); py(1:m) = reshape(s%result%tangential%py, [m])
+        else
+            px(1:m) = 0; py(1:m) = 0
+        end if
     end subroutine fc_get_tractions
 
     !> Slip s = w + u − u' [mm] per element (0 outside the contact area).
@@ -912,7 +706,11 @@ contains
         call check_size(s, 'fc_get_slip', n, ierr)
         if (ierr /= FCL_OK) return
         m = s%grid%n()
-        sx(1:m) = reshape(s%sx, [m]); sy(1:m) = reshape(s%sy, [m])
+        if (allocated(s%result%tangential%sx)) then
+            sx(1:m) = reshape(s%result%tangential%sx, [m]); sy(1:m) = reshape(s%result%tangential%sy, [m])
+        else
+            sx(1:m) = 0; sy(1:m) = 0
+        end if
     end subroutine fc_get_slip
 
     !> Deformed distance e = h0 − δ + A p [mm] per element (1e20 where contact is excluded).
@@ -928,7 +726,7 @@ contains
         call check_size(s, 'fc_get_gap', n, ierr)
         if (ierr /= FCL_OK) return
         m = s%grid%n()
-        gap(1:m) = reshape(s%gap, [m])
+        gap(1:m) = reshape(s%result%normal%gap, [m])
     end subroutine fc_get_gap
 
     !> Element status: 0 exterior, 1 adhesion, 2 slip.
@@ -944,7 +742,11 @@ contains
         call check_size(s, 'fc_get_status_array', n, ierr)
         if (ierr /= FCL_OK) return
         m = s%grid%n()
-        status(1:m) = int(reshape(s%status, [m]), c_int)
+        if (allocated(s%result%tangential%state)) then
+            status(1:m) = int(reshape(s%result%tangential%state, [m]), c_int)
+        else
+            status(1:m) = int(reshape(merge(EL_ADHESION, EL_EXTERIOR, s%result%normal%pn > 0), [m]), c_int)
+        end if
     end subroutine fc_get_status_array
 
     !> Iterations of the last calculation: normal (BCCG iterations / NORM inner CG steps)
@@ -958,7 +760,7 @@ contains
         it_normal = 0; it_tangential = 0
         call lookup_result(handle, 'fc_get_iterations', s, ierr)
         if (ierr /= FCL_OK) return
-        it_normal = s%r_it_n; it_tangential = s%r_it_t
+        it_normal = s%result%normal%iterations; it_tangential = s%result%tangential%iterations
     end subroutine fc_get_iterations
 
     !> Reuse counters: operator builds (normal, tangential) and calculations on this handle.
@@ -970,7 +772,7 @@ contains
         n_normal = 0; n_tangential = 0; n_calculations = 0
         call lookup(handle, 'fc_get_rebuilds', s, ierr)
         if (ierr /= FCL_OK) return
-        n_normal = s%rebuilds_normal; n_tangential = s%rebuilds_tangential; n_calculations = s%calculations
+        n_normal = s%ops%builds_normal; n_tangential = s%ops%builds_tangential; n_calculations = s%calculations
     end subroutine fc_get_rebuilds
 
     !> Grid size of the handle (to size result arrays).

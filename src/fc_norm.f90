@@ -49,6 +49,7 @@ module fc_norm
         real(dp) :: setup_seconds = 0
     contains
         procedure :: destroy => normal_operator_destroy
+        procedure :: matches => normal_operator_matches
     end type fc_normal_operator
 
     !> Result of a normal solve.
@@ -96,6 +97,17 @@ contains
         call system_clock(t1)
         nop%setup_seconds = real(t1 - t0, dp)/rate
     end subroutine build_normal_operator
+
+    !> Whether the built operator serves `grid` and `material`: same element count and size
+    !! (relative 1e−12; the position of the area does not matter) and the same G and ν.
+    pure logical function normal_operator_matches(self, grid, material) result(ok)
+        class(fc_normal_operator), intent(in) :: self
+        type(fc_grid), intent(in) :: grid
+        type(fc_material), intent(in) :: material
+        ok = self%a_zz%built() .and. self%grid%nx == grid%nx .and. self%grid%ny == grid%ny .and. &
+            abs(self%grid%dx - grid%dx) <= 1e-12_dp*grid%dx .and. abs(self%grid%dy - grid%dy) <= 1e-12_dp*grid%dy &
+            .and. self%material%g == material%g .and. self%material%nu == material%nu
+    end function normal_operator_matches
 
     subroutine normal_operator_destroy(self)
         class(fc_normal_operator), intent(inout) :: self

@@ -26,7 +26,6 @@ module fc_tangcg
     use fc_kinds
     use fc_geometry, only: fc_grid
     use fc_influence
-    use fc_norm
     implicit none
     private
 
@@ -55,6 +54,7 @@ module fc_tangcg
         procedure :: apply => tangential_apply
         procedure :: destroy => tangential_destroy
         procedure :: coupled => tangential_coupled
+        procedure :: matches => tangential_matches
     end type fc_tangential_operator
 
     !> Result of a tangential solve.
@@ -88,7 +88,7 @@ module fc_tangcg
     end type fc_tangential_loading
 
     public :: build_tangential_operator, solve_tangential, coupling_displacements
-    public :: solve_tangential_loading, solve_normal_tangential
+    public :: solve_tangential_loading
 
 contains
 
@@ -124,6 +124,17 @@ contains
         call self%a_zx%destroy(); call self%a_zy%destroy()
         if (allocated(self%spec_x)) deallocate (self%spec_x, self%spec_y, self%work)
     end subroutine tangential_destroy
+
+    !> Whether the built blocks serve `grid` and `material`: same element count and size
+    !! (relative 1e−12) and the same G, ν and K (K decides the coupling blocks).
+    pure logical function tangential_matches(self, grid, material) result(ok)
+        class(fc_tangential_operator), intent(in) :: self
+        type(fc_grid), intent(in) :: grid
+        type(fc_material), intent(in) :: material
+        ok = self%a_xx%built() .and. self%grid%nx == grid%nx .and. self%grid%ny == grid%ny .and. &
+            abs(self%grid%dx - grid%dx) <= 1e-12_dp*grid%dx .and. abs(self%grid%dy - grid%dy) <= 1e-12_dp*grid%dy &
+            .and. self%material%g == material%g .and. self%material%nu == material%nu .and. self%material%k == material%k
+    end function tangential_matches
 
     !> True when the normal and tangential problems are coupled (K ≠ 0).
     pure logical function tangential_coupled(self)
@@ -351,84 +362,6 @@ contains
         type(fc_tangential_result), intent(inout) :: to
         to = from
     end subroutine move_alloc_result
-
-    !> Normal and tangential problems together.  Quasi-identical bodies (K = 0): one normal
-    !! and one tangential solve.  Dissimilar bodies: Panagiotopoulos process — alternate
-    !! normal solves (with the normal displacement A^zx·px + A^zy·py of the current
-    !! tangential tractions) and tangential solves (with the tangential displacement A^xz·pn
-    !! of the current pressure) until pressure and tractions change by less than 10·tol
-    !! (relative RMS), at most 50 rounds.  `approach` or `fn` as in [[solve_normal]].
-    subroutine solve_normal_tangential(nop, top, h0, nsettings, tsettings, load, nres, tres, stat, errmsg, &
-                                       approach, fn, rounds, p_start, px_start, py_start)
-        type(fc_normal_operator), intent(inout) :: nop
-        type(fc_tangential_operator), intent(inout) :: top
-        real(dp), intent(in) :: h0(:, :)
-        type(fc_normal_settings), intent(in) :: nsettings
-        type(fc_tangential_settings), intent(in) :: tsettings
-        type(fc_tangential_loading), intent(in) :: load
-        type(fc_normal_result), intent(out) :: nres
-        type(fc_tangential_result), intent(out) :: tres
-        integer, intent(out) :: stat
-        character(len=*), intent(out) :: errmsg
-        real(dp), intent(in), optional :: approach, fn
-        integer, intent(out), optional :: rounds   !! Panagiotopoulos rounds done (1 when K = 0)
-        real(dp), intent(in), optional :: p_start(:, :), px_start(:, :), py_start(:, :)  !! warm start
-        real(dp), allocatable :: uxn(:, :), uyn(:, :), uzt(:, :), pn_old(:, :), px_old(:, :), py_old(:, :)
-        type(fc_normal_result) :: nprev
-        integer :: round, nx, ny, it_n, it_t, mv_n, mv_t, out_t
-        real(dp) :: dn, dt, cpu_n, cpu_t
-        nx = size(h0, 1); ny = size(h0, 2)
-        allocate (uxn(nx, ny), uyn(nx, ny), uzt(nx, ny), pn_old(nx, ny), px_old(nx, ny), py_old(nx, ny))
-        uzt = 0; uxn = 0; uyn = 0
-        it_n = 0; it_t = 0; mv_n = 0; mv_t = 0; out_t = 0; cpu_n = 0; cpu_t = 0
-        do round = 1, 50
-            if (round == 1) then
-                call solve_normal(nop, h0 + uzt, nsettings, nres, stat, errmsg, approach=approach, fn=fn, p_start=p_start)
-            else
-                nprev = nres
-                call solve_normal(nop, h0 + uzt, nsettings, nres, stat, errmsg, approach=approach, fn=fn, &
-                                  p_start=nprev%pn)
-            end if
-            if (stat /= 0) return
-            it_n = it_n + nres%iterations; mv_n = mv_n + nres%matvecs; cpu_n = cpu_n + nres%cpu_seconds
-            if (nres%status /= FC_CONVERGED) exit
-            if (top%coupled()) then
-                if (round == 1) then
-                    call coupling_displacements(top, nres%pn, 0*h0, 0*h0, uxn, uyn, uzt)
-                else
-                    call coupling_displacements(top, nres%pn, tres%px, tres%py, uxn, uyn, uzt)
-                end if
-            end if
-            if (round == 1) then
-                call solve_tangential_loading(top, nres%pn, load, tsettings, tres, stat, errmsg, &
-                                              px_start=px_start, py_start=py_start, offset_x=uxn, offset_y=uyn)
-            else
-                px_old = tres%px; py_old = tres%py
-                call solve_tangential_loading(top, nres%pn, load, tsettings, tres, stat, errmsg, &
-                                              px_start=px_old, py_start=py_old, offset_x=uxn, offset_y=uyn)
-            end if
-            if (stat /= 0) return
-            it_t = it_t + tres%iterations; mv_t = mv_t + tres%matvecs; cpu_t = cpu_t + tres%cpu_seconds
-            out_t = out_t + tres%outer_iterations
-            if (.not. top%coupled()) exit
-            if (tres%status /= FC_CONVERGED) exit
-            call coupling_displacements(top, nres%pn, tres%px, tres%py, uxn, uyn, uzt)
-            if (round > 1) then
-                dn = sqrt(sum((nres%pn - pn_old)**2)/max(sum(nres%pn**2), tiny(1.0_dp)))
-                dt = sqrt(sum((tres%px - px_old)**2 + (tres%py - py_old)**2)/max(sum(tres%px**2 + tres%py**2), tiny(1.0_dp)))
-                if (max(dn, dt) < 10*max(nsettings%tol, tsettings%tol)) exit
-            end if
-            pn_old = nres%pn
-            if (round == 50) then
-                tres%status = FC_NOT_CONVERGED
-                tres%message = 'Panagiotopoulos process not converged in 50 rounds'
-            end if
-        end do
-        if (present(rounds)) rounds = min(round, 50)
-        nres%iterations = it_n; nres%matvecs = mv_n; nres%cpu_seconds = cpu_n
-        tres%iterations = it_t; tres%matvecs = mv_t; tres%cpu_seconds = cpu_t
-        tres%outer_iterations = out_t
-    end subroutine solve_normal_tangential
 
     !> Forces, moment and element counts of a tangential solution.
     subroutine tangential_summary(grid, res)

@@ -2,6 +2,7 @@
 !! Ends with the line `N passed, N failed` and a non-zero exit status on any failure.
 program tester
     use fc_testing, only: run_suite, unittest_type
+    use test_contact, only: collect_contact
     use test_influence, only: collect_influence
     use test_hertz, only: collect_hertz
     use test_normal, only: collect_normal
@@ -54,6 +55,9 @@ program tester
     end if
     if (want('stability')) then
         call collect_stability(tests); call run_suite('stability', tests, only, npass, nfail)
+    end if
+    if (want('contact')) then
+        call collect_contact(tests); call run_suite('contact', tests, only, npass, nfail)
     end if
     if (want('auto')) then
         call collect_auto(tests); call run_suite('auto', tests, only, npass, nfail)

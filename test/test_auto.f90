@@ -7,8 +7,7 @@ module test_auto
     use fc_kinds, only: dp, msg_len, pi
     use fc_testing, only: error_type, unittest_type, new_unittest, check
     use fc_input, only: fc_case_input, fc_case_chunk, read_case_file, apply_case, validate_case, namelist_keys
-    use fc_norm, only: fc_normal_operator
-    use fc_tangcg, only: fc_tangential_operator
+    use fc_contact, only: fc_contact_operators
     use fc_hertz, only: fc_hertz_solution, hertz_from_approach, hertz_from_force
     use fc_auto, only: fc_auto_outcome, solve_case_auto, richardson_estimate, plane_strain_hertz
     use fc_driver, only: run_driver
@@ -75,8 +74,7 @@ contains
         type(error_type), allocatable, intent(inout) :: error
         type(fc_case_chunk), allocatable :: cases(:)
         type(fc_case_input) :: state
-        type(fc_normal_operator) :: nop
-        type(fc_tangential_operator) :: top
+        type(fc_contact_operators) :: ops
         character(len=64) :: name
         character(len=msg_len) :: msg
         integer :: u, stat, k
@@ -95,10 +93,9 @@ contains
         call validate_case(state, stat, msg)
         call check(error, stat == 0, 'validate: '//trim(msg))
         if (allocated(error)) return
-        call solve_case_auto(state, nop, top, out, stat, msg)
+        call solve_case_auto(state, ops, out, stat, msg)
         call check(error, stat == 0, 'solve: '//trim(msg))
-        call nop%destroy()
-        call top%destroy()
+        call ops%destroy()
     end subroutine solve_text
 
     !> "N²" for a square grid of N elements per side.

@@ -8,6 +8,7 @@ module test_legacy
     use fc_tangcg
     use fc_hertz
     use fc_legacy
+    use fc_contact, only: solve_normal_tangential
     use fc_driver, only: run_driver
     use fc_testing
     implicit none

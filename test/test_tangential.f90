@@ -5,6 +5,7 @@ module test_tangential
     use fc_influence
     use fc_norm
     use fc_tangcg
+    use fc_contact, only: solve_normal_tangential
     use fc_hertz
     use fc_testing
     implicit none

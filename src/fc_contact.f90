@@ -1,0 +1,491 @@
+!> One orchestrator for every contact solve: normal, tangential, coupled (Panagiotopoulos
+!! process for dissimilar materials, K ≠ 0) and transient sequences (shift or rolling steps).
+!!
+!! The batch driver (through [[fc_auto]]), the flat API ([[fc_legacy_api]]) and the
+!! `fastcontact` facade all call [[solve_contact]]; nothing else runs the
+!! normal + tangential loop.  Its pieces:
+!!
+!! * [[fc_contact_loading]]: what is prescribed — the problem kind (normal, tangential), the
+!!   [[fc_normal_loading]] (approach or total force, optional warm start), the
+!!   [[fc_tangential_loading]] (friction, shifts or forces, spin), the transient mode.
+!! * [[fc_contact_operators]]: the influence operators of one grid and material, built in one
+!!   place ([[ensure_operators]]) and reused while [[fc_normal_operator]]'s and
+!!   [[fc_tangential_operator]]'s `matches(grid, material)` hold.
+!! * [[fc_contact_state]]: the previous solution of a sequence of calls — warm start and,
+!!   in the transient modes, the previous displacements u' and tractions p' of the step.
+!! * [[fc_contact_result]]: the normal and tangential results and the process counters.
+!!
+!! Coupling (thesis §4.4): with K ≠ 0 the normal displacement A^zx·px + A^zy·py of the
+!! tangential tractions enters the normal problem and the tangential displacement A^xz·pn of
+!! the pressure enters the slip.  Rounds alternate normal and tangential solves until
+!! pressure and tractions change by less than 10·max(tol_n, tol_t) (relative RMS), at most
+!! [[max_rounds]] rounds.  With K = 0 one normal and one tangential solve.
+module fc_contact
+    use fc_kinds, only: dp, pi, FC_CONVERGED, FC_NOT_CONVERGED, FC_ERROR
+    use fc_geometry, only: fc_grid, h_no_contact
+    use fc_influence, only: fc_material
+    use fc_norm, only: fc_normal_operator, fc_normal_settings, fc_normal_result, build_normal_operator, solve_normal
+    use fc_tangcg, only: fc_tangential_operator, fc_tangential_settings, fc_tangential_result, fc_tangential_loading, &
+        build_tangential_operator, solve_tangential_loading, coupling_displacements, EL_EXTERIOR, EL_ADHESION, EL_SLIP
+    use fc_fmg, only: fc_fmg_settings, fc_fmg_stats, fc_surface, solve_normal_fmg
+    implicit none
+    private
+
+    !> Problem kinds: what the tangential stage solves (one dispatch point in [[tangential_stage]]).
+    integer, parameter, public :: FC_PROBLEM_NORMAL = 1      !! normal contact only
+    integer, parameter, public :: FC_PROBLEM_TANGENTIAL = 2  !! normal, then tangential (shifts or forces)
+
+    !> Transient modes: how the previous state of a sequence enters the step.
+    integer, parameter, public :: FC_FROM_REST = 0          !! u' = 0: a steady (static) problem; warm start only
+    integer, parameter, public :: FC_TRANSIENT_SHIFT = 1    !! u', p' = previous step (shift sequence)
+    integer, parameter, public :: FC_TRANSIENT_ROLLING = 2  !! u', p' = previous step moved by the rolling step dq
+
+    integer, parameter, public :: max_rounds = 50  !! most Panagiotopoulos rounds
+
+    !> Normal loading: prescribed approach δ or total force Fn, and an optional start pressure.
+    type, public :: fc_normal_loading
+        logical :: force_prescribed = .false.   !! .true.: fn, else approach
+        real(dp) :: approach = 0                !! prescribed approach δ [mm]
+        real(dp) :: fn = 0                      !! prescribed total normal force [N]
+        real(dp), allocatable :: p_start(:, :)  !! warm start [N/mm²] (zeroed where contact is impossible)
+    end type fc_normal_loading
+
+    !> Everything prescribed for one solve.
+    type, public :: fc_contact_loading
+        integer :: problem = FC_PROBLEM_NORMAL            !! FC_PROBLEM_NORMAL or FC_PROBLEM_TANGENTIAL
+        type(fc_normal_loading) :: normal                 !! approach or force
+        type(fc_tangential_loading) :: tangential         !! friction, shifts or forces, spin
+        real(dp), allocatable :: px_start(:, :), py_start(:, :)  !! tangential warm start [N/mm²] (both or none)
+        integer :: transient = FC_FROM_REST               !! how a [[fc_contact_state]] enters the step
+        real(dp) :: dq = 0                                !! rolling step [mm] (FC_TRANSIENT_ROLLING)
+    end type fc_contact_loading
+
+    !> Solver settings of both stages.
+    type, public :: fc_contact_settings
+        type(fc_normal_settings) :: normal          !! solver 'bccg', 'norm' or 'fmg'
+        type(fc_tangential_settings) :: tangential  !! solver 'tangcg' or 'convexgs'
+        type(fc_fmg_settings) :: fmg                !! used when normal%solver = 'fmg'
+    end type fc_contact_settings
+
+    !> Influence operators of one grid and material, reused while they match.
+    type, public :: fc_contact_operators
+        type(fc_normal_operator) :: normal          !! A^zz and its preconditioner
+        type(fc_tangential_operator) :: tangential  !! tangential (and coupling) blocks
+        logical :: reuse = .true.                   !! .false.: rebuild at every solve (checks, benchmarks)
+        integer :: builds_normal = 0                !! normal operator builds so far
+        integer :: builds_tangential = 0            !! tangential operator builds so far
+        real(dp) :: setup_seconds_normal = 0        !! set-up time of the last [[ensure_operators]] (0: reused)
+        real(dp) :: setup_seconds_tangential = 0    !! same for the tangential operator
+    contains
+        procedure :: destroy => operators_destroy
+    end type fc_contact_operators
+
+    !> Previous solution of a sequence of solves.
+    type, public :: fc_contact_state
+        logical :: warm_start = .true.              !! start from the previous solution
+        logical :: has_normal = .false.             !! pn holds a converged previous pressure
+        logical :: has_tangential = .false.         !! px … fy hold a converged previous tangential state
+        real(dp), allocatable :: pn(:, :)           !! previous pressure [N/mm²]
+        real(dp), allocatable :: px(:, :), py(:, :) !! previous tractions p' [N/mm²]
+        real(dp), allocatable :: ux(:, :), uy(:, :) !! previous tangential displacement differences u' [mm]
+        integer, allocatable :: el(:, :)            !! previous element states
+        real(dp) :: xi = 0, eta = 0                 !! previous shift [mm]
+        real(dp) :: fx = 0, fy = 0                  !! previous tangential forces [N]
+    contains
+        procedure :: reset => state_reset
+    end type fc_contact_state
+
+    !> Result of [[solve_contact]].
+    type, public :: fc_contact_result
+        type(fc_normal_result) :: normal            !! pressure, gap, approach, force (iterations: all rounds)
+        !> tractions, slip, states (iterations: all rounds); unallocated for a normal problem;
+        !! when the normal stage of a tangential problem failed: zero tractions and slip,
+        !! adhesion where pn > 0
+        type(fc_tangential_result) :: tangential
+        logical :: tangential_run = .false.         !! the tangential stage was solved
+        integer :: rounds = 0                       !! Panagiotopoulos rounds (0 for a normal problem)
+        integer :: status = FC_ERROR                !! worst status of the stages run
+        real(dp) :: setup_seconds_normal = 0        !! operator set-up of this solve (0: reused)
+        real(dp) :: setup_seconds_tangential = 0
+        real(dp) :: work_units = -1                 !! FMG: thesis work units (−1: not FMG)
+        real(dp) :: convergence_factor = -1         !! FMG: convergence factor (−1: not FMG)
+    end type fc_contact_result
+
+    public :: solve_contact, ensure_operators, solve_normal_tangential, shift_along_x, fc_tangential_loading
+
+contains
+
+    !> Build the operators needed for `grid` and `material` unless the stored ones match;
+    !! the stored grid is updated to `grid` (same spacing: a moved area keeps its operators).
+    subroutine ensure_operators(ops, grid, material, normal, tangential)
+        type(fc_contact_operators), intent(inout) :: ops
+        type(fc_grid), intent(in) :: grid
+        type(fc_material), intent(in) :: material
+        logical, intent(in) :: normal, tangential   !! which operators are needed
+        ops%setup_seconds_normal = 0; ops%setup_seconds_tangential = 0
+        if (normal) then
+            if (.not. (ops%reuse .and. ops%normal%matches(grid, material))) then
+                call build_normal_operator(ops%normal, material, grid)
+                ops%builds_normal = ops%builds_normal + 1
+                ops%setup_seconds_normal = ops%normal%setup_seconds
+            end if
+            ops%normal%grid = grid
+        end if
+        if (tangential) then
+            if (.not. (ops%reuse .and. ops%tangential%matches(grid, material))) then
+                call build_tangential_operator(ops%tangential, material, grid)
+                ops%builds_tangential = ops%builds_tangential + 1
+                ops%setup_seconds_tangential = ops%tangential%setup_seconds
+            end if
+            ops%tangential%grid = grid
+        end if
+    end subroutine ensure_operators
+
+    subroutine operators_destroy(self)
+        class(fc_contact_operators), intent(inout) :: self
+        call self%normal%destroy()
+        call self%tangential%destroy()
+    end subroutine operators_destroy
+
+    !> Forget the previous solution (keeps `warm_start`).
+    subroutine state_reset(self)
+        class(fc_contact_state), intent(inout) :: self
+        self%has_normal = .false.; self%has_tangential = .false.
+    end subroutine state_reset
+
+    !> Solve one contact problem on `grid` with undeformed distance `h0` [mm] (without the
+    !! approach).  Operators in `ops` are built or reused.  With `state`, the previous
+    !! solution warm-starts the solve (`state%warm_start`) and, in the transient modes of
+    !! `load%transient`, is the previous state u', p' of the step; `state` advances when every
+    !! stage converged.  An explicit start in `load` wins over the state's.  FMG
+    !! (`settings%normal%solver = 'fmg'`) solves the normal stage from its own nested
+    !! iteration; `surface` gives it h0 on the coarse grids.  stat ≠ 0: invalid input (no
+    !! result); a solver that does not converge returns stat = 0 and its status.
+    subroutine solve_contact(ops, grid, material, h0, load, settings, res, stat, errmsg, state, surface)
+        type(fc_contact_operators), intent(inout) :: ops
+        type(fc_grid), intent(in) :: grid
+        type(fc_material), intent(in) :: material   !! combined constants set
+        real(dp), intent(in) :: h0(:, :)
+        type(fc_contact_loading), intent(in) :: load
+        type(fc_contact_settings), intent(in) :: settings
+        type(fc_contact_result), intent(out) :: res
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        type(fc_contact_state), intent(inout), optional :: state
+        class(fc_surface), intent(in), optional :: surface
+        logical :: tangential, use_fmg
+        stat = 0; errmsg = ''
+        if (size(h0, 1) /= grid%nx .or. size(h0, 2) /= grid%ny) then
+            stat = 1; errmsg = 'solve_contact: h0 does not match the grid'; return
+        end if
+        tangential = load%problem /= FC_PROBLEM_NORMAL
+        use_fmg = settings%normal%solver == 'fmg'
+        if (use_fmg .and. tangential .and. material%k /= 0) then
+            stat = 1
+            errmsg = 'solve_contact: FMG is not available for dissimilar materials (K /= 0): the coupling alternates '// &
+                'normal and tangential solves; use BCCG'
+            return
+        end if
+        call ensure_operators(ops, grid, material, normal=.not. use_fmg, tangential=tangential)
+        call contact_rounds(ops%normal, ops%tangential, grid, material, h0, load, settings, res, stat, errmsg, &
+                            state, surface)
+        res%setup_seconds_normal = ops%setup_seconds_normal
+        res%setup_seconds_tangential = ops%setup_seconds_tangential
+    end subroutine solve_contact
+
+    !> Normal and tangential problems together on built operators: the compatibility entry
+    !! point of the operator-level API ([[solve_contact]] builds the operators itself).
+    !! `approach` or `fn` as in [[solve_normal]]; `rounds`: Panagiotopoulos rounds done.
+    subroutine solve_normal_tangential(nop, top, h0, nsettings, tsettings, load, nres, tres, stat, errmsg, &
+                                       approach, fn, rounds, p_start, px_start, py_start)
+        type(fc_normal_operator), intent(inout) :: nop
+        type(fc_tangential_operator), intent(inout) :: top
+        real(dp), intent(in) :: h0(:, :)
+        type(fc_normal_settings), intent(in) :: nsettings
+        type(fc_tangential_settings), intent(in) :: tsettings
+        type(fc_tangential_loading), intent(in) :: load
+        type(fc_normal_result), intent(out) :: nres
+        type(fc_tangential_result), intent(out) :: tres
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        real(dp), intent(in), optional :: approach, fn
+        integer, intent(out), optional :: rounds
+        real(dp), intent(in), optional :: p_start(:, :), px_start(:, :), py_start(:, :)  !! warm start
+        type(fc_contact_loading) :: cload
+        type(fc_contact_settings) :: settings
+        type(fc_contact_result) :: res
+        stat = 0; errmsg = ''
+        if (.not. top%a_xx%built()) then
+            stat = 1; errmsg = 'solve_normal_tangential: tangential operator not built'; return
+        end if
+        if (size(h0, 1) /= top%grid%nx .or. size(h0, 2) /= top%grid%ny) then
+            stat = 1; errmsg = 'solve_normal_tangential: h0 does not match the grid'; return
+        end if
+        cload%problem = FC_PROBLEM_TANGENTIAL
+        cload%tangential = load
+        cload%normal%force_prescribed = present(fn)
+        if (present(fn)) cload%normal%fn = fn
+        if (present(approach)) cload%normal%approach = approach
+        if (present(p_start)) cload%normal%p_start = p_start
+        if (present(px_start) .and. present(py_start)) then
+            cload%px_start = px_start; cload%py_start = py_start
+        end if
+        settings%normal = nsettings; settings%tangential = tsettings
+        call contact_rounds(nop, top, top%grid, top%material, h0, cload, settings, res, stat, errmsg)
+        if (stat /= 0) return
+        if (present(rounds)) rounds = res%rounds
+        call move_alloc_normal(res%normal, nres)
+        tres = res%tangential
+    end subroutine solve_normal_tangential
+
+    subroutine move_alloc_normal(from, to)
+        type(fc_normal_result), intent(inout) :: from
+        type(fc_normal_result), intent(out) :: to
+        to = from
+    end subroutine move_alloc_normal
+
+    !> The rounds of [[solve_contact]] on built operators.
+    subroutine contact_rounds(nop, top, grid, material, h0, load, settings, res, stat, errmsg, state, surface)
+        type(fc_normal_operator), intent(inout) :: nop
+        type(fc_tangential_operator), intent(inout) :: top
+        type(fc_grid), intent(in) :: grid
+        type(fc_material), intent(in) :: material
+        real(dp), intent(in) :: h0(:, :)
+        type(fc_contact_loading), intent(in) :: load
+        type(fc_contact_settings), intent(in) :: settings
+        type(fc_contact_result), intent(out) :: res
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        type(fc_contact_state), intent(inout), optional :: state
+        class(fc_surface), intent(in), optional :: surface
+        real(dp), allocatable :: uzt(:, :), uxn(:, :), uyn(:, :), uxp(:, :), uyp(:, :), pxs(:, :), pys(:, :)
+        real(dp), allocatable :: p0(:, :), pn_old(:, :), px_old(:, :), py_old(:, :)
+        logical :: tangential, coupled, use_fmg, lift_slip, has_guess
+        integer :: round, nx, ny, it_n, mv_n, pa_n, out_n, it_t, mv_t, out_t
+        real(dp) :: cpu_n, cpu_t, dn, dt, guess_base(2)
+        stat = 0; errmsg = ''
+        nx = grid%nx; ny = grid%ny
+        tangential = load%problem /= FC_PROBLEM_NORMAL
+        coupled = tangential .and. material%k /= 0
+        use_fmg = settings%normal%solver == 'fmg'
+        allocate (uzt(nx, ny), uxn(nx, ny), uyn(nx, ny), uxp(nx, ny), uyp(nx, ny), pxs(nx, ny), pys(nx, ny))
+        uzt = 0; uxn = 0; uyn = 0; uxp = 0; uyp = 0; pxs = 0; pys = 0
+        ! ---- starts: an explicit start in `load`, else the state's
+        lift_slip = .false.; has_guess = .false.; guess_base = 0
+        if (present(state)) call state_inputs(state)
+        if (allocated(load%px_start) .and. allocated(load%py_start)) then
+            pxs = load%px_start; pys = load%py_start
+        end if
+        if (allocated(load%normal%p_start)) then
+            p0 = possible(load%normal%p_start)
+        else if (present(state)) then
+            if (state%warm_start .and. state%has_normal) then
+                p0 = possible(state%pn)
+                ! a force-constrained solve keeps the start's total force: scale it to Fn
+                if (load%normal%force_prescribed .and. sum(p0) > 0) p0 = p0*(load%normal%fn/(sum(p0)*grid%area()))
+            end if
+        end if
+        ! ---- rounds: normal, then tangential; repeated only when coupled
+        allocate (pn_old(nx, ny), px_old(nx, ny), py_old(nx, ny))
+        it_n = 0; mv_n = 0; pa_n = 0; out_n = 0; cpu_n = 0; it_t = 0; mv_t = 0; out_t = 0; cpu_t = 0
+        do round = 1, max_rounds
+            if (round == 1) then
+                call normal_stage(h0 + uzt, p0)
+            else
+                pn_old = res%normal%pn
+                call normal_stage(h0 + uzt, pn_old)
+            end if
+            if (stat /= 0) return
+            it_n = it_n + res%normal%iterations; mv_n = mv_n + res%normal%matvecs
+            pa_n = pa_n + res%normal%precond_applications; out_n = out_n + res%normal%outer_iterations
+            cpu_n = cpu_n + res%normal%cpu_seconds
+            if (tangential) res%rounds = round
+            if (res%normal%status /= FC_CONVERGED) exit
+            if (.not. tangential) exit
+            if (coupled) call coupling_displacements(top, res%normal%pn, pxs, pys, uxn, uyn, uzt)
+            if (round > 1) then
+                px_old = res%tangential%px; py_old = res%tangential%py
+            end if
+            if (round == 1 .and. lift_slip) call lift_slip_start(res%normal%pn)
+            call tangential_stage(res%normal%pn)
+            if (stat /= 0) return
+            res%tangential_run = .true.
+            it_t = it_t + res%tangential%iterations; mv_t = mv_t + res%tangential%matvecs
+            out_t = out_t + res%tangential%outer_iterations; cpu_t = cpu_t + res%tangential%cpu_seconds
+            if (.not. coupled .or. res%tangential%status /= FC_CONVERGED) exit
+            pxs = res%tangential%px; pys = res%tangential%py
+            call coupling_displacements(top, res%normal%pn, res%tangential%px, res%tangential%py, &
+                                        uxn, uyn, uzt)
+            if (round > 1) then
+                dn = sqrt(sum((res%normal%pn - pn_old)**2)/max(sum(res%normal%pn**2), tiny(1.0_dp)))
+                dt = sqrt(sum((res%tangential%px - px_old)**2 + (res%tangential%py - py_old)**2)/ &
+                          max(sum(res%tangential%px**2 + res%tangential%py**2), tiny(1.0_dp)))
+                if (max(dn, dt) < 10*max(settings%normal%tol, settings%tangential%tol)) exit
+            end if
+            if (round == max_rounds) then
+                res%tangential%status = FC_NOT_CONVERGED
+                write (res%tangential%message, '(a,i0,a)') 'Panagiotopoulos process not converged in ', max_rounds, &
+                    ' rounds'
+            end if
+        end do
+        res%normal%iterations = it_n; res%normal%matvecs = mv_n; res%normal%precond_applications = pa_n
+        res%normal%outer_iterations = out_n; res%normal%cpu_seconds = cpu_n
+        if (res%tangential_run) then
+            res%tangential%iterations = it_t; res%tangential%matvecs = mv_t
+            res%tangential%outer_iterations = out_t; res%tangential%cpu_seconds = cpu_t
+            res%status = max(res%normal%status, res%tangential%status)
+        else
+            if (tangential) call no_tangential_stage(res)
+            res%status = res%normal%status
+        end if
+        if (present(state) .and. res%status == FC_CONVERGED) call advance_state(state)
+    contains
+
+        !> Start values from the previous state: u', p' of a transient step, or a warm start.
+        subroutine state_inputs(st)
+            type(fc_contact_state), intent(in) :: st
+            if (.not. (tangential .and. st%has_tangential)) return
+            select case (load%transient)
+            case (FC_TRANSIENT_SHIFT)
+                uxp = st%ux; uyp = st%uy; pxs = st%px; pys = st%py
+            case (FC_TRANSIENT_ROLLING)
+                call shift_along_x(st%ux, load%dq/grid%dx, uxp)
+                call shift_along_x(st%uy, load%dq/grid%dx, uyp)
+                call shift_along_x(st%px, load%dq/grid%dx, pxs)
+                call shift_along_x(st%py, load%dq/grid%dx, pys)
+            case default
+                if (st%warm_start) then
+                    pxs = st%px; pys = st%py
+                end if
+            end select
+            lift_slip = load%transient /= FC_TRANSIENT_ROLLING .and. (st%warm_start .or. load%transient == FC_TRANSIENT_SHIFT)
+            ! prescribed forces: predict the shift from the previous one (from rest) or from a zero
+            ! increment (transient), corrected by the force change over the initial stiffness
+            if (load%tangential%force_prescribed) then
+                if (load%transient == FC_FROM_REST .and. st%warm_start) then
+                    has_guess = .true.; guess_base = [st%xi, st%eta]
+                else if (load%transient /= FC_FROM_REST) then
+                    has_guess = .true.; guess_base = 0
+                end if
+            end if
+        end subroutine state_inputs
+
+        !> `p` zeroed where contact is impossible (a solver would keep a start pressure there).
+        function possible(p) result(q)
+            real(dp), intent(in) :: p(:, :)
+            real(dp), allocatable :: q(:, :)
+            q = merge(p, 0.0_dp, h0 < 0.5_dp*h_no_contact)
+        end function possible
+
+        !> The normal stage: one solve of the LCP for the undeformed distance `h`.
+        subroutine normal_stage(h, start)
+            real(dp), intent(in) :: h(:, :)
+            real(dp), allocatable, intent(in) :: start(:, :)
+            type(fc_fmg_stats) :: st
+            if (use_fmg) then
+                if (load%normal%force_prescribed) then
+                    call solve_normal_fmg(material, grid, h, settings%fmg, res%normal, stat, errmsg, fn=load%normal%fn, &
+                                          surface=surface, stats=st)
+                else
+                    call solve_normal_fmg(material, grid, h, settings%fmg, res%normal, stat, errmsg, &
+                                          approach=load%normal%approach, surface=surface, stats=st)
+                end if
+                if (stat == 0) then
+                    res%work_units = st%work_units; res%convergence_factor = st%convergence_factor
+                end if
+            else if (load%normal%force_prescribed) then
+                call solve_normal(nop, h, settings%normal, res%normal, stat, errmsg, fn=load%normal%fn, &
+                                  p_start=start)
+            else
+                call solve_normal(nop, h, settings%normal, res%normal, stat, errmsg, &
+                                  approach=load%normal%approach, p_start=start)
+            end if
+        end subroutine normal_stage
+
+        !> The tangential stage for pressure `pn`: the one dispatch on the problem kind.
+        subroutine tangential_stage(pn)
+            real(dp), intent(in) :: pn(:, :)
+            real(dp) :: k0, a, guess(2)
+            select case (load%problem)
+            case (FC_PROBLEM_TANGENTIAL)
+                if (has_guess) then
+                    ! initial stiffness 8Ga/(2−ν) of Mindlin, a from the contact area
+                    a = sqrt(count(pn > 0)*grid%area()/pi)
+                    k0 = 8*material%g*a/(2 - material%nu)
+                    guess = guess_base - ([load%tangential%fx, load%tangential%fy] - [state%fx, state%fy])/k0
+                    call solve_tangential_loading(top, pn, load%tangential, settings%tangential, &
+                        res%tangential, stat, errmsg, ux_prev=uxp, uy_prev=uyp, px_start=pxs, py_start=pys, &
+                        offset_x=uxn, offset_y=uyn, xi_start=guess(1), eta_start=guess(2))
+                else
+                    call solve_tangential_loading(top, pn, load%tangential, settings%tangential, &
+                        res%tangential, stat, errmsg, ux_prev=uxp, uy_prev=uyp, px_start=pxs, py_start=pys, &
+                        offset_x=uxn, offset_y=uyn)
+                end if
+            case default
+                stat = 1
+                write (errmsg, '(a,i0,a)') 'solve_contact: problem kind ', load%problem, ' has no tangential stage'
+            end select
+        end subroutine tangential_stage
+
+        !> Warm start: elements that slipped in the previous state start on the new traction
+        !! bound (slightly outside, so that TangCG starts them in slip) in their previous
+        !! direction; without this a converged start loses its subdivision to rounding.
+        subroutine lift_slip_start(pn)
+            real(dp), intent(in) :: pn(:, :)
+            real(dp), allocatable :: mag(:, :)
+            mag = hypot(pxs, pys)
+            where (state%el == EL_SLIP .and. mag > 0 .and. pn > 0)
+                pxs = (1 + 1e-10_dp)*load%tangential%mu*pn*pxs/mag
+                pys = (1 + 1e-10_dp)*load%tangential%mu*pn*pys/mag
+            end where
+        end subroutine lift_slip_start
+
+        subroutine advance_state(st)
+            type(fc_contact_state), intent(inout) :: st
+            st%pn = res%normal%pn; st%has_normal = .true.
+            if (res%tangential_run) then
+                st%px = res%tangential%px; st%py = res%tangential%py; st%el = res%tangential%state
+                st%ux = res%tangential%ux + uxn; st%uy = res%tangential%uy + uyn
+                st%xi = res%tangential%xi; st%eta = res%tangential%eta
+                st%fx = res%tangential%fx; st%fy = res%tangential%fy
+                st%has_tangential = .true.
+            end if
+        end subroutine advance_state
+    end subroutine contact_rounds
+
+    !> Tangential fields of a tangential problem whose tangential stage did not run (the
+    !! normal stage failed): zero tractions and slip, adhesion where pn > 0.
+    subroutine no_tangential_stage(res)
+        type(fc_contact_result), intent(inout) :: res
+        if (.not. allocated(res%normal%pn)) return
+        associate (pn => res%normal%pn, t => res%tangential)
+            allocate (t%px, t%py, t%sx, t%sy, t%ux, t%uy, mold=pn)
+            t%px = 0; t%py = 0; t%sx = 0; t%sy = 0; t%ux = 0; t%uy = 0
+            allocate (t%state(size(pn, 1), size(pn, 2)))
+            t%state = merge(EL_ADHESION, EL_EXTERIOR, pn > 0)
+            t%ncon = res%normal%ncon; t%nadh = res%normal%ncon; t%nslip = 0
+        end associate
+    end subroutine no_tangential_stage
+
+    !> g(i, j) = f at x_i + shift·dx: linear interpolation between element centres along x;
+    !! samples beyond the grid are 0 (undeformed material enters the area).  A whole-element
+    !! shift moves values exactly.
+    pure subroutine shift_along_x(f, shift, g)
+        real(dp), intent(in) :: f(:, :)
+        real(dp), intent(in) :: shift   !! shift in elements (dq/dx)
+        real(dp), intent(out) :: g(:, :)
+        integer :: i, k, nx, i0
+        real(dp) :: w
+        nx = size(f, 1)
+        g = 0
+        if (.not. abs(shift) < nx + 1) return
+        k = floor(shift)
+        w = shift - k
+        do i = 1, nx
+            i0 = i + k
+            if (i0 >= 1 .and. i0 <= nx) g(i, :) = g(i, :) + (1 - w)*f(i0, :)
+            if (w > 0 .and. i0 + 1 >= 1 .and. i0 + 1 <= nx) g(i, :) = g(i, :) + w*f(i0 + 1, :)
+        end do
+    end subroutine shift_along_x
+
+end module fc_contact
