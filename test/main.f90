@@ -15,6 +15,7 @@ program tester
     use test_legacy, only: collect_legacy
     use test_api_fuzz, only: collect_api_fuzz
     use test_reliability, only: collect_reliability
+    use test_readme, only: collect_readme
     implicit none
     character(len=64) :: suite, only
     integer :: npass, nfail
@@ -52,6 +53,9 @@ program tester
     end if
     if (want('reliability')) then
         call collect_reliability(tests); call run_suite('reliability', tests, only, npass, nfail)
+    end if
+    if (want('readme')) then
+        call collect_readme(tests); call run_suite('readme', tests, only, npass, nfail)
     end if
     if (want('stability')) then
         call collect_stability(tests); call run_suite('stability', tests, only, npass, nfail)
