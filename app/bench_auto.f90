@@ -12,7 +12,11 @@
 program bench_auto
     use, intrinsic :: iso_fortran_env, only: int64
     use fc_kinds, only: dp, msg_len
-    use fc_input, only: fc_case_input, fc_case_chunk, read_case_file, apply_case, validate_case
+    use fc_namelist, only: fc_case_chunk, read_case_file
+    use fc_input, only: fc_case_input, apply_case
+    use fc_input_validate, only: validate_case
+    use fc_input_scene, only: build_case
+    use fc_scene, only: fc_case
     use fc_contact, only: fc_contact_operators
     use fc_hertz, only: fc_hertz_solution, hertz_from_approach, hertz_from_force
     use fc_auto, only: fc_auto_outcome, fc_level, solve_case_auto, plane_strain_hertz, level_estimate, &
@@ -311,7 +315,7 @@ contains
         character(len=*), intent(in) :: name, text
         real(dp), intent(in) :: truth_q1, truth_q2
         type(fc_auto_outcome) :: ref
-        type(fc_case_input) :: s
+        type(fc_case) :: s
         type(fc_level), allocatable :: lv(:)
         real(dp), allocatable :: q(:, :), true_err(:)
         real(dp) :: secs, truth(2), scale(2), tgt, noise, est, ratio, margin
@@ -332,7 +336,7 @@ contains
         call target_quantities(lv, s, tang, q, qname)
         nq = size(q, 2)
         allocate (true_err(n))
-        truth = [truth_q1/abs(merge(lv(n)%approach, lv(n)%fn, s%force_prescribed)), truth_q2]
+        truth = [truth_q1/abs(merge(lv(n)%approach, lv(n)%fn, s%normal%force_prescribed)), truth_q2]
         extrapolated = .false.
         do j = 1, nq
             if (truth(j) == 0) then
@@ -349,7 +353,7 @@ contains
             do start = 1, nuse - 1
                 do it = 0, 20
                     tgt = 10.0_dp**(-2 - it/10.0_dp)
-                    noise = 10*min(s%settings%tol, tgt/100)
+                    noise = 10*min(s%settings%normal%tol, tgt/100)
                     chosen = 0
                     do k = start + 1, min(nuse, start + 5)
                         call level_estimate(lv(start:k), s, tang, noise, est, ratio, mono, qname, variants(:, v))
@@ -494,9 +498,10 @@ contains
         character(len=*), intent(in) :: text
         type(fc_auto_outcome), intent(out) :: out
         real(dp), intent(out) :: seconds
-        type(fc_case_input), intent(out), optional :: state_out  !! the validated case, before solving
+        type(fc_case), intent(out), optional :: state_out  !! the validated case, before solving
         type(fc_case_chunk), allocatable :: cases(:)
         type(fc_case_input) :: state
+        type(fc_case) :: kase
         type(fc_contact_operators) :: ops
         character(len=64) :: name
         character(len=msg_len) :: msg
@@ -511,9 +516,10 @@ contains
             if (stat == 0) call apply_case(cases(k), k, state, name, stat, msg)
         end do
         if (stat == 0) call validate_case(state, stat, msg)
-        if (present(state_out)) state_out = state
+        if (stat == 0) kase = build_case(state)
+        if (present(state_out)) state_out = kase
         call system_clock(t0, rate)
-        if (stat == 0) call solve_case_auto(state, ops, out, stat, msg)
+        if (stat == 0) call solve_case_auto(kase, ops, out, stat, msg)
         call system_clock(t1)
         seconds = real(t1 - t0, dp)/rate
         if (stat /= 0) write (*, '(a)') 'bench-auto: case failed: '//trim(msg)

@@ -30,10 +30,13 @@ module fastcontact
     use fc_fmg
     use fc_mg2d
     use fc_contact
+    use fc_errors
     implicit none
     private
 
     public :: dp, pi, msg_len, FC_CONVERGED, FC_NOT_CONVERGED, FC_DIVERGED, FC_ERROR, status_name
+    public :: FC_OK, FC_ERR_VALUE, FC_ERR_NOT_READY, FC_ERR_SHAPE, FC_ERR_UNSUPPORTED, FC_ERR_IO, FC_ERR_NO_CONTACT
+    public :: FC_ERR_FRICTION_BOUND, FC_ERR_GRID, FC_ERR_ALLOC, FC_ERR_INTERNAL, error_name
     public :: fc_grid, make_grid, quadratic_gap, punch_rough_gap, wavy_gap, read_gap_table, rough_heights
     public :: fc_rough_params, h_no_contact
     public :: fc_material, combine_material, rigid_modulus
@@ -91,7 +94,7 @@ contains
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
         if (.not. allocated(prob%h0)) then
-            stat = 1; errmsg = 'solve: undeformed distance h0 not set'; return
+            stat = FC_ERR_NOT_READY; errmsg = 'solve: undeformed distance h0 not set'; return
         end if
         if (prob%material%g <= 0) then
             call combine_material(prob%material, stat, errmsg)

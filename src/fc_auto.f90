@@ -1,6 +1,6 @@
 !> Model no more than a scene needs (issue 7): accuracy-targeted grid refinement, the
-!! automatic potential contact area and automatic model reduction, for one case of the
-!! batch driver ([[fc_input]]'s [[fc_case_input]]).
+!! automatic potential contact area and automatic model reduction, for one [[fc_case]]
+!! (built by the batch driver's input layer or by a program).
 !!
 !! * **Accuracy target** (`&solver target`): solve on a coarse grid, refine by factors of two
 !!   in each direction (the coarse pressure and tractions, copied to the 2×2 children, start
@@ -45,14 +45,15 @@ module fc_auto
     use fc_geometry, only: fc_grid, h_no_contact
     use fc_influence, only: fc_material, combine_material
     use fc_norm, only: fc_normal_result
-    use fc_tangcg, only: fc_tangential_result
+    use fc_tangcg, only: fc_tangential_result, fc_tangential_loading
     use fc_contact, only: fc_contact_operators, fc_contact_loading, fc_contact_settings, fc_contact_result, &
         solve_contact, FC_PROBLEM_TANGENTIAL
     use fc_hertz, only: fc_hertz_solution, fc_cattaneo_solution, hertz_from_approach, hertz_from_force, &
         cattaneo_mindlin
     use fc_fmg, only: fc_quadratic_surface, fc_punch_rough_surface, fc_wavy_surface
-    use fc_input, only: fc_case_input, setup_case, is_tangential, tangential_loading, fmt_real, grid_is_auto, &
-        is_line_contact, is_given
+    use fc_errors, only: FC_ERR_VALUE, FC_ERR_UNSUPPORTED, FC_ERR_NO_CONTACT, FC_ERR_FRICTION_BOUND
+    use fc_strings, only: fmt_int, fmt_real
+    use fc_scene, only: fc_case, case_setup, is_tangential, is_line_contact
     implicit none
     private
 
@@ -127,50 +128,47 @@ contains
     !! accuracy target.  The operators in `ops` are reused when grid and material match.  stat ≠ 0:
     !! input-type error with a message naming group and key.
     subroutine solve_case_auto(s_in, ops, out, stat, errmsg)
-        type(fc_case_input), intent(in) :: s_in
+        type(fc_case), intent(in) :: s_in
         type(fc_contact_operators), intent(inout) :: ops
         type(fc_auto_outcome), intent(out) :: out
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
-        type(fc_case_input) :: s
+        type(fc_case) :: s
         logical :: tang, line
         integer :: attempt, nx_old, ny_old
         real(dp) :: cx, cy, hx, hy
         s = s_in
         stat = 0; errmsg = ''
         allocate (out%reductions(0), out%warnings(0), out%levels(0))
-        out%material%g1 = s%g1; out%material%g2 = s%g2; out%material%nu1 = s%nu1; out%material%nu2 = s%nu2
+        out%material = s%material
         call combine_material(out%material, stat, errmsg)
-        if (stat /= 0) then
-            errmsg = '&'//trim(errmsg); return
-        end if
+        if (stat /= 0) return
         ! ---- analytic answer: no grid at all
-        if (s%problem == 'hertz') then
+        if (s%analytic) then
             call analytic_answer(s, out, stat, errmsg)
             return
         end if
         ! ---- which stages are needed
         tang = is_tangential(s)
-        if (tang .and. s%model == 'auto') then
-            if (s%mu == 0) then
+        if (tang .and. s%reduce) then
+            if (s%tangential%mu == 0) then
                 tang = .false.
                 call add(out%reductions, 'mu = 0: frictionless, no tangential solve (tractions are zero)')
-            else if (out%material%k == 0 .and. s%phi == 0 .and. merge(s%fx == 0 .and. s%fy == 0, &
-                                                                        s%xi == 0 .and. s%eta == 0, s%tforce_prescribed)) then
+            else if (out%material%k == 0 .and. no_tangential_loading(s%tangential)) then
                 tang = .false.
                 call add(out%reductions, 'no tangential loading (zero shifts or forces, K = 0): no tangential solve '// &
                     '(tractions are zero)')
             end if
         end if
-        if (tang .and. out%material%k == 0 .and. s%model == 'auto') call add(out%reductions, 'quasi-identical '// &
+        if (tang .and. out%material%k == 0 .and. s%reduce) call add(out%reductions, 'quasi-identical '// &
             'materials (K = 0): one normal and one tangential solve, no Panagiotopoulos loop')
         out%tangential = tang
         ! ---- line contact → 2D strip
         line = is_line_contact(s) .and. s%kind /= 'strip2d'
-        if (line .and. s%model == 'auto') then
+        if (line .and. s%reduce) then
             if (s%kind == 'quadratic' .and. s%ry > 0) then
                 ! elongated ellipse: only a strip when the y curvature is negligible over the area
-                if (grid_is_auto(s)) then
+                if (s%grid_auto) then
                     call add(out%reductions, 'not reduced: ry >= 1e3 rx but the automatic area would be sized by the '// &
                         'elliptic Hertz solution (give a fixed grid or ry = 0 for a line contact)')
                     line = .false.
@@ -181,10 +179,10 @@ contains
                 end if
             end if
             if (line) then
-                if (s%kind == 'quadratic' .and. grid_is_auto(s)) then
-                    stat = 1
-                    errmsg = "&geometry ry = 0 (line contact) with an automatic grid: the length is unknown; use "// &
-                        "kind = 'cylinder' with length, or give &grid ymin, ymax"
+                if (s%kind == 'quadratic' .and. s%grid_auto) then
+                    stat = FC_ERR_UNSUPPORTED
+                    errmsg = "ry = 0 (line contact) with an automatic area: the length is unknown; use "// &
+                        "kind = 'cylinder' with a length, or give the area's ymin, ymax"
                     return
                 end if
                 out%model = 'strip2d'
@@ -194,24 +192,24 @@ contains
             end if
         end if
         if (s%kind == 'strip2d') out%model = 'strip2d'
-        if (s%kind == 'cylinder' .and. .not. (line .and. s%model == 'auto') .and. grid_is_auto(s)) then
+        if (s%kind == 'cylinder' .and. .not. (line .and. s%reduce) .and. s%grid_auto) then
             ! full model of a cylinder: elements about as long as wide, at most 512 along y
             s%ny = -1
         end if
         ! ---- potential contact area
-        out%grid_auto = grid_is_auto(s)
+        out%grid_auto = s%grid_auto
         out%target = s%target
         if (out%grid_auto) then
             call auto_area(s, out%material, stat, errmsg)
             if (stat /= 0) return
         end if
-        if (s%target > 0 .and. s%settings%tol > 0.01_dp*s%target) then
-            s%settings%tol = 0.01_dp*s%target
-            s%tsettings%tol = s%settings%tol
-            call add(out%reductions, 'solver tol tightened to '//fmt_real(s%settings%tol)//' = target/100 (solver '// &
+        if (s%target > 0 .and. s%settings%normal%tol > 0.01_dp*s%target) then
+            s%settings%normal%tol = 0.01_dp*s%target
+            s%settings%tangential%tol = s%settings%normal%tol
+            call add(out%reductions, 'solver tol tightened to '//fmt_real(s%settings%normal%tol)//' = target/100 (solver '// &
                 'error below the discretisation error)')
         end if
-        out%tol = s%settings%tol
+        out%tol = s%settings%normal%tol
         do attempt = 1, max_enlargements + 1
             call solve_levels(s, tang, ops, out, stat, errmsg)
             if (stat /= 0) return
@@ -247,13 +245,13 @@ contains
 
     !> Solve on the grid of `s` or, with a target, on a sequence of grids refined by two.
     subroutine solve_levels(s, tang, ops, out, stat, errmsg)
-        type(fc_case_input), intent(inout) :: s
+        type(fc_case), intent(inout) :: s
         logical, intent(in) :: tang
         type(fc_contact_operators), intent(inout) :: ops
         type(fc_auto_outcome), intent(inout) :: out
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
-        type(fc_case_input) :: sl
+        type(fc_case) :: sl
         real(dp), allocatable :: p0(:, :), px0(:, :), py0(:, :)
         integer :: k, nlev, fy
         real(dp) :: est, ratio, noise
@@ -266,7 +264,7 @@ contains
         out%total_seconds = 0
         out%estimate = -1; out%target_met = .false.; out%reliable = .true.
         out%sufficient = 0; out%sufficient_bound = -1
-        noise = 10*s%settings%tol
+        noise = 10*s%settings%normal%tol
         sl = s
         ! probe grid: with a target, start one level below the given grid (a quarter of its
         ! cost) so that the given grid itself can be the answer when it already meets the target
@@ -321,7 +319,7 @@ contains
     !> Solve the case on the grid of `sl` (warm start from p0, px0, py0 when allocated);
     !! append a level record; keep the solution in `out`.
     subroutine solve_one(sl, tang, ops, out, p0, px0, py0, stat, errmsg)
-        type(fc_case_input), intent(in) :: sl
+        type(fc_case), intent(in) :: sl
         logical, intent(in) :: tang
         type(fc_contact_operators), intent(inout) :: ops
         type(fc_auto_outcome), intent(inout) :: out
@@ -336,26 +334,19 @@ contains
         integer(i8) :: t0, t1, rate
         logical :: use_fmg, decoupled
         call system_clock(t0, rate)
-        call setup_case(sl, mat, out%grid, out%h0, stat, errmsg)
+        call case_setup(sl, mat, out%grid, out%h0, stat, errmsg)
         if (stat /= 0) return
-        use_fmg = sl%settings%solver == 'fmg'
-        if (use_fmg .and. tang .and. mat%k /= 0) then
-            stat = 1
-            errmsg = "&solver normal = 'fmg': not available for dissimilar materials (K = "//fmt_real(mat%k)// &
-                " /= 0): the Panagiotopoulos loop alternates normal and tangential solves; use normal = 'bccg'"
-            return
-        end if
-        settings%normal = sl%settings; settings%tangential = sl%tsettings; settings%fmg = sl%fmg
-        load%normal%force_prescribed = sl%force_prescribed
-        load%normal%fn = sl%fn; load%normal%approach = sl%approach
+        use_fmg = sl%settings%normal%solver == 'fmg'
+        settings = sl%settings
+        load%normal = sl%normal
         if (tang) then
             load%problem = FC_PROBLEM_TANGENTIAL
-            load%tangential = tangential_loading(sl)
+            load%tangential = sl%tangential
         end if
         ! warm starts from the previous grid: the normal stage (not FMG, which starts from its
         ! own nested iteration) of normal and decoupled problems, the tangential stage of
         ! decoupled ones; coupled problems and model = 'full' solve each grid from zero
-        decoupled = tang .and. mat%k == 0 .and. (sl%model == 'auto' .or. use_fmg)
+        decoupled = tang .and. mat%k == 0 .and. (sl%reduce .or. use_fmg)
         if (allocated(p0) .and. .not. use_fmg .and. (decoupled .or. .not. tang)) load%normal%p_start = p0
         if (decoupled .and. allocated(px0) .and. allocated(py0)) then
             load%px_start = px0; load%py_start = py0
@@ -408,14 +399,6 @@ contains
             case default
                 call solve_contact(ops, out%grid, mat, out%h0, load, settings, res, stat, errmsg)
             end select
-            if (stat /= 0) then
-                if (index(errmsg, 'fmg: grid') == 1) then
-                    errmsg = '&grid nx = '//fmt_int(out%grid%nx)//', ny = '//fmt_int(out%grid%ny)// &
-                        " with &solver normal = 'fmg': "//trim(errmsg(6:))//"; or use normal = 'bccg'"
-                else if (index(errmsg, 'fmg: ') == 1) then
-                    errmsg = "&solver normal = 'fmg': "//trim(errmsg(6:))
-                end if
-            end if
         end subroutine fmg_solve
     end subroutine solve_one
 
@@ -430,7 +413,7 @@ contains
     !! that fastcontact-bench-auto can replay it on reference sequences from every given grid.
     subroutine level_estimate(levels, s, tang, noise, est, ratio, monotone, qname, factors)
         type(fc_level), intent(in) :: levels(:)
-        type(fc_case_input), intent(in) :: s
+        type(fc_case), intent(in) :: s
         logical, intent(in) :: tang
         real(dp), intent(in) :: noise
         real(dp), intent(out) :: est, ratio
@@ -458,7 +441,7 @@ contains
     !! relative to max(|Ft|, 0.1·mu·Fn) when shifts are); pmax with `target_pmax`.
     subroutine target_quantities(levels, s, tang, q, qname)
         type(fc_level), intent(in) :: levels(:)
-        type(fc_case_input), intent(in) :: s
+        type(fc_case), intent(in) :: s
         logical, intent(in) :: tang
         real(dp), allocatable, intent(out) :: q(:, :)
         character(len=*), intent(out) :: qname
@@ -466,19 +449,19 @@ contains
         integer :: n
         n = size(levels)
         allocate (q(n, 0))
-        if (s%force_prescribed) then
+        if (s%normal%force_prescribed) then
             q = reshape([q, levels%approach/abs(levels(n)%approach)], [n, size(q, 2) + 1]); qname = 'approach'
         else
             q = reshape([q, levels%fn/abs(levels(n)%fn)], [n, size(q, 2) + 1]); qname = 'fn'
         end if
         if (tang) then
-            if (s%tforce_prescribed) then
+            if (s%tangential%force_prescribed) then
                 scale = max(hypot(levels(n)%xi, levels(n)%eta), tiny(1.0_dp))
                 q = reshape([q, (levels%xi*levels(n)%xi + levels%eta*levels(n)%eta)/scale**2], [n, size(q, 2) + 1])
                 qname = trim(qname)//' xi_eta'
             else
                 norm_t = max(hypot(levels(n)%fx, levels(n)%fy), tiny(1.0_dp))
-                scale = max(norm_t, 0.1_dp*s%mu*levels(n)%fn, tiny(1.0_dp))
+                scale = max(norm_t, 0.1_dp*s%tangential%mu*levels(n)%fn, tiny(1.0_dp))
                 q = reshape([q, (levels%fx*levels(n)%fx + levels%fy*levels(n)%fy)/(norm_t*scale)], [n, size(q, 2) + 1])
                 qname = trim(qname)//' fx_fy'
             end if
@@ -495,7 +478,7 @@ contains
     !! to "which grid does this scene need" for later solves of the same scene.
     subroutine certify_coarsest(levels, s, tang, est, target, j, bound)
         type(fc_level), intent(in) :: levels(:)
-        type(fc_case_input), intent(in) :: s
+        type(fc_case), intent(in) :: s
         logical, intent(in) :: tang
         real(dp), intent(in) :: est, target
         integer, intent(out) :: j                     !! level index (0: none, est > target)
@@ -605,7 +588,7 @@ contains
     !! gets (1 + margin); n_across elements span the contact's diameter in x (and in y for
     !! elliptic contacts).
     subroutine auto_area(s, mat, stat, errmsg)
-        type(fc_case_input), intent(inout) :: s
+        type(fc_case), intent(inout) :: s
         type(fc_material), intent(in) :: mat
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
@@ -618,14 +601,14 @@ contains
         if (nacross == 0) nacross = merge(8, 32, s%target > 0)
         select case (s%kind)
         case ('quadratic')
-            if (s%force_prescribed) then
-                hz = hertz_from_force(0.5_dp/s%rx, 0.5_dp/s%ry, estar, s%fn)
+            if (s%normal%force_prescribed) then
+                hz = hertz_from_force(0.5_dp/s%rx, 0.5_dp/s%ry, estar, s%normal%fn)
             else
-                hz = hertz_from_approach(0.5_dp/s%rx, 0.5_dp/s%ry, estar, s%approach)
+                hz = hertz_from_approach(0.5_dp/s%rx, 0.5_dp/s%ry, estar, s%normal%approach)
             end if
             if (.not. (hz%a > 0 .and. hz%b > 0)) then
-                stat = 1
-                errmsg = '&normal approach = '//fmt_real(s%approach)//': no contact, the automatic area cannot be sized'
+                stat = FC_ERR_NO_CONTACT
+                errmsg = 'approach = '//fmt_real(s%normal%approach)//': no contact, the automatic area cannot be sized'
                 return
             end if
             ha = (1 + s%margin)*hz%a; hb = (1 + s%margin)*hz%b
@@ -635,15 +618,15 @@ contains
         case ('cylinder', 'strip2d')
             len_y = s%ymax - s%ymin
             if (s%kind == 'cylinder') len_y = s%length
-            if (s%force_prescribed) then
-                call plane_strain_hertz(s%rx, s%fn/len_y, estar, ha, p0)
+            if (s%normal%force_prescribed) then
+                call plane_strain_hertz(s%rx, s%normal%fn/len_y, estar, ha, p0)
             else
-                if (.not. (s%approach > 0)) then
-                    stat = 1
-                    errmsg = '&normal approach = '//fmt_real(s%approach)//': no contact, the automatic area cannot be sized'
+                if (.not. (s%normal%approach > 0)) then
+                    stat = FC_ERR_NO_CONTACT
+                    errmsg = 'approach = '//fmt_real(s%normal%approach)//': no contact, the automatic area cannot be sized'
                     return
                 end if
-                ha = sqrt(2*s%rx*s%approach)
+                ha = sqrt(2*s%rx*s%normal%approach)
             end if
             ha = (1 + s%margin)*ha
             s%nx = even_up((1 + s%margin)*nacross)
@@ -657,20 +640,20 @@ contains
                 s%ny = 1
             end if
         case default
-            stat = 1
-            errmsg = "&grid auto: the automatic area needs kind = 'quadratic', 'cylinder' or 'strip2d'"
+            stat = FC_ERR_VALUE
+            errmsg = "kind = '"//trim(s%kind)//"': the automatic area needs kind = 'quadratic', 'cylinder' or 'strip2d'"
         end select
     end subroutine auto_area
 
     !> Indentation scale of a line contact: the approach, or b²/(2R) from plane-strain Hertz.
     real(dp) function line_indentation(s, mat) result(d)
-        type(fc_case_input), intent(in) :: s
+        type(fc_case), intent(in) :: s
         type(fc_material), intent(in) :: mat
         real(dp) :: b, p0
-        if (.not. s%force_prescribed) then
-            d = abs(s%approach)
+        if (.not. s%normal%force_prescribed) then
+            d = abs(s%normal%approach)
         else
-            call plane_strain_hertz(s%rx, s%fn/(s%ymax - s%ymin), mat%g/(1 - mat%nu), b, p0)
+            call plane_strain_hertz(s%rx, s%normal%fn/(s%ymax - s%ymin), mat%g/(1 - mat%nu), b, p0)
             d = b**2/(2*s%rx)
         end if
     end function line_indentation
@@ -678,7 +661,7 @@ contains
     !> problem = 'hertz': elliptic Hertz for the approach or force, and Cattaneo–Mindlin for a
     !! circular contact with a prescribed tangential force.
     subroutine analytic_answer(s, out, stat, errmsg)
-        type(fc_case_input), intent(in) :: s
+        type(fc_case), intent(in) :: s
         type(fc_auto_outcome), intent(inout) :: out
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
@@ -687,38 +670,36 @@ contains
         out%analytic = .true.
         out%model = 'hertz_analytic'
         estar = out%material%g/(1 - out%material%nu)
-        if (s%force_prescribed) then
-            out%hertz = hertz_from_force(0.5_dp/s%rx, 0.5_dp/s%ry, estar, s%fn)
+        if (s%normal%force_prescribed) then
+            out%hertz = hertz_from_force(0.5_dp/s%rx, 0.5_dp/s%ry, estar, s%normal%fn)
         else
-            out%hertz = hertz_from_approach(0.5_dp/s%rx, 0.5_dp/s%ry, estar, s%approach)
+            out%hertz = hertz_from_approach(0.5_dp/s%rx, 0.5_dp/s%ry, estar, s%normal%approach)
             if (.not. (out%hertz%fn > 0)) then
-                stat = 1
-                errmsg = '&normal approach = '//fmt_real(s%approach)//": must be > 0 for problem = 'hertz' (no contact)"
+                stat = FC_ERR_NO_CONTACT
+                errmsg = 'approach = '//fmt_real(s%normal%approach)//': must be > 0 for the analytic Hertz solution (no contact)'
                 return
             end if
         end if
         call add(out%reductions, "problem = 'hertz': analytic elliptic Hertz solution, no grid")
         if (out%material%k /= 0) call add(out%warnings, 'K = '//fmt_real(out%material%k)//' /= 0: the analytic '// &
             'Hertz solution neglects the normal-tangential coupling of dissimilar materials')
-        if (s%mu > 0 .and. (is_given(s, 'tangential', 'fx') .or. is_given(s, 'tangential', 'fy') .or. &
-                            is_given(s, 'tangential', 'xi') .or. is_given(s, 'tangential', 'eta'))) then
-            q = hypot(s%fx, s%fy)
-            if (.not. s%tforce_prescribed) then
+        if (s%tangential%mu > 0 .and. s%tangential_given) then
+            q = hypot(s%tangential%fx, s%tangential%fy)
+            if (.not. s%tangential%force_prescribed) then
                 call add(out%warnings, "problem = 'hertz' with prescribed shifts: Cattaneo-Mindlin needs the "// &
                     'tangential force (fx, fy); tangential part not computed')
             else if (abs(s%rx - s%ry) > 1.0e-12_dp*s%rx) then
                 call add(out%warnings, "problem = 'hertz': Cattaneo-Mindlin needs a circular contact (rx = ry); "// &
                     'tangential part not computed')
-            else if (.not. (q < s%mu*out%hertz%fn)) then
-                stat = 1
-                errmsg = '&tangential fx = '//fmt_real(s%fx)//', fy = '//fmt_real(s%fy)//': |(fx, fy)| must be < mu*fn = '// &
-                    fmt_real(s%mu*out%hertz%fn)
+            else if (.not. (q < s%tangential%mu*out%hertz%fn)) then
+                stat = FC_ERR_FRICTION_BOUND
+                errmsg = '|(fx, fy)| = '//fmt_real(q)//' must be < mu*fn = '//fmt_real(s%tangential%mu*out%hertz%fn)
                 return
             else
-                out%cattaneo = cattaneo_mindlin(out%hertz%a, out%hertz%p0, out%hertz%fn, s%mu, q, out%material%g, &
+                out%cattaneo = cattaneo_mindlin(out%hertz%a, out%hertz%p0, out%hertz%fn, s%tangential%mu, q, out%material%g, &
                     out%material%nu)
                 out%has_cattaneo = .true.
-                out%fx = s%fx; out%fy = s%fy
+                out%fx = s%tangential%fx; out%fy = s%tangential%fy
                 call add(out%reductions, 'circular contact with a tangential force: analytic Cattaneo-Mindlin')
             end if
         end if
@@ -726,6 +707,16 @@ contains
     end subroutine analytic_answer
 
     ! ---------------------------------------------------------------- helpers ----
+
+    !> Zero spin and zero shifts (or forces, when prescribed).
+    pure logical function no_tangential_loading(t)
+        type(fc_tangential_loading), intent(in) :: t
+        if (t%force_prescribed) then
+            no_tangential_loading = t%phi == 0 .and. t%fx == 0 .and. t%fy == 0
+        else
+            no_tangential_loading = t%phi == 0 .and. t%xi == 0 .and. t%eta == 0
+        end if
+    end function no_tangential_loading
 
     !> Smallest even integer ≥ x (at least 2).
     pure integer function even_up(x)
@@ -742,13 +733,5 @@ contains
         tmp(size(list) + 1) = text
         call move_alloc(tmp, list)
     end subroutine add
-
-    function fmt_int(i) result(s)
-        integer, intent(in) :: i
-        character(len=:), allocatable :: s
-        character(len=20) :: buf
-        write (buf, '(i0)') i
-        s = trim(buf)
-    end function fmt_int
 
 end module fc_auto

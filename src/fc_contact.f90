@@ -22,6 +22,7 @@
 !! [[max_rounds]] rounds.  With K = 0 one normal and one tangential solve.
 module fc_contact
     use fc_kinds, only: dp, pi, FC_CONVERGED, FC_NOT_CONVERGED, FC_ERROR
+    use fc_errors, only: FC_ERR_VALUE, FC_ERR_NOT_READY, FC_ERR_SHAPE, FC_ERR_UNSUPPORTED, FC_ERR_FRICTION_BOUND
     use fc_geometry, only: fc_grid, h_no_contact
     use fc_influence, only: fc_material
     use fc_norm, only: fc_normal_operator, fc_normal_settings, fc_normal_result, build_normal_operator, solve_normal
@@ -176,12 +177,12 @@ contains
         logical :: tangential, use_fmg
         stat = 0; errmsg = ''
         if (size(h0, 1) /= grid%nx .or. size(h0, 2) /= grid%ny) then
-            stat = 1; errmsg = 'solve_contact: h0 does not match the grid'; return
+            stat = FC_ERR_SHAPE; errmsg = 'solve_contact: h0 does not match the grid'; return
         end if
         tangential = load%problem /= FC_PROBLEM_NORMAL
         use_fmg = settings%normal%solver == 'fmg'
         if (use_fmg .and. tangential .and. material%k /= 0) then
-            stat = 1
+            stat = FC_ERR_UNSUPPORTED
             errmsg = 'solve_contact: FMG is not available for dissimilar materials (K /= 0): the coupling alternates '// &
                 'normal and tangential solves; use BCCG'
             return
@@ -216,10 +217,10 @@ contains
         type(fc_contact_result) :: res
         stat = 0; errmsg = ''
         if (.not. top%a_xx%built()) then
-            stat = 1; errmsg = 'solve_normal_tangential: tangential operator not built'; return
+            stat = FC_ERR_NOT_READY; errmsg = 'solve_normal_tangential: tangential operator not built'; return
         end if
         if (size(h0, 1) /= top%grid%nx .or. size(h0, 2) /= top%grid%ny) then
-            stat = 1; errmsg = 'solve_normal_tangential: h0 does not match the grid'; return
+            stat = FC_ERR_SHAPE; errmsg = 'solve_normal_tangential: h0 does not match the grid'; return
         end if
         cload%problem = FC_PROBLEM_TANGENTIAL
         cload%tangential = load
@@ -405,9 +406,19 @@ contains
         !> The tangential stage for pressure `pn`: the one dispatch on the problem kind.
         subroutine tangential_stage(pn)
             real(dp), intent(in) :: pn(:, :)
-            real(dp) :: k0, a, guess(2)
+            real(dp) :: k0, a, guess(2), flimit
             select case (load%problem)
             case (FC_PROBLEM_TANGENTIAL)
+                if (load%tangential%force_prescribed) then
+                    flimit = load%tangential%mu*sum(max(pn, 0.0_dp))*grid%area()
+                    if (.not. (hypot(load%tangential%fx, load%tangential%fy) < flimit)) then
+                        stat = FC_ERR_FRICTION_BOUND
+                        write (errmsg, '(a,es12.5,a,es12.5,a)') '|(fx, fy)| = ', &
+                            hypot(load%tangential%fx, load%tangential%fy), ' must be < mu*fn = ', flimit, &
+                            ' (full slip has no unique shift)'
+                        return
+                    end if
+                end if
                 if (has_guess) then
                     ! initial stiffness 8Ga/(2−ν) of Mindlin, a from the contact area
                     a = sqrt(count(pn > 0)*grid%area()/pi)
@@ -422,7 +433,7 @@ contains
                         offset_x=uxn, offset_y=uyn)
                 end if
             case default
-                stat = 1
+                stat = FC_ERR_VALUE
                 write (errmsg, '(a,i0,a)') 'solve_contact: problem kind ', load%problem, ' has no tangential stage'
             end select
         end subroutine tangential_stage

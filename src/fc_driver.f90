@@ -28,8 +28,13 @@ module fc_driver
     use fc_mg2d, only: fc_strip_problem, fc_mg2d_settings, fc_mg2d_result, strip_model_problem, solve_strip_mg, &
         solve_strip_fft_rsm
     use fc_hertz, only: hertz_from_approach, hertz_from_force
-    use fc_input, only: fc_case_chunk, fc_case_input, read_case_file, apply_case, validate_case, setup_case, fmt_real, &
-        is_tangential, tangential_loading, strip_model_index, is_given
+    use fc_namelist, only: fc_case_chunk, read_case_file
+    use fc_input, only: fc_case_input, apply_case, strip_model_index, is_given
+    use fc_input_validate, only: validate_case
+    use fc_input_scene, only: build_case, case_notes
+    use fc_scene, only: fc_case
+    use fc_strings, only: fmt_int, fmt_real
+    use fc_errors, only: FC_ERR_FRICTION_BOUND, FC_ERR_NO_CONTACT, FC_ERR_GEOMETRY, FC_ERR_IO, FC_ERR_ALLOC, FC_ERR_GRID
     use fc_output, only: fc_case_summary, write_case_json, write_case_csv, write_case_report
     use fc_auto, only: fc_auto_outcome, solve_case_auto
     implicit none
@@ -160,6 +165,7 @@ contains
             real(dp) :: ca, cb
             logical :: tang
             type(fc_auto_outcome) :: auto
+            type(fc_case) :: kase
             call system_clock(t0, rate)
             case_status = 1
             nused_before = size(used)
@@ -192,16 +198,17 @@ contains
                 call case_error(clean=.false.); return
             end if
             ! ---- strip model problems: their own solvers and outputs
+            kase = build_case(state)
             if (strip_model_index(state) > 0) then
-                call run_strip_case(dir, t0, rate, case_status)
+                call run_strip_case(dir, kase, t0, rate, case_status)
                 return
             end if
             ! ---- solve: model choice, potential area, accuracy target (fc_auto); operators reused
             call system_clock(t1)
-            call solve_case_auto(state, ops, auto, stat, errmsg)
+            call solve_case_auto(kase, ops, auto, stat, errmsg)
             call system_clock(t2)
             if (stat /= 0) then
-                call library_message(errmsg, state)
+                call library_context(stat, errmsg, state, auto)
                 call case_error(); return
             end if
             tang = auto%tangential
@@ -209,9 +216,9 @@ contains
             ! ---- summary
             s%name = state%name; s%title = state%title; s%problem = state%problem; s%geometry = state%kind
             s%material = mat; s%force_prescribed = state%force_prescribed
-            s%tol = state%settings%tol
+            s%tol = kase%settings%normal%tol
             if (auto%tol > 0) s%tol = auto%tol
-            s%notes = state%notes
+            s%notes = state%notes//case_notes(state)
             s%model = auto%model; s%reductions = auto%reductions; s%warnings = auto%warnings
             s%grid_auto = auto%grid_auto; s%enlargements = auto%enlargements
             s%touches_boundary = auto%touches_boundary
@@ -248,13 +255,13 @@ contains
             s%setup_seconds = auto%setup_seconds; s%setup_seconds_tangential = auto%setup_seconds_tangential
             s%grid = grid
             s%status = status_name(res%status); s%message = res%message
-            s%solver = state%settings%solver; s%solver_normal = state%settings%solver
+            s%solver = kase%settings%normal%solver; s%solver_normal = kase%settings%normal%solver
             s%status_normal = status_name(res%status)
             s%fn = res%fn; s%approach = res%approach; s%pmax = res%pmax
             s%ncon = res%ncon; s%nadh = res%ncon; s%nslip = 0
             s%iterations = res%iterations; s%outer_iterations = res%outer_iterations; s%matvecs = res%matvecs
             s%iterations_normal = res%iterations; s%outer_iterations_normal = res%outer_iterations
-            if (state%settings%solver == 'fmg') then
+            if (kase%settings%normal%solver == 'fmg') then
                 s%work_units = auto%work_units; s%convergence_factor = auto%convergence_factor
                 s%cycle = state%cycle
             end if
@@ -263,7 +270,7 @@ contains
             s%cpu_seconds_normal = s%setup_seconds + res%cpu_seconds
             if (size(auto%levels) > 1) s%cpu_seconds_normal = real(t2 - t1, dp)/rate
             final_status = res%status
-            if (tang) call tangential_summary(s, state, res, tres, auto%tangential_run, rounds, final_status)
+            if (tang) call tangential_summary(s, state, kase, res, tres, auto%tangential_run, rounds, final_status)
             if (mat%k /= 0 .and. .not. tang) s%notes = s%notes//'K = '//fmt_real(mat%k)// &
                 ' /= 0: the normal problem is solved without the tangential coupling. '
             if (state%kind == 'quadratic' .and. state%rx > 0 .and. state%ry > 0) then
@@ -312,8 +319,9 @@ contains
         end subroutine run_one_case
 
         !> Solve a strip model problem case and write its outputs (sets case_status).
-        subroutine run_strip_case(dir, t0, rate, case_status)
+        subroutine run_strip_case(dir, kase, t0, rate, case_status)
             character(len=*), intent(in) :: dir
+            type(fc_case), intent(in) :: kase
             integer(int64), intent(in) :: t0, rate
             integer, intent(out) :: case_status
             type(fc_case_summary) :: s
@@ -323,7 +331,7 @@ contains
             real(dp), allocatable :: px(:, :), zero(:, :)
             integer, allocatable :: el(:, :)
             case_status = 1
-            call solve_strip_case(state, s, sgrid, px, el, final_status, stat, errmsg)
+            call solve_strip_case(state, kase, s, sgrid, px, el, final_status, stat, errmsg)
             if (stat /= 0) then
                 call case_error(); return
             end if
@@ -392,8 +400,9 @@ contains
     !! / FFT+SD smoother) or 'fft-rsm' (one-grid FFT+RSM).  Returns the summary, the grid, the
     !! traction px per element and the element states (A on the contact strips, E elsewhere).
     !! tol is 1e−8 (thesis) unless `&solver tol` was given.
-    subroutine solve_strip_case(state, s, grid, px, el, final_status, stat, errmsg)
+    subroutine solve_strip_case(state, kase, s, grid, px, el, final_status, stat, errmsg)
         type(fc_case_input), intent(in) :: state
+        type(fc_case), intent(in) :: kase
         type(fc_case_summary), intent(inout) :: s
         type(fc_grid), intent(out) :: grid
         real(dp), allocatable, intent(out) :: px(:, :)
@@ -411,9 +420,9 @@ contains
             errmsg = '&grid nx = '//fmt_int(state%nx)//": problem = '"//trim(state%problem)//"': "//trim(errmsg); return
         end if
         t%tol = 1.0e-8_dp
-        if (is_given(state, 'solver', 'tol')) t%tol = state%settings%tol
-        t%maxit = state%settings%maxit
-        t%nu1 = state%fmg%nu1; t%nu2 = state%fmg%nu2
+        if (is_given(state, 'solver', 'tol')) t%tol = kase%settings%normal%tol
+        t%maxit = kase%settings%normal%maxit
+        t%nu1 = kase%settings%fmg%nu1; t%nu2 = kase%settings%fmg%nu2
         select case (state%strip)
         case ('mg-fft-rsm', 'mg-fft-sd')
             t%smoother = state%strip(4:)
@@ -434,7 +443,7 @@ contains
         s%name = state%name; s%title = state%title; s%problem = state%problem; s%geometry = 'strip2d'
         s%material = prob%material; s%grid = grid; s%model = 'strip2d'
         allocate (s%reductions(0), s%warnings(0))
-        s%notes = state%notes
+        s%notes = state%notes//case_notes(state)
         s%status = status_name(r%status); s%message = r%message
         s%solver = state%strip
         s%solver_normal = 'none'; s%status_normal = 'not_run'
@@ -448,14 +457,6 @@ contains
         s%cpu_seconds_tangential = r%cpu_seconds
         stat = 0; errmsg = ''
     end subroutine solve_strip_case
-
-    function fmt_int(i) result(text)
-        integer, intent(in) :: i
-        character(len=:), allocatable :: text
-        character(len=20) :: buf
-        write (buf, '(i0)') i
-        text = trim(buf)
-    end function fmt_int
 
     !> Summary of an analytic (problem = 'hertz') case: no grid, Hertz values as results.
     subroutine analytic_summary(s, auto, state)
@@ -482,17 +483,18 @@ contains
     !> Tangential part of the summary; status = worst of both stages.  When the normal
     !! stage failed the tangential stage was not run: zero tractions, states from the
     !! pressure (adhesion where pn > 0), status of the normal stage.
-    subroutine tangential_summary(s, state, res, tres, tangential_run, rounds, final_status)
+    subroutine tangential_summary(s, state, kase, res, tres, tangential_run, rounds, final_status)
         type(fc_case_summary), intent(inout) :: s
         type(fc_case_input), intent(in) :: state
+        type(fc_case), intent(in) :: kase
         type(fc_normal_result), intent(in) :: res
         type(fc_tangential_result), intent(in) :: tres
         logical, intent(in) :: tangential_run
         integer, intent(in) :: rounds
         integer, intent(inout) :: final_status
         s%tangential = .true.
-        s%solver_tangential = state%tsettings%solver
-        s%solver = trim(state%settings%solver)//'+'//trim(state%tsettings%solver)
+        s%solver_tangential = kase%settings%tangential%solver
+        s%solver = trim(kase%settings%normal%solver)//'+'//trim(kase%settings%tangential%solver)
         s%mu = state%mu; s%tforce_prescribed = state%tforce_prescribed
         s%fx_prescribed = state%fx; s%fy_prescribed = state%fy
         s%panagiotopoulos_rounds = rounds
@@ -528,19 +530,28 @@ contains
         end if
     end subroutine tangential_summary
 
-    !> Library messages start with the group ('tangential: ...', 'solver: ...'):
-    !! make them name the group as the input checks do, with the values given.
-    subroutine library_message(errmsg, state)
+    !> Name the namelist group, keys and values of a library error that the input checks
+    !! cannot foresee (it depends on the grid or the solution), chosen by the error code.
+    subroutine library_context(stat, errmsg, state, auto)
+        integer, intent(in) :: stat
         character(len=*), intent(inout) :: errmsg
         type(fc_case_input), intent(in) :: state
-        if (index(errmsg, 'tangential: |(fx, fy)|') == 1) then
+        type(fc_auto_outcome), intent(in) :: auto
+        select case (stat)
+        case (FC_ERR_FRICTION_BOUND)
             errmsg = '&tangential fx = '//fmt_real(state%fx)//', fy = '//fmt_real(state%fy)//', mu = '// &
-                fmt_real(state%mu)//': '//trim(errmsg(13:))//' for &normal approach = '//fmt_real(state%approach)
-        else if (index(errmsg, 'tangential: ') == 1 .or. index(errmsg, 'solver: ') == 1 .or. &
-                 index(errmsg, 'normal: ') == 1) then
-            errmsg = '&'//trim(errmsg)
-        end if
-    end subroutine library_message
+                fmt_real(state%mu)//': '//trim(errmsg)//' for &normal approach = '//fmt_real(state%approach)
+        case (FC_ERR_NO_CONTACT)
+            errmsg = '&normal '//trim(errmsg)
+        case (FC_ERR_GEOMETRY, FC_ERR_IO)
+            errmsg = '&geometry '//trim(errmsg)
+        case (FC_ERR_ALLOC)
+            errmsg = '&grid '//trim(errmsg)
+        case (FC_ERR_GRID)
+            errmsg = '&grid nx = '//fmt_int(auto%grid%nx)//', ny = '//fmt_int(auto%grid%ny)// &
+                " with &solver normal = '"//trim(state%normal_solver)//"': "//trim(errmsg)//"; or use normal = 'bccg'"
+        end select
+    end subroutine library_context
 
     !> mkdir -p DIR.
     subroutine make_directory(dir, stat)

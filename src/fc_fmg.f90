@@ -40,6 +40,7 @@
 !! plus 1 per cycle and level for the row sums M·1_C.
 module fc_fmg
     use fc_kinds
+    use fc_errors, only: FC_ERR_GRID
     use fc_geometry, only: fc_grid, make_grid, h_no_contact, quadratic_gap, punch_rough_gap, wavy_gap, &
         fc_rough_params
     use fc_influence
@@ -257,8 +258,8 @@ contains
             sx(nlev) = nx; sy(nlev) = ny; fxs(nlev) = 1; fys(nlev) = 1
         end do
         if (nx*ny > max_coarsest_cells) then
-            stat = 1
-            write (errmsg, '(a,i0,a,i0,a,i0,a,i0,a,i0,a)') 'fmg: grid ', grid%nx, 'x', grid%ny, ' coarsens only to ', &
+            stat = FC_ERR_GRID
+            write (errmsg, '(a,i0,a,i0,a,i0,a,i0,a,i0,a)') 'grid ', grid%nx, 'x', grid%ny, ' coarsens only to ', &
                 nx, 'x', ny, ' (more than ', max_coarsest_cells, ' cells for the direct coarsest solve); '// &
                 'use nx, ny with more factors of 2'
             return

@@ -1,6 +1,8 @@
 !> Kinds, constants and status codes shared by every fastcontact module.
 module fc_kinds
     use, intrinsic :: iso_fortran_env, only: real64, int64
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
+    use fc_errors, only: FC_ERR_VALUE
     implicit none
     private
 
@@ -8,7 +10,7 @@ module fc_kinds
     integer, parameter, public :: i8 = int64    !! counters that may exceed 2^31
     real(dp), parameter, public :: pi = 3.141592653589793238462643383279502884_dp
 
-    !> Solver and API status codes (SPEC §3, §5: JSON `status`).
+    !> Solver status codes (the JSON `status`, doc/user_guide.md); errors are [[fc_errors]] codes.
     integer, parameter, public :: FC_CONVERGED = 0      !! solution meets the tolerance
     integer, parameter, public :: FC_NOT_CONVERGED = 1  !! maxit reached or stagnation detected
     integer, parameter, public :: FC_DIVERGED = 2       !! residual grew without bound / NaN
@@ -36,18 +38,20 @@ contains
         end select
     end function status_name
 
-    !> Validate the tolerance and iteration limit shared by every solver; the message names
-    !! the `&solver` key and value (SPEC §5).
+    !> Validate the tolerance and iteration limit shared by every solver (stat = FC_ERR_VALUE
+    !! with a message naming the argument and its value).
     subroutine check_iteration_settings(tol, maxit, stat, errmsg)
         real(dp), intent(in) :: tol
         integer, intent(in) :: maxit
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
         stat = 0; errmsg = ''
-        if (.not. (tol > 0)) then
-            stat = 1; write (errmsg, '(a,es12.4,a)') 'solver: tol = ', tol, ' must be > 0'
+        if (ieee_is_nan(tol)) then      ! before any comparison: quiet under floating-point traps
+            stat = FC_ERR_VALUE; errmsg = 'tol = NaN must be > 0'
+        else if (.not. (tol > 0)) then
+            stat = FC_ERR_VALUE; write (errmsg, '(a,es12.4,a)') 'tol = ', tol, ' must be > 0'
         else if (maxit < 1 .or. maxit > max_iterations) then
-            stat = 1; write (errmsg, '(a,i0,a,i0,a)') 'solver: maxit = ', maxit, ' must lie in [1, ', max_iterations, ']'
+            stat = FC_ERR_VALUE; write (errmsg, '(a,i0,a,i0,a)') 'maxit = ', maxit, ' must lie in [1, ', max_iterations, ']'
         end if
     end subroutine check_iteration_settings
 

@@ -4,6 +4,7 @@
 module fc_output
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use fc_kinds, only: dp, msg_len
+    use fc_strings, only: upper
     use fc_geometry, only: fc_grid
     use fc_influence, only: fc_material
     use fc_hertz, only: fc_hertz_solution, fc_cattaneo_solution
@@ -575,15 +576,5 @@ contains
             end do
         end if
     end subroutine write_auto_report
-
-    pure function upper(s) result(t)
-        character(len=*), intent(in) :: s
-        character(len=len(s)) :: t
-        integer :: i
-        t = s
-        do i = 1, len(s)
-            if (s(i:i) >= 'a' .and. s(i:i) <= 'z') t(i:i) = achar(iachar(s(i:i)) - 32)
-        end do
-    end function upper
 
 end module fc_output

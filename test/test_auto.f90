@@ -1,12 +1,16 @@
 !> Suite `auto` (issue 7): accuracy-targeted refinement against analytic Hertz, Cattaneo and a
 !! finer rough-punch reference; the automatic potential contact area; model reductions against
 !! the full model; and the user guide's key tables against the keys the reader accepts.
-!! Cases are read from namelist text exactly as the driver reads them ([[fc_input]]) and solved
+!! Cases are read from namelist text exactly as the driver reads them ([[fc_input]]), built into
+!! the library's [[fc_case]] and solved
 !! by [[solve_case_auto]] in-process.
 module test_auto
     use fc_kinds, only: dp, msg_len, pi
     use fc_testing, only: error_type, unittest_type, new_unittest, check
-    use fc_input, only: fc_case_input, fc_case_chunk, read_case_file, apply_case, validate_case, namelist_keys
+    use fc_namelist, only: fc_case_chunk, read_case_file
+    use fc_input, only: fc_case_input, apply_case, namelist_keys
+    use fc_input_validate, only: validate_case
+    use fc_input_scene, only: build_case
     use fc_contact, only: fc_contact_operators
     use fc_hertz, only: fc_hertz_solution, hertz_from_approach, hertz_from_force
     use fc_auto, only: fc_auto_outcome, solve_case_auto, richardson_estimate, plane_strain_hertz
@@ -93,7 +97,7 @@ contains
         call validate_case(state, stat, msg)
         call check(error, stat == 0, 'validate: '//trim(msg))
         if (allocated(error)) return
-        call solve_case_auto(state, ops, out, stat, msg)
+        call solve_case_auto(build_case(state), ops, out, stat, msg)
         call check(error, stat == 0, 'solve: '//trim(msg))
         call ops%destroy()
     end subroutine solve_text

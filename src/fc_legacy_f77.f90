@@ -1,0 +1,232 @@
+!> Fortran-77 linkage of the flat API: `call fc_init(h, ierr)` without [[fc_legacy]]'s
+!! interfaces refers to the symbol fc_init_ (gfortran, ifort, ifx, flang on Linux); these
+!! aliases forward to the bind(C) routines, so old codes link against the same library
+!! unchanged.  One alias per routine of [[fc_legacy]], same arguments.
+module fc_legacy_f77
+    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_char
+    use fc_legacy
+    implicit none
+    private
+
+contains
+
+    subroutine fc_init_f77(handle, ierr) bind(C, name='fc_init_')
+        integer(c_int), intent(out) :: handle
+        integer(c_int), intent(out) :: ierr
+        call fc_init(handle, ierr)
+    end subroutine fc_init_f77
+
+    subroutine fc_finalize_f77(handle, ierr) bind(C, name='fc_finalize_')
+        integer(c_int), intent(inout) :: handle
+        integer(c_int), intent(out) :: ierr
+        call fc_finalize(handle, ierr)
+    end subroutine fc_finalize_f77
+
+    subroutine fc_get_nhandles_f77(nhandles, ierr) bind(C, name='fc_get_nhandles_')
+        integer(c_int), intent(out) :: nhandles
+        integer(c_int), intent(out) :: ierr
+        call fc_get_nhandles(nhandles, ierr)
+    end subroutine fc_get_nhandles_f77
+
+    subroutine fc_set_material_f77(handle, g1, g2, nu1, nu2, ierr) bind(C, name='fc_set_material_')
+        integer(c_int), intent(in) :: handle
+        real(c_double), intent(in) :: g1, g2
+        real(c_double), intent(in) :: nu1, nu2
+        integer(c_int), intent(out) :: ierr
+        call fc_set_material(handle, g1, g2, nu1, nu2, ierr)
+    end subroutine fc_set_material_f77
+
+    subroutine fc_set_grid_f77(handle, nx, ny, xmin, xmax, ymin, ymax, ierr) bind(C, name='fc_set_grid_')
+        integer(c_int), intent(in) :: handle
+        integer(c_int), intent(in) :: nx, ny
+        real(c_double), intent(in) :: xmin, xmax, ymin, ymax
+        integer(c_int), intent(out) :: ierr
+        call fc_set_grid(handle, nx, ny, xmin, xmax, ymin, ymax, ierr)
+    end subroutine fc_set_grid_f77
+
+    subroutine fc_set_gap_array_f77(handle, n, h0, ierr) bind(C, name='fc_set_gap_array_')
+        integer(c_int), intent(in) :: handle
+        integer(c_int), intent(in) :: n
+        real(c_double), intent(in) :: h0(*)
+        integer(c_int), intent(out) :: ierr
+        call fc_set_gap_array(handle, n, h0, ierr)
+    end subroutine fc_set_gap_array_f77
+
+    subroutine fc_set_gap_quadratic_f77(handle, rx, ry, ierr) bind(C, name='fc_set_gap_quadratic_')
+        integer(c_int), intent(in) :: handle
+        real(c_double), intent(in) :: rx, ry
+        integer(c_int), intent(out) :: ierr
+        call fc_set_gap_quadratic(handle, rx, ry, ierr)
+    end subroutine fc_set_gap_quadratic_f77
+
+    subroutine fc_set_normal_approach_f77(handle, approach, ierr) bind(C, name='fc_set_normal_approach_')
+        integer(c_int), intent(in) :: handle
+        real(c_double), intent(in) :: approach
+        integer(c_int), intent(out) :: ierr
+        call fc_set_normal_approach(handle, approach, ierr)
+    end subroutine fc_set_normal_approach_f77
+
+    subroutine fc_set_normal_force_f77(handle, fn, ierr) bind(C, name='fc_set_normal_force_')
+        integer(c_int), intent(in) :: handle
+        real(c_double), intent(in) :: fn
+        integer(c_int), intent(out) :: ierr
+        call fc_set_normal_force(handle, fn, ierr)
+    end subroutine fc_set_normal_force_f77
+
+    subroutine fc_set_friction_f77(handle, mu, ierr) bind(C, name='fc_set_friction_')
+        integer(c_int), intent(in) :: handle
+        real(c_double), intent(in) :: mu
+        integer(c_int), intent(out) :: ierr
+        call fc_set_friction(handle, mu, ierr)
+    end subroutine fc_set_friction_f77
+
+    subroutine fc_set_shifts_f77(handle, xi, eta, phi, ierr) bind(C, name='fc_set_shifts_')
+        integer(c_int), intent(in) :: handle
+        real(c_double), intent(in) :: xi, eta
+        real(c_double), intent(in) :: phi
+        integer(c_int), intent(out) :: ierr
+        call fc_set_shifts(handle, xi, eta, phi, ierr)
+    end subroutine fc_set_shifts_f77
+
+    subroutine fc_set_forces_f77(handle, fx, fy, phi, ierr) bind(C, name='fc_set_forces_')
+        integer(c_int), intent(in) :: handle
+        real(c_double), intent(in) :: fx, fy
+        real(c_double), intent(in) :: phi
+        integer(c_int), intent(out) :: ierr
+        call fc_set_forces(handle, fx, fy, phi, ierr)
+    end subroutine fc_set_forces_f77
+
+    subroutine fc_set_solver_f77(handle, normal_solver, tangential_solver, tol, maxit, inner_k, precondition, ierr) &
+        bind(C, name='fc_set_solver_')
+        integer(c_int), intent(in) :: handle
+        integer(c_int), intent(in) :: normal_solver, tangential_solver
+        real(c_double), intent(in) :: tol
+        integer(c_int), intent(in) :: maxit, inner_k, precondition
+        integer(c_int), intent(out) :: ierr
+        call fc_set_solver(handle, normal_solver, tangential_solver, tol, maxit, inner_k, precondition, ierr)
+    end subroutine fc_set_solver_f77
+
+    subroutine fc_set_transient_f77(handle, mode, ierr) bind(C, name='fc_set_transient_')
+        integer(c_int), intent(in) :: handle
+        integer(c_int), intent(in) :: mode
+        integer(c_int), intent(out) :: ierr
+        call fc_set_transient(handle, mode, ierr)
+    end subroutine fc_set_transient_f77
+
+    subroutine fc_set_rolling_step_f77(handle, dq, ierr) bind(C, name='fc_set_rolling_step_')
+        integer(c_int), intent(in) :: handle
+        real(c_double), intent(in) :: dq
+        integer(c_int), intent(out) :: ierr
+        call fc_set_rolling_step(handle, dq, ierr)
+    end subroutine fc_set_rolling_step_f77
+
+    subroutine fc_set_reuse_f77(handle, reuse_operators, warm_start, ierr) bind(C, name='fc_set_reuse_')
+        integer(c_int), intent(in) :: handle
+        integer(c_int), intent(in) :: reuse_operators, warm_start
+        integer(c_int), intent(out) :: ierr
+        call fc_set_reuse(handle, reuse_operators, warm_start, ierr)
+    end subroutine fc_set_reuse_f77
+
+    subroutine fc_calculate_f77(handle, ierr) bind(C, name='fc_calculate_')
+        integer(c_int), intent(in) :: handle
+        integer(c_int), intent(out) :: ierr
+        call fc_calculate(handle, ierr)
+    end subroutine fc_calculate_f77
+
+    subroutine fc_get_forces_f77(handle, fn, fx, fy, mz, ierr) bind(C, name='fc_get_forces_')
+        integer(c_int), intent(in) :: handle
+        real(c_double), intent(out) :: fn, fx, fy, mz
+        integer(c_int), intent(out) :: ierr
+        call fc_get_forces(handle, fn, fx, fy, mz, ierr)
+    end subroutine fc_get_forces_f77
+
+    subroutine fc_get_approach_f77(handle, approach, ierr) bind(C, name='fc_get_approach_')
+        integer(c_int), intent(in) :: handle
+        real(c_double), intent(out) :: approach
+        integer(c_int), intent(out) :: ierr
+        call fc_get_approach(handle, approach, ierr)
+    end subroutine fc_get_approach_f77
+
+    subroutine fc_get_pmax_f77(handle, pmax, ierr) bind(C, name='fc_get_pmax_')
+        integer(c_int), intent(in) :: handle
+        real(c_double), intent(out) :: pmax
+        integer(c_int), intent(out) :: ierr
+        call fc_get_pmax(handle, pmax, ierr)
+    end subroutine fc_get_pmax_f77
+
+    subroutine fc_get_shifts_f77(handle, xi, eta, phi, ierr) bind(C, name='fc_get_shifts_')
+        integer(c_int), intent(in) :: handle
+        real(c_double), intent(out) :: xi, eta, phi
+        integer(c_int), intent(out) :: ierr
+        call fc_get_shifts(handle, xi, eta, phi, ierr)
+    end subroutine fc_get_shifts_f77
+
+    subroutine fc_get_contact_stats_f77(handle, ncon, nadh, nslip, ierr) bind(C, name='fc_get_contact_stats_')
+        integer(c_int), intent(in) :: handle
+        integer(c_int), intent(out) :: ncon, nadh, nslip
+        integer(c_int), intent(out) :: ierr
+        call fc_get_contact_stats(handle, ncon, nadh, nslip, ierr)
+    end subroutine fc_get_contact_stats_f77
+
+    subroutine fc_get_tractions_f77(handle, n, pn, px, py, ierr) bind(C, name='fc_get_tractions_')
+        integer(c_int), intent(in) :: handle
+        integer(c_int), intent(in) :: n
+        real(c_double), intent(out) :: pn(*), px(*), py(*)
+        integer(c_int), intent(out) :: ierr
+        call fc_get_tractions(handle, n, pn, px, py, ierr)
+    end subroutine fc_get_tractions_f77
+
+    subroutine fc_get_slip_f77(handle, n, sx, sy, ierr) bind(C, name='fc_get_slip_')
+        integer(c_int), intent(in) :: handle
+        integer(c_int), intent(in) :: n
+        real(c_double), intent(out) :: sx(*), sy(*)
+        integer(c_int), intent(out) :: ierr
+        call fc_get_slip(handle, n, sx, sy, ierr)
+    end subroutine fc_get_slip_f77
+
+    subroutine fc_get_gap_f77(handle, n, gap, ierr) bind(C, name='fc_get_gap_')
+        integer(c_int), intent(in) :: handle
+        integer(c_int), intent(in) :: n
+        real(c_double), intent(out) :: gap(*)
+        integer(c_int), intent(out) :: ierr
+        call fc_get_gap(handle, n, gap, ierr)
+    end subroutine fc_get_gap_f77
+
+    subroutine fc_get_status_array_f77(handle, n, status, ierr) bind(C, name='fc_get_status_array_')
+        integer(c_int), intent(in) :: handle
+        integer(c_int), intent(in) :: n
+        integer(c_int), intent(out) :: status(*)
+        integer(c_int), intent(out) :: ierr
+        call fc_get_status_array(handle, n, status, ierr)
+    end subroutine fc_get_status_array_f77
+
+    subroutine fc_get_iterations_f77(handle, it_normal, it_tangential, ierr) bind(C, name='fc_get_iterations_')
+        integer(c_int), intent(in) :: handle
+        integer(c_int), intent(out) :: it_normal, it_tangential
+        integer(c_int), intent(out) :: ierr
+        call fc_get_iterations(handle, it_normal, it_tangential, ierr)
+    end subroutine fc_get_iterations_f77
+
+    subroutine fc_get_rebuilds_f77(handle, n_normal, n_tangential, n_calculations, ierr) bind(C, name='fc_get_rebuilds_')
+        integer(c_int), intent(in) :: handle
+        integer(c_int), intent(out) :: n_normal, n_tangential, n_calculations
+        integer(c_int), intent(out) :: ierr
+        call fc_get_rebuilds(handle, n_normal, n_tangential, n_calculations, ierr)
+    end subroutine fc_get_rebuilds_f77
+
+    subroutine fc_get_grid_size_f77(handle, nx, ny, ierr) bind(C, name='fc_get_grid_size_')
+        integer(c_int), intent(in) :: handle
+        integer(c_int), intent(out) :: nx, ny
+        integer(c_int), intent(out) :: ierr
+        call fc_get_grid_size(handle, nx, ny, ierr)
+    end subroutine fc_get_grid_size_f77
+
+    subroutine fc_get_error_message_f77(handle, buffer, buflen, ierr) bind(C, name='fc_get_error_message_')
+        integer(c_int), intent(in) :: handle
+        character(kind=c_char), intent(out) :: buffer(*)
+        integer(c_int), intent(in) :: buflen
+        integer(c_int), intent(out) :: ierr
+        call fc_get_error_message(handle, buffer, buflen, ierr)
+    end subroutine fc_get_error_message_f77
+
+end module fc_legacy_f77

@@ -1,0 +1,135 @@
+!> A contact case in library terms: the two bodies, the potential contact area, the
+!! geometry of the undeformed distance, the loading, the solver settings and what the
+!! automatic layer ([[fc_auto]]) may decide.  The namelist input builds it
+!! ([[fc_input_scene]]); a program can fill it directly and call [[solve_case_auto]].
+!!
+!! [[case_setup]] turns it into the material, grid and undeformed distance of one solve.
+module fc_scene
+    use fc_kinds, only: dp, msg_len
+    use fc_errors, only: FC_ERR_ALLOC, FC_ERR_IO, FC_ERR_GEOMETRY, FC_ERR_NO_CONTACT
+    use fc_strings, only: fmt_int, fmt_real
+    use fc_geometry, only: fc_grid, fc_rough_params, make_grid, quadratic_gap, punch_rough_gap, wavy_gap, &
+        read_gap_table, h_no_contact
+    use fc_influence, only: fc_material, combine_material
+    use fc_contact, only: fc_normal_loading, fc_tangential_loading, fc_contact_settings, FC_PROBLEM_NORMAL, &
+        FC_PROBLEM_TANGENTIAL
+    implicit none
+    private
+
+    integer, parameter, public :: path_len = 256  !! longest file name
+
+    !> One contact case.
+    type, public :: fc_case
+        integer :: problem = FC_PROBLEM_NORMAL       !! FC_PROBLEM_NORMAL or FC_PROBLEM_TANGENTIAL
+        logical :: analytic = .false.                !! answer by the analytic Hertz solution, no grid
+        type(fc_material) :: material                !! g1, g2, nu1, nu2 (combined when solved)
+        ! ---- potential contact area
+        integer :: nx = 0, ny = 0                    !! elements per direction
+        real(dp) :: xmin = 0, xmax = 0, ymin = 0, ymax = 0  !! outer edges [mm]
+        logical :: grid_auto = .false.               !! size the area from the Hertz estimate
+        real(dp) :: margin = 0.25_dp                 !! automatic area: margin around the estimate (fraction)
+        integer :: n_across = 0                      !! automatic area: elements across the contact (0: default)
+        ! ---- geometry of the undeformed distance
+        character(len=16) :: kind = ''               !! quadratic, cylinder, strip2d, punch_rough, wavy, table
+        real(dp) :: rx = 0, ry = 0                   !! radii of the quadratic profile [mm] (ry = 0: flat in y)
+        real(dp) :: length = 0                       !! cylinder length along y [mm]
+        real(dp) :: diameter = 0                     !! punch diameter [mm]
+        type(fc_rough_params) :: rough               !! roughness of the punch
+        real(dp) :: amplitude = 0                    !! wavy amplitude [mm]
+        real(dp) :: wavelength_x = 0, wavelength_y = 0  !! wavy wavelengths [mm] (0: flat)
+        character(len=path_len) :: file = ''         !! table of h0 (nx·ny values, x fastest)
+        ! ---- loading
+        type(fc_normal_loading) :: normal            !! approach or total force
+        type(fc_tangential_loading) :: tangential    !! friction, shifts or forces, spin
+        logical :: tangential_given = .false.        !! analytic answer: shifts or forces were given
+        ! ---- solvers and the automatic layer
+        type(fc_contact_settings) :: settings        !! both stages (and FMG)
+        real(dp) :: target = 0                       !! accuracy target (relative error; 0: none)
+        logical :: target_pmax = .false.             !! the target also covers pmax
+        integer :: max_levels = 5                    !! most grids visited by the accuracy target
+        logical :: reduce = .true.                   !! model reductions allowed
+    end type fc_case
+
+    public :: case_setup, is_line_contact, is_tangential
+
+contains
+
+    !> Whether the case solves the tangential problem too.
+    pure logical function is_tangential(c)
+        type(fc_case), intent(in) :: c
+        is_tangential = c%problem == FC_PROBLEM_TANGENTIAL
+    end function is_tangential
+
+    !> Whether the scene is a line contact: kind 'cylinder' or 'strip2d', or a quadratic
+    !! profile that is flat in y (ry = 0) or whose radii differ by a factor ≥ 1e3.
+    pure logical function is_line_contact(c)
+        type(fc_case), intent(in) :: c
+        is_line_contact = .false.
+        select case (c%kind)
+        case ('cylinder', 'strip2d')
+            is_line_contact = .true.
+        case ('quadratic')
+            if (c%rx > 0 .and. c%ry == 0) is_line_contact = .true.
+            if (c%rx > 0 .and. c%ry > 0) is_line_contact = c%ry >= 1.0e3_dp*c%rx
+        end select
+    end function is_line_contact
+
+    !> Material (combined), grid and undeformed distance h0 [mm] (without approach) of `c`,
+    !! and a check that contact is possible.  Errors: FC_ERR_ALLOC (grid too large for
+    !! memory), FC_ERR_IO (table file), FC_ERR_GEOMETRY (no element can touch),
+    !! FC_ERR_NO_CONTACT (the prescribed approach brings no element into contact), else the
+    !! codes of combine_material and make_grid.
+    subroutine case_setup(c, material, grid, h0, stat, errmsg)
+        type(fc_case), intent(in) :: c
+        type(fc_material), intent(out) :: material
+        type(fc_grid), intent(out) :: grid
+        real(dp), allocatable, intent(out) :: h0(:, :)
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        character(len=msg_len) :: msg
+        real(dp) :: hmin
+        material = c%material
+        call combine_material(material, stat, errmsg)
+        if (stat /= 0) return
+        call make_grid(grid, c%nx, c%ny, c%xmin, c%xmax, c%ymin, c%ymax, stat, errmsg)
+        if (stat /= 0) return
+        allocate (h0(grid%nx, grid%ny), stat=stat)
+        if (stat /= 0) then
+            stat = FC_ERR_ALLOC
+            errmsg = 'nx = '//fmt_int(c%nx)//', ny = '//fmt_int(c%ny)//': cannot allocate the grid'; return
+        end if
+        select case (c%kind)
+        case ('quadratic')
+            h0 = quadratic_gap(grid, c%rx, c%ry)
+        case ('strip2d', 'cylinder')
+            h0 = quadratic_gap(grid, c%rx, 0.0_dp)
+        case ('punch_rough')
+            call punch_rough_gap(grid, c%diameter, c%rough, h0)
+        case ('wavy')
+            h0 = wavy_gap(grid, c%amplitude, c%wavelength_x, c%wavelength_y)
+        case ('table')
+            call read_gap_table(c%file, grid, h0, stat, msg)
+            if (stat /= 0) then
+                stat = FC_ERR_IO
+                errmsg = "file = '"//trim(c%file)//"': "//trim(msg); return
+            end if
+        end select
+        if (.not. any(h0 < 0.5_dp*h_no_contact)) then
+            stat = FC_ERR_GEOMETRY
+            errmsg = 'kind = '''//trim(c%kind)//''': no element can come into contact '// &
+                '(e.g. punch diameter smaller than an element)'
+            return
+        end if
+        if (.not. c%normal%force_prescribed) then
+            hmin = minval(h0, mask=h0 < 0.5_dp*h_no_contact)
+            if (.not. (hmin - c%normal%approach <= 0)) then
+                stat = FC_ERR_NO_CONTACT
+                errmsg = 'approach = '//fmt_real(c%normal%approach)//': no contact possible (h0 - approach > 0 '// &
+                    'everywhere; min h0 = '//fmt_real(hmin)//')'
+                return
+            end if
+        end if
+        stat = 0; errmsg = ''
+    end subroutine case_setup
+
+end module fc_scene
