@@ -25,6 +25,7 @@
 module fc_norm
     use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
     use fc_kinds
+    use fc_errors, only: FC_ERR_NO_CONTACT
     use fc_geometry, only: fc_grid, h_no_contact
     use fc_influence
     implicit none
@@ -147,6 +148,11 @@ contains
         if (force_mode) then
             if (.not. (fn > 0)) then
                 stat = 1; write (errmsg, '(a,es12.4,a)') 'normal: fn = ', fn, ' must be > 0'; return
+            end if
+            if (.not. any(h0 < 0.5_dp*h_no_contact)) then
+                stat = FC_ERR_NO_CONTACT
+                errmsg = 'normal: no element can come into contact (h0 >= 1e20 everywhere): fn cannot be carried'
+                return
             end if
             delta = 0
         else

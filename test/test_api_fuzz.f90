@@ -100,7 +100,7 @@ contains
     subroutine random_call_sequences(error)
         type(error_type), allocatable, intent(out) :: error
         integer(c_int) :: h(nh), ierr, nlive, nx, ny, k1, k2, k3
-        integer :: call_no, ncalls, i, op, seed, n, ios, counts(0:7)
+        integer :: call_no, ncalls, i, op, seed, n, ios, counts(0:7), last_calc(nh)
         real(c_double) :: fn, fx, fy, mz, a(4)
         real(c_double), allocatable :: pn(:), px(:), py(:), h0(:)
         integer(c_int), allocatable :: st(:)
@@ -113,7 +113,7 @@ contains
         call get_environment_variable('FC_API_FUZZ_CALLS', env, status=ios)
         if (ios == 0) read (env, *, iostat=ios) ncalls
         rng_state = int(seed, i8)*7919_i8 + 1_i8
-        h = 0; counts = 0
+        h = 0; counts = 0; last_calc = -1
         do i = 1, nh
             call fc_init(h(i), ierr)
         end do
@@ -164,12 +164,17 @@ contains
                 call fc_set_reuse(h(i), rand_int(-1, 2), rand_int(-1, 2), ierr)
             case (15, 16, 17, 18)
                 call fc_calculate(h(i), ierr)
+                last_calc(i) = ierr
                 call check(error, ierr >= 0 .and. ierr <= 7, trim(where)//': fc_calculate ierr out of range')
                 if (ierr == FCL_OK .or. ierr == FCL_NOT_CONVERGED) call check_result(h(i), where, error)
             case (19)
                 call fc_get_forces(h(i), fn, fx, fy, mz, ierr)
-                if (ierr == 0) call check(error, all(ieee_is_finite([fn, fx, fy, mz])), &
-                    trim(where)//': fc_get_forces returned a non-finite force')
+                ! a diverged calculation (5) may leave non-finite values; anything else may not
+                if (ierr == 0 .and. last_calc(i) /= FCL_DIVERGED .and. .not. all(ieee_is_finite([fn, fx, fy, mz]))) then
+                    write (where, '(a,4(1x,g0.4))') trim(where)//': fc_get_forces returned a non-finite force:', &
+                        fn, fx, fy, mz
+                    call check(error, .false., trim(where))
+                end if
             case (20)
                 call fc_get_grid_size(h(i), nx, ny, ierr)
                 n = max(0, int(nx)*int(ny)) - rand_int(0, 1)
@@ -202,7 +207,7 @@ contains
                 if (rand_int(1, 3) == 1) then
                     call fc_finalize(h(i), ierr)
                     call check(error, ierr == FCL_OK .and. h(i) == 0, trim(where)//': fc_finalize failed')
-                    ntrace(i) = 0
+                    ntrace(i) = 0; last_calc(i) = -1
                     call fc_init(h(i), ierr)
                 end if
             end select
@@ -211,7 +216,7 @@ contains
                 ' -> ierr ', ierr, ' args ', recorded(1:nrec)
             call check(error, ierr >= 0 .and. ierr <= 7, trim(where)//': ierr out of the documented range 0..7')
             if (ierr >= 0 .and. ierr <= 7) counts(ierr) = counts(ierr) + 1
-            if (ierr /= FCL_OK .and. ierr /= FCL_INVALID_HANDLE) then
+            if (ierr /= FCL_OK .and. ierr /= FCL_INVALID_HANDLE .and. op /= 23) then
                 call fc_get_error_message(h(i), buf, 256_c_int, k1)
                 call check(error, k1 == FCL_OK .and. buf(1) /= char(0) .and. buf(1) /= ' ', &
                     trim(where)//': a failing call left no message')
