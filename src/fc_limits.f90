@@ -24,7 +24,8 @@ module fc_limits
     real(dp), parameter, public :: max_spin = 1.0e3_dp           !! |φ| [rad/mm]
     integer, parameter, public :: max_cases = 10000              !! cases in one namelist file
     integer, parameter, public :: max_modes = 4096               !! m_modes, n_modes of a rough surface
-    integer(i8), parameter, public :: max_mode_work = 2_i8**32   !! m_modes·n_modes·nx·ny (rough-surface cost)
+    integer, parameter, public :: max_mode_pairs = 65536         !! m_modes·n_modes (mode tables: 24 bytes each)
+    integer(i8), parameter, public :: max_mode_work = 2_i8**32   !! m_modes·n_modes·(nx + ny) (rough-surface cost)
     integer, parameter, public :: max_smoothing = 100            !! ν1, ν2 of a multigrid cycle
     integer, parameter, public :: max_line_length = 4000         !! characters per line of a case file
     integer, parameter, public :: max_file_chars = 16*1024*1024  !! characters of a case file
