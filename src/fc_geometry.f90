@@ -73,7 +73,7 @@ contains
             return
         end if
         if ((xmax - xmin)/nx < min_element_size .or. (ymax - ymin)/ny < min_element_size) then
-            stat = 1; write (errmsg, '(a,2(es10.3),a,es8.1,a)') 'grid: element size dx, dy =', (xmax - xmin)/nx, &
+            stat = 1; write (errmsg, '(a,2(es11.3e3),a,es8.1,a)') 'grid: element size dx, dy =', (xmax - xmin)/nx, &
                 (ymax - ymin)/ny, ' below the limit ', min_element_size, ' mm'
             return
         end if
