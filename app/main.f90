@@ -1,4 +1,4 @@
-!> fastcontact — namelist-driven batch driver (SPEC §5): `fastcontact CASES.nml [--out DIR]`.
+!> fastcontact — namelist-driven batch driver (doc/user_guide.md): `fastcontact CASES.nml [--out DIR]`.
 !! All the work is done by [[run_driver]]; this program only gathers the arguments and
 !! turns the driver's exit code into the process exit status.
 program fastcontact_main

@@ -39,6 +39,8 @@ void fc_set_solver(const int *h, const int *normal_solver, const int *tangential
                    const int *maxit, const int *inner_k, const int *precondition, int *ierr);
 void fc_set_transient(const int *h, const int *mode, int *ierr);
 void fc_set_rolling_step(const int *h, const double *dq, int *ierr);
+/* influence coefficients from files (doc/numerical_ic.md): body 1's or combined, body 2's ("": half-space) */
+void fc_set_influence_file(const int *h, const char *path, const char *path2, int *ierr);
 void fc_set_reuse(const int *h, const int *reuse_operators, const int *warm_start, int *ierr);
 
 void fc_calculate(const int *h, int *ierr);

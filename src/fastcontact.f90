@@ -5,7 +5,10 @@
 !! through the one orchestrator [[solve_contact]] (also public here, with its loading,
 !! settings, operator, state and result types): normal contact, or normal + tangential
 !! (Panagiotopoulos coupling for K ≠ 0) when `prob%load%problem = FC_PROBLEM_TANGENTIAL`.
-!! Errors come back through `stat`/`errmsg`, never by stopping.  `prob%destroy()` releases the
+!! A whole case — scene, loading, settings and an accuracy target — is an [[fc_case]] solved
+!! by [[solve_case_auto]] (automatic potential area, grid refinement to the target, model
+!! reduction), as the batch driver does.
+!! Errors come back through `stat`/`errmsg` (codes of [[fc_errors]]), never by stopping.  `prob%destroy()` releases the
 !! operators (FFT plans).  The operator-level routines of [[fc_norm]] and [[fc_tangcg]]
 !! stay available for callers that manage operators themselves.
 !!
@@ -31,6 +34,8 @@ module fastcontact
     use fc_mg2d
     use fc_contact
     use fc_errors
+    use fc_scene, only: fc_case, case_setup
+    use fc_auto, only: fc_auto_outcome, fc_level, solve_case_auto
     implicit none
     private
 
@@ -56,6 +61,8 @@ module fastcontact
     public :: fc_normal_loading, fc_contact_loading, fc_contact_settings, fc_contact_operators, fc_contact_state
     public :: fc_contact_result, solve_contact, ensure_operators
     public :: FC_PROBLEM_NORMAL, FC_PROBLEM_TANGENTIAL, FC_FROM_REST, FC_TRANSIENT_SHIFT, FC_TRANSIENT_ROLLING
+    ! a whole case with the automatic layer (accuracy target, automatic area, model reduction)
+    public :: fc_case, case_setup, fc_auto_outcome, fc_level, solve_case_auto
 
     !> One contact problem, its reusable operators and its previous solution.
     type, public :: fc_problem

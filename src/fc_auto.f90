@@ -1,4 +1,4 @@
-!> Model no more than a scene needs (issue 7): accuracy-targeted grid refinement, the
+!> Model no more than a scene needs: accuracy-targeted grid refinement, the
 !! automatic potential contact area and automatic model reduction, for one [[fc_case]]
 !! (built by the batch driver's input layer or by a program).
 !!
@@ -46,79 +46,29 @@ module fc_auto
     use fc_influence, only: fc_material, combine_material
     use fc_norm, only: fc_normal_result
     use fc_tangcg, only: fc_tangential_result, fc_tangential_loading
-    use fc_contact, only: fc_contact_operators, fc_contact_loading, fc_contact_settings, fc_contact_result, &
+    use fc_contact, only: set_influence_coefficients, clear_influence_coefficients, &
+        fc_contact_operators, fc_contact_loading, fc_contact_settings, fc_contact_result, &
         solve_contact, FC_PROBLEM_TANGENTIAL
     use fc_hertz, only: fc_hertz_solution, fc_cattaneo_solution, hertz_from_approach, hertz_from_force, &
         cattaneo_mindlin
     use fc_fmg, only: fc_quadratic_surface, fc_punch_rough_surface, fc_wavy_surface
+    use fc_icfile, only: fc_ic_set
+    use fc_icfile_load, only: load_influence_source
     use fc_errors, only: FC_ERR_VALUE, FC_ERR_UNSUPPORTED, FC_ERR_NO_CONTACT, FC_ERR_FRICTION_BOUND
     use fc_strings, only: fmt_int, fmt_real
     use fc_scene, only: fc_case, case_setup, is_tangential, is_line_contact
+    use fc_case_result, only: fc_level, fc_auto_outcome
+    use fc_auto_estimate, only: richardson_estimate, level_estimate, certify_coarsest, target_quantities, &
+        estimate_safety, estimate_safety_h2, h2_ratio_low, h2_ratio_high
+    use fc_threads, only: set_thread_count
     implicit none
     private
 
-    !> One grid visited by the solve.
-    type, public :: fc_level
-        integer :: nx = 0, ny = 0                 !! grid size
-        real(dp) :: fn = 0, approach = 0          !! normal load and approach [N, mm]
-        real(dp) :: fx = 0, fy = 0                !! tangential forces [N]
-        real(dp) :: xi = 0, eta = 0               !! rigid shift used [mm]
-        real(dp) :: pmax = 0                      !! maximum pressure [N/mm²]
-        integer :: ncon = 0                       !! elements in contact
-        integer :: iterations = 0                 !! solver iterations (both stages)
-        real(dp) :: seconds = 0                   !! operator set-up + solve [s]
-        real(dp) :: estimate = -1                 !! estimated relative error (−1: not yet known)
-        real(dp) :: ratio = 0                     !! observed ratio of successive differences (0: n/a)
-        logical :: monotone = .true.              !! successive differences decrease with one sign
-        character(len=16) :: status = ''         !! solver status
-    end type fc_level
-
-    !> Everything the automatic layer decided and computed for one case.
-    type, public :: fc_auto_outcome
-        character(len=32) :: model = 'full'                !! 'full', 'strip2d', 'hertz_analytic'
-        character(len=256), allocatable :: reductions(:)   !! model reductions applied (one line each)
-        character(len=512), allocatable :: warnings(:)     !! warnings (boundary, unreliable estimate, ...)
-        type(fc_level), allocatable :: levels(:)           !! grids visited (coarse to fine)
-        real(dp) :: target = 0                             !! accuracy target (0: none)
-        real(dp) :: estimate = -1                          !! estimated relative error of the final grid
-        logical :: reliable = .true.                       !! convergence was monotone
-        logical :: target_met = .false.                    !! estimate ≤ target
-        character(len=64) :: quantities = ''               !! quantities the estimate covers
-        !> Index in `levels` of the coarsest grid visited that is certified to meet the target
-        !! (0: none): its error bound max_q |q_j − q_n| + estimate uses the finest grid n
-        integer :: sufficient = 0
-        real(dp) :: sufficient_bound = -1                  !! that certified bound (relative)
-        logical :: grid_auto = .false.                     !! potential area sized automatically
-        integer :: enlargements = 0                        !! automatic enlargements of the area
-        logical :: touches_boundary = .false.              !! final contact reaches the area's edge
-        real(dp) :: total_seconds = 0                      !! all solves incl. set-up [s]
-        real(dp) :: tol = 0                                !! solver tolerance used (tightened for a target)
-        type(fc_material) :: material                      !! combined constants
-        type(fc_grid) :: grid                              !! final grid
-        real(dp), allocatable :: h0(:, :)                  !! final undeformed distance
-        type(fc_normal_result) :: res                      !! final normal solution
-        type(fc_tangential_result) :: tres                 !! final tangential solution
-        logical :: tangential = .false.                    !! a tangential solve was done
-        logical :: tangential_run = .false.                !! the final grid's tangential stage ran
-        integer :: rounds = 0                              !! Panagiotopoulos rounds (final grid)
-        real(dp) :: setup_seconds = 0, setup_seconds_tangential = 0  !! final grid's set-up [s]
-        logical :: analytic = .false.                      !! answered by the analytic Hertz solution
-        type(fc_hertz_solution) :: hertz                   !! analytic Hertz (problem = 'hertz')
-        logical :: has_cattaneo = .false.                  !! Cattaneo–Mindlin part present
-        type(fc_cattaneo_solution) :: cattaneo             !! analytic Cattaneo–Mindlin
-        real(dp) :: fx = 0, fy = 0                         !! analytic tangential forces [N]
-        real(dp) :: work_units = -1                        !! FMG: thesis work units of the final solve (−1: n/a)
-        real(dp) :: convergence_factor = -1                !! FMG: target-grid convergence factor (−1: n/a)
-    end type fc_auto_outcome
-
     real(dp), parameter, public :: enlarge_factor = 1.5_dp   !! growth of a clipped automatic area
-    real(dp), parameter, public :: estimate_safety = 2.0_dp  !! safety factor of the Richardson estimate
-    !> Safety factor when the observed ratio r = d_{k−1}/d_k lies in [`h2_ratio_low`,
-    !! `h2_ratio_high`], i.e. the sequence is in the O(h²) regime (r = 4 ± 50 %)
-    real(dp), parameter, public :: estimate_safety_h2 = 1.5_dp
-    real(dp), parameter, public :: h2_ratio_low = 3.0_dp, h2_ratio_high = 6.0_dp
     integer, parameter :: max_enlargements = 6
 
+    public :: fc_level, fc_auto_outcome
+    public :: estimate_safety, estimate_safety_h2, h2_ratio_low, h2_ratio_high
     public :: solve_case_auto, auto_area, richardson_estimate, prolong_copy, contact_touches_boundary
     public :: plane_strain_hertz, level_estimate, certify_coarsest, target_quantities
 
@@ -139,9 +89,11 @@ contains
         real(dp) :: cx, cy, hx, hy
         s = s_in
         stat = 0; errmsg = ''
+        call set_thread_count(s%threads)   ! before any FFT plan of this case is made
         allocate (out%reductions(0), out%warnings(0), out%levels(0))
         out%material = s%material
         call combine_material(out%material, stat, errmsg)
+        if (stat == 0) call use_ic_file(s, ops, stat, errmsg)
         if (stat /= 0) return
         ! ---- analytic answer: no grid at all
         if (s%analytic) then
@@ -164,7 +116,8 @@ contains
             'materials (K = 0): one normal and one tangential solve, no Panagiotopoulos loop')
         out%tangential = tang
         ! ---- line contact → 2D strip
-        line = is_line_contact(s) .and. s%kind /= 'strip2d'
+        line = is_line_contact(s) .and. s%kind /= 'strip2d' .and. .not. s%periodic
+        ops%periodic = s%periodic
         if (line .and. s%reduce) then
             if (s%kind == 'quadratic' .and. s%ry > 0) then
                 ! elongated ellipse: only a strip when the y curvature is negligible over the area
@@ -213,8 +166,8 @@ contains
         do attempt = 1, max_enlargements + 1
             call solve_levels(s, tang, ops, out, stat, errmsg)
             if (stat /= 0) return
-            out%touches_boundary = contact_touches_boundary(out%res%pn, out%model == 'strip2d' .or. &
-                s%kind == 'cylinder' .or. (s%kind == 'quadratic' .and. s%ry == 0))
+            out%touches_boundary = contact_touches_boundary(out%result%normal%pn, out%model == 'strip2d' .or. &
+                s%kind == 'cylinder' .or. (s%kind == 'quadratic' .and. s%ry == 0)) .and. .not. s%periodic
             if (.not. out%touches_boundary) exit
             if (.not. out%grid_auto .or. attempt == max_enlargements + 1) then
                 if (out%grid_auto) then
@@ -277,10 +230,10 @@ contains
         do k = 1, nlev
             if (k > 1) then
                 sl%nx = 2*sl%nx; sl%ny = fy*sl%ny
-                call prolong_copy(out%res%pn, 2, fy, p0)
-                if (out%tangential_run) then
-                    call prolong_copy(out%tres%px, 2, fy, px0)
-                    call prolong_copy(out%tres%py, 2, fy, py0)
+                call prolong_copy(out%result%normal%pn, 2, fy, p0)
+                if (out%result%tangential_run) then
+                    call prolong_copy(out%result%tangential%px, 2, fy, px0)
+                    call prolong_copy(out%result%tangential%py, 2, fy, py0)
                 end if
             end if
             if (real(sl%nx, dp)*sl%ny > 4096.0_dp**2) then
@@ -289,9 +242,9 @@ contains
             end if
             call solve_one(sl, tang, ops, out, p0, px0, py0, stat, errmsg)
             if (stat /= 0) return
-            if (out%res%status /= FC_CONVERGED) exit
-            if (out%tangential_run) then
-                if (out%tres%status /= FC_CONVERGED) exit
+            if (out%result%normal%status /= FC_CONVERGED) exit
+            if (out%result%tangential_run) then
+                if (out%result%tangential%status /= FC_CONVERGED) exit
             end if
             if (s%target > 0 .and. k >= 2) then
                 call level_estimate(out%levels, s, tang, noise, est, ratio, monotone, qname)
@@ -357,23 +310,18 @@ contains
             call solve_contact(ops, out%grid, mat, out%h0, load, settings, res, stat, errmsg)
         end if
         if (stat /= 0) return
-        out%setup_seconds = res%setup_seconds_normal; out%setup_seconds_tangential = res%setup_seconds_tangential
-        out%rounds = res%rounds
-        out%tangential_run = res%tangential_run
-        call move_normal(res%normal, out%res)
-        if (tang) out%tres = res%tangential
-        if (use_fmg) then
-            out%work_units = res%work_units; out%convergence_factor = res%convergence_factor
-        end if
+        call move_result(res, out%result)
         call system_clock(t1)
         lev%nx = out%grid%nx; lev%ny = out%grid%ny
-        lev%fn = out%res%fn; lev%approach = out%res%approach; lev%pmax = out%res%pmax; lev%ncon = out%res%ncon
-        lev%iterations = out%res%iterations
-        lev%status = status_name(out%res%status)
-        if (out%tangential_run) then
-            lev%fx = out%tres%fx; lev%fy = out%tres%fy; lev%xi = out%tres%xi; lev%eta = out%tres%eta
-            lev%iterations = lev%iterations + out%tres%iterations
-            lev%status = status_name(max(out%res%status, out%tres%status))
+        lev%fn = out%result%normal%fn; lev%approach = out%result%normal%approach
+        lev%pmax = out%result%normal%pmax; lev%ncon = out%result%normal%ncon
+        lev%iterations = out%result%normal%iterations
+        lev%status = status_name(out%result%normal%status)
+        if (out%result%tangential_run) then
+            lev%fx = out%result%tangential%fx; lev%fy = out%result%tangential%fy
+            lev%xi = out%result%tangential%xi; lev%eta = out%result%tangential%eta
+            lev%iterations = lev%iterations + out%result%tangential%iterations
+            lev%status = status_name(max(out%result%normal%status, out%result%tangential%status))
         end if
         lev%seconds = real(t1 - t0, dp)/rate
         out%total_seconds = out%total_seconds + lev%seconds
@@ -402,150 +350,41 @@ contains
         end subroutine fmg_solve
     end subroutine solve_one
 
+    !> to = from, moving the arrays.
+    subroutine move_result(from, to)
+        type(fc_contact_result), intent(inout) :: from
+        type(fc_contact_result), intent(out) :: to
+        to%tangential_run = from%tangential_run; to%rounds = from%rounds; to%status = from%status
+        to%setup_seconds_normal = from%setup_seconds_normal
+        to%setup_seconds_tangential = from%setup_seconds_tangential
+        to%work_units = from%work_units; to%convergence_factor = from%convergence_factor
+        call move_normal(from%normal, to%normal)
+        call move_tangential(from%tangential, to%tangential)
+    end subroutine move_result
+
     subroutine move_normal(from, to)
         type(fc_normal_result), intent(inout) :: from
-        type(fc_normal_result), intent(inout) :: to
-        to = from
+        type(fc_normal_result), intent(out) :: to
+        call move_alloc(from%pn, to%pn); call move_alloc(from%gap, to%gap); call move_alloc(from%history, to%history)
+        to%approach = from%approach; to%fn = from%fn; to%pmax = from%pmax; to%ncon = from%ncon
+        to%status = from%status; to%iterations = from%iterations; to%outer_iterations = from%outer_iterations
+        to%matvecs = from%matvecs; to%precond_applications = from%precond_applications
+        to%residual = from%residual; to%cpu_seconds = from%cpu_seconds; to%message = from%message
+        to%touches_boundary = from%touches_boundary
     end subroutine move_normal
 
-    !> Estimate of the last level's relative error over the target quantities (the largest
-    !! over fn or approach, the tangential quantity and, with `target_pmax`, pmax).  Public so
-    !! that fastcontact-bench-auto can replay it on reference sequences from every given grid.
-    subroutine level_estimate(levels, s, tang, noise, est, ratio, monotone, qname, factors)
-        type(fc_level), intent(in) :: levels(:)
-        type(fc_case), intent(in) :: s
-        logical, intent(in) :: tang
-        real(dp), intent(in) :: noise
-        real(dp), intent(out) :: est, ratio
-        logical, intent(out) :: monotone
-        character(len=*), intent(out) :: qname
-        real(dp), intent(in), optional :: factors(3)  !! see [[richardson_estimate]]
-        real(dp), allocatable :: q(:, :)
-        real(dp) :: e, r
-        logical :: mono
-        integer :: k
-        call target_quantities(levels, s, tang, q, qname)
-        est = 0; ratio = 0; monotone = .true.
-        do k = 1, size(q, 2)
-            call richardson_estimate(q(:, k), noise, e, r, mono, factors)
-            if (e > est) then
-                est = e; ratio = r
-            end if
-            monotone = monotone .and. mono
-        end do
-    end subroutine level_estimate
-
-    !> The target quantities of each level, relative to the last level: fn (approach
-    !! prescribed) or the approach (fn prescribed); the tangential quantity (signed projection
-    !! on the last level's direction of (xi, eta) when forces are prescribed, of (Fx, Fy)
-    !! relative to max(|Ft|, 0.1·mu·Fn) when shifts are); pmax with `target_pmax`.
-    subroutine target_quantities(levels, s, tang, q, qname)
-        type(fc_level), intent(in) :: levels(:)
-        type(fc_case), intent(in) :: s
-        logical, intent(in) :: tang
-        real(dp), allocatable, intent(out) :: q(:, :)
-        character(len=*), intent(out) :: qname
-        real(dp) :: scale, norm_t
-        integer :: n
-        n = size(levels)
-        allocate (q(n, 0))
-        if (s%normal%force_prescribed) then
-            q = reshape([q, levels%approach/abs(levels(n)%approach)], [n, size(q, 2) + 1]); qname = 'approach'
-        else
-            q = reshape([q, levels%fn/abs(levels(n)%fn)], [n, size(q, 2) + 1]); qname = 'fn'
-        end if
-        if (tang) then
-            if (s%tangential%force_prescribed) then
-                scale = max(hypot(levels(n)%xi, levels(n)%eta), tiny(1.0_dp))
-                q = reshape([q, (levels%xi*levels(n)%xi + levels%eta*levels(n)%eta)/scale**2], [n, size(q, 2) + 1])
-                qname = trim(qname)//' xi_eta'
-            else
-                norm_t = max(hypot(levels(n)%fx, levels(n)%fy), tiny(1.0_dp))
-                scale = max(norm_t, 0.1_dp*s%tangential%mu*levels(n)%fn, tiny(1.0_dp))
-                q = reshape([q, (levels%fx*levels(n)%fx + levels%fy*levels(n)%fy)/(norm_t*scale)], [n, size(q, 2) + 1])
-                qname = trim(qname)//' fx_fy'
-            end if
-        end if
-        if (s%target_pmax) then
-            q = reshape([q, levels%pmax/abs(levels(n)%pmax)], [n, size(q, 2) + 1]); qname = trim(qname)//' pmax'
-        end if
-    end subroutine target_quantities
-
-    !> The coarsest of `levels` certified to meet `target`, once the finest (last) level has
-    !! the error estimate `est`: level j's error is at most max_q |q_j − q_n| + est (triangle
-    !! inequality through the finest grid), so this holds whenever the estimate does.  The
-    !! solve cannot stop there (seeing grid n is what certifies it), but the grid is the answer
-    !! to "which grid does this scene need" for later solves of the same scene.
-    subroutine certify_coarsest(levels, s, tang, est, target, j, bound)
-        type(fc_level), intent(in) :: levels(:)
-        type(fc_case), intent(in) :: s
-        logical, intent(in) :: tang
-        real(dp), intent(in) :: est, target
-        integer, intent(out) :: j                     !! level index (0: none, est > target)
-        real(dp), intent(out) :: bound                !! certified relative error bound of level j
-        real(dp), allocatable :: q(:, :)
-        character(len=64) :: qname
-        integer :: n
-        n = size(levels)
-        j = 0; bound = -1
-        if (n == 0 .or. est > target) return
-        call target_quantities(levels, s, tang, q, qname)
-        do j = 1, n
-            bound = maxval(abs(q(j, :) - q(n, :))) + est
-            if (bound <= target) return
-        end do
-        j = n; bound = est
-    end subroutine certify_coarsest
-
-    !> Relative error estimate of the last of the values `q` (already divided by the last
-    !! value's magnitude, or distances to the last value) on grids refined by two; see the
-    !! module header.  `ratio`: observed d_{k−1}/d_k (0 with two grids); `monotone`: false
-    !! when the differences change sign or grow.
-    !! `factors` = [two-grid factor f2 (est_2 = f2·|d_2|), safety s, safety in the O(h²) band]
-    !! replaces the package's [`estimate_safety`, `estimate_safety`, `estimate_safety_h2`];
-    !! only fastcontact-bench-auto sets it, to measure the alternatives on the same data.
-    pure subroutine richardson_estimate(q, noise, est, ratio, monotone, factors)
-        real(dp), intent(in) :: q(:)
-        real(dp), intent(in) :: noise
-        real(dp), intent(out) :: est, ratio
-        logical, intent(out) :: monotone
-        real(dp), intent(in), optional :: factors(3)
-        real(dp) :: d, dprev, f(3)
-        integer :: n
-        f = [estimate_safety, estimate_safety, estimate_safety_h2]
-        if (present(factors)) f = factors
-        n = size(q)
-        est = -1; ratio = 0; monotone = .true.
-        if (n < 2) return
-        d = q(n) - q(n - 1)
-        if (n == 2) then
-            ! no rate is known yet: assume only that the error at least halves per level (the
-            ! slowest ratio measured); 2|d|/3 from the O(h²) rate failed whenever the two grids
-            ! happened to err alike (Cattaneo from 32² to 64²: true error 1.4× 2|d|/3)
-            est = f(1)*abs(d)
-            return
-        end if
-        dprev = q(n - 1) - q(n - 2)
-        if (abs(d) <= noise .and. abs(dprev) <= noise) then
-            est = noise; ratio = 0; return
-        end if
-        if (abs(d) <= noise) then
-            ratio = abs(dprev)/max(abs(d), tiny(1.0_dp))
-            est = f(2)*max(noise, abs(dprev)/12); return
-        end if
-        ratio = dprev/d
-        if (ratio <= 1) then
-            monotone = .false.
-            est = max(abs(d), abs(dprev))
-        else
-            est = max(abs(d)/(min(ratio, 4.0_dp) - 1), abs(dprev)/12)
-            if (ratio >= h2_ratio_low .and. ratio <= h2_ratio_high) then
-                est = f(3)*est
-            else
-                est = f(2)*est
-            end if
-        end if
-    end subroutine richardson_estimate
+    subroutine move_tangential(from, to)
+        type(fc_tangential_result), intent(inout) :: from
+        type(fc_tangential_result), intent(out) :: to
+        call move_alloc(from%px, to%px); call move_alloc(from%py, to%py)
+        call move_alloc(from%sx, to%sx); call move_alloc(from%sy, to%sy)
+        call move_alloc(from%ux, to%ux); call move_alloc(from%uy, to%uy)
+        call move_alloc(from%state, to%state); call move_alloc(from%history, to%history)
+        to%xi = from%xi; to%eta = from%eta; to%phi = from%phi; to%fx = from%fx; to%fy = from%fy; to%mz = from%mz
+        to%ncon = from%ncon; to%nadh = from%nadh; to%nslip = from%nslip; to%status = from%status
+        to%iterations = from%iterations; to%outer_iterations = from%outer_iterations; to%matvecs = from%matvecs
+        to%residual = from%residual; to%cpu_seconds = from%cpu_seconds; to%message = from%message
+    end subroutine move_tangential
 
     !> Copy interpolation of a coarse field to a grid refined by fx × fy (each coarse
     !! element's value on its children).
@@ -733,5 +572,39 @@ contains
         tmp(size(list) + 1) = text
         call move_alloc(tmp, list)
     end subroutine add
+
+    !> Influence coefficients of the case: a file (`ic_file`, body 2 from `ic_file2` or the
+    !! half-space) replaces the half-space kernels in `ops`; without one the half-space
+    !! kernels are (re)used.  Modes that need coefficients on other grids are refused.
+    subroutine use_ic_file(s, ops, stat, errmsg)
+        type(fc_case), intent(in) :: s
+        type(fc_contact_operators), intent(inout) :: ops
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        type(fc_ic_set) :: ic
+        stat = 0; errmsg = ''
+        if (len_trim(s%ic_file) == 0) then
+            if (allocated(ops%ic%a)) call clear_influence_coefficients(ops)
+            return
+        end if
+        stat = FC_ERR_UNSUPPORTED
+        if (s%grid_auto) then
+            errmsg = "ic_file with an automatic potential area: the area chooses its own element size, the file "// &
+                "holds coefficients for one; give a fixed grid (nx, ny, xmin, xmax, ymin, ymax) matching the file"
+            return
+        end if
+        if (s%target > 0) then
+            errmsg = "ic_file with an accuracy target: the target refines the grid, the file holds coefficients "// &
+                "for one grid; remove the target"
+            return
+        end if
+        call load_influence_source(s%ic_file, s%ic_file2, s%material%g1, s%material%nu1, s%material%g2, &
+            s%material%nu2, ic, stat, errmsg)
+        if (stat /= 0) then
+            stat = FC_ERR_VALUE; errmsg = "ic_file = '"//trim(s%ic_file)//"': "//trim(errmsg); return
+        end if
+        call set_influence_coefficients(ops, ic, stat, errmsg)
+        if (stat /= 0) stat = FC_ERR_VALUE
+    end subroutine use_ic_file
 
 end module fc_auto

@@ -15,6 +15,10 @@
 !!   in the transient modes, the previous displacements u' and tractions p' of the step.
 !! * [[fc_contact_result]]: the normal and tangential results and the process counters.
 !!
+!! The problem kinds, [[fc_normal_loading]], [[fc_contact_settings]] and [[fc_contact_result]]
+!! are defined in [[fc_contact_types]] (so that the case description and the outputs need
+!! not sit above the solvers) and re-exported here.
+!!
 !! Coupling (thesis §4.4): with K ≠ 0 the normal displacement A^zx·px + A^zy·py of the
 !! tangential tractions enters the normal problem and the tangential displacement A^xz·pn of
 !! the pressure enters the slip.  Rounds alternate normal and tangential solves until
@@ -29,12 +33,12 @@ module fc_contact
     use fc_tangcg, only: fc_tangential_operator, fc_tangential_settings, fc_tangential_result, fc_tangential_loading, &
         build_tangential_operator, solve_tangential_loading, coupling_displacements, EL_EXTERIOR, EL_ADHESION, EL_SLIP
     use fc_fmg, only: fc_fmg_settings, fc_fmg_stats, fc_surface, solve_normal_fmg
+    use fc_contact_types, only: FC_PROBLEM_NORMAL, FC_PROBLEM_TANGENTIAL, fc_normal_loading, fc_contact_settings, &
+        fc_contact_result
+    use fc_icfile, only: fc_ic_set, ic_set_kernel
+    use fc_periodic, only: build_periodic_normal_operator, check_periodic_grid, periodic_images_default
     implicit none
     private
-
-    !> Problem kinds: what the tangential stage solves (one dispatch point in [[tangential_stage]]).
-    integer, parameter, public :: FC_PROBLEM_NORMAL = 1      !! normal contact only
-    integer, parameter, public :: FC_PROBLEM_TANGENTIAL = 2  !! normal, then tangential (shifts or forces)
 
     !> Transient modes: how the previous state of a sequence enters the step.
     integer, parameter, public :: FC_FROM_REST = 0          !! u' = 0: a steady (static) problem; warm start only
@@ -42,14 +46,6 @@ module fc_contact
     integer, parameter, public :: FC_TRANSIENT_ROLLING = 2  !! u', p' = previous step moved by the rolling step dq
 
     integer, parameter, public :: max_rounds = 50  !! most Panagiotopoulos rounds
-
-    !> Normal loading: prescribed approach δ or total force Fn, and an optional start pressure.
-    type, public :: fc_normal_loading
-        logical :: force_prescribed = .false.   !! .true.: fn, else approach
-        real(dp) :: approach = 0                !! prescribed approach δ [mm]
-        real(dp) :: fn = 0                      !! prescribed total normal force [N]
-        real(dp), allocatable :: p_start(:, :)  !! warm start [N/mm²] (zeroed where contact is impossible)
-    end type fc_normal_loading
 
     !> Everything prescribed for one solve.
     type, public :: fc_contact_loading
@@ -61,22 +57,20 @@ module fc_contact
         real(dp) :: dq = 0                                !! rolling step [mm] (FC_TRANSIENT_ROLLING)
     end type fc_contact_loading
 
-    !> Solver settings of both stages.
-    type, public :: fc_contact_settings
-        type(fc_normal_settings) :: normal          !! solver 'bccg', 'norm' or 'fmg'
-        type(fc_tangential_settings) :: tangential  !! solver 'tangcg' or 'convexgs'
-        type(fc_fmg_settings) :: fmg                !! used when normal%solver = 'fmg'
-    end type fc_contact_settings
-
     !> Influence operators of one grid and material, reused while they match.
     type, public :: fc_contact_operators
         type(fc_normal_operator) :: normal          !! A^zz and its preconditioner
         type(fc_tangential_operator) :: tangential  !! tangential (and coupling) blocks
         logical :: reuse = .true.                   !! .false.: rebuild at every solve (checks, benchmarks)
+        logical :: periodic = .false.               !! normal operator of the periodic half-space ([[fc_periodic]])
+        logical :: built_periodic = .false.         !! the normal operator held is the periodic one
         integer :: builds_normal = 0                !! normal operator builds so far
         integer :: builds_tangential = 0            !! tangential operator builds so far
         real(dp) :: setup_seconds_normal = 0        !! set-up time of the last [[ensure_operators]] (0: reused)
         real(dp) :: setup_seconds_tangential = 0    !! same for the tangential operator
+        !> combined influence coefficients from a file ([[set_influence_coefficients]]); when
+        !! allocated they replace the half-space kernels for every block
+        type(fc_ic_set) :: ic
     contains
         procedure :: destroy => operators_destroy
     end type fc_contact_operators
@@ -96,23 +90,9 @@ module fc_contact
         procedure :: reset => state_reset
     end type fc_contact_state
 
-    !> Result of [[solve_contact]].
-    type, public :: fc_contact_result
-        type(fc_normal_result) :: normal            !! pressure, gap, approach, force (iterations: all rounds)
-        !> tractions, slip, states (iterations: all rounds); unallocated for a normal problem;
-        !! when the normal stage of a tangential problem failed: zero tractions and slip,
-        !! adhesion where pn > 0
-        type(fc_tangential_result) :: tangential
-        logical :: tangential_run = .false.         !! the tangential stage was solved
-        integer :: rounds = 0                       !! Panagiotopoulos rounds (0 for a normal problem)
-        integer :: status = FC_ERROR                !! worst status of the stages run
-        real(dp) :: setup_seconds_normal = 0        !! operator set-up of this solve (0: reused)
-        real(dp) :: setup_seconds_tangential = 0
-        real(dp) :: work_units = -1                 !! FMG: thesis work units (−1: not FMG)
-        real(dp) :: convergence_factor = -1         !! FMG: convergence factor (−1: not FMG)
-    end type fc_contact_result
-
+    public :: FC_PROBLEM_NORMAL, FC_PROBLEM_TANGENTIAL, fc_normal_loading, fc_contact_settings, fc_contact_result
     public :: solve_contact, ensure_operators, solve_normal_tangential, shift_along_x, fc_tangential_loading
+    public :: set_influence_coefficients, clear_influence_coefficients
 
 contains
 
@@ -123,10 +103,19 @@ contains
         type(fc_grid), intent(in) :: grid
         type(fc_material), intent(in) :: material
         logical, intent(in) :: normal, tangential   !! which operators are needed
+        integer :: stat
+        character(len=256) :: errmsg   ! a periodic grid is checked by the callers ([[solve_contact]])
         ops%setup_seconds_normal = 0; ops%setup_seconds_tangential = 0
         if (normal) then
-            if (.not. (ops%reuse .and. ops%normal%matches(grid, material))) then
-                call build_normal_operator(ops%normal, material, grid)
+            if (.not. (ops%reuse .and. ops%normal%matches(grid, material) .and. (ops%built_periodic .eqv. ops%periodic))) then
+                if (ops%periodic) then
+                    call build_periodic_normal_operator(ops%normal, material, grid, stat, errmsg)
+                else if (allocated(ops%ic%a)) then
+                    call build_normal_operator(ops%normal, material, grid, ops%ic)
+                else
+                    call build_normal_operator(ops%normal, material, grid)
+                end if
+                ops%built_periodic = ops%periodic
                 ops%builds_normal = ops%builds_normal + 1
                 ops%setup_seconds_normal = ops%normal%setup_seconds
             end if
@@ -134,7 +123,11 @@ contains
         end if
         if (tangential) then
             if (.not. (ops%reuse .and. ops%tangential%matches(grid, material))) then
-                call build_tangential_operator(ops%tangential, material, grid)
+                if (allocated(ops%ic%a)) then
+                    call build_tangential_operator(ops%tangential, material, grid, ops%ic)
+                else
+                    call build_tangential_operator(ops%tangential, material, grid)
+                end if
                 ops%builds_tangential = ops%builds_tangential + 1
                 ops%setup_seconds_tangential = ops%tangential%setup_seconds
             end if
@@ -147,6 +140,30 @@ contains
         call self%normal%destroy()
         call self%tangential%destroy()
     end subroutine operators_destroy
+
+    !> Use the combined coefficients `ic` (content 'combined', validated) for every block
+    !! from now on; the operators are rebuilt at the next solve.  FMG, which needs
+    !! coefficients on coarser grids, is refused while a set is in use.
+    subroutine set_influence_coefficients(ops, ic, stat, errmsg)
+        type(fc_contact_operators), intent(inout) :: ops
+        type(fc_ic_set), intent(in) :: ic
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        stat = 0; errmsg = ''
+        if (ic%content /= 'combined' .or. .not. allocated(ic%a)) then
+            stat = 1; errmsg = "influence coefficients: a set of content 'combined' is needed (combine the bodies first)"
+            return
+        end if
+        ops%ic = ic
+        call ops%normal%destroy(); call ops%tangential%destroy()
+    end subroutine set_influence_coefficients
+
+    !> Return to the half-space coefficients (operators rebuilt at the next solve).
+    subroutine clear_influence_coefficients(ops)
+        type(fc_contact_operators), intent(inout) :: ops
+        if (allocated(ops%ic%a)) deallocate (ops%ic%a)
+        call ops%normal%destroy(); call ops%tangential%destroy()
+    end subroutine clear_influence_coefficients
 
     !> Forget the previous solution (keeps `warm_start`).
     subroutine state_reset(self)
@@ -187,9 +204,39 @@ contains
                 'normal and tangential solves; use BCCG'
             return
         end if
+        if (ops%periodic) then
+            if (allocated(ops%ic%a)) then
+                stat = 1; errmsg = 'solve_contact: the periodic half-space and an influence-coefficient file exclude '// &
+                    'each other'; return
+            end if
+            call check_periodic_grid(grid, periodic_images_default, stat, errmsg)
+            if (stat == 0 .and. (tangential .or. use_fmg)) then
+                stat = 1; errmsg = 'solve_contact: the periodic half-space is available for normal contact with '// &
+                    "'bccg' or 'norm'"
+            end if
+            if (stat /= 0) return
+        end if
+        if (allocated(ops%ic%a)) then
+            if (use_fmg) then
+                stat = 1
+                errmsg = 'solve_contact: FMG needs influence coefficients on every coarser grid, an influence-'// &
+                    'coefficient file holds them for one grid: use BCCG or NORM'
+                return
+            end if
+            block
+                real(dp), allocatable :: k(:, :)
+                call ic_set_kernel(ops%ic, 1, grid, k, stat, errmsg)   ! 1: any block; checks cells and offsets
+            end block
+            if (stat /= 0) return
+        end if
         call ensure_operators(ops, grid, material, normal=.not. use_fmg, tangential=tangential)
         call contact_rounds(ops%normal, ops%tangential, grid, material, h0, load, settings, res, stat, errmsg, &
                             state, surface)
+        if (ops%periodic) then
+            ! a periodic cell has no edge: the area cannot clip the contact
+            res%normal%touches_boundary = .false.
+            if (res%normal%status == FC_CONVERGED) res%normal%message = 'converged'
+        end if
         res%setup_seconds_normal = ops%setup_seconds_normal
         res%setup_seconds_tangential = ops%setup_seconds_tangential
     end subroutine solve_contact

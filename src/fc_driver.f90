@@ -1,4 +1,4 @@
-!> The batch driver `fastcontact CASES.nml [--out DIR]` (SPEC §5) as a library routine,
+!> The batch driver `fastcontact CASES.nml [--out DIR]` (doc/user_guide.md) as a library routine,
 !! so that tests can run it in-process.
 !!
 !! Every case in the file is solved in order.  Per good case DIR/<name>.json (summary) and,
@@ -34,7 +34,8 @@ module fc_driver
     use fc_input_scene, only: build_case, case_notes
     use fc_scene, only: fc_case
     use fc_strings, only: fmt_int, fmt_real
-    use fc_errors, only: FC_ERR_FRICTION_BOUND, FC_ERR_NO_CONTACT, FC_ERR_GEOMETRY, FC_ERR_IO, FC_ERR_ALLOC, FC_ERR_GRID
+    use fc_errors, only: FC_ERR_VALUE, FC_ERR_FRICTION_BOUND, FC_ERR_NO_CONTACT, FC_ERR_GEOMETRY, FC_ERR_IO, FC_ERR_ALLOC, &
+        FC_ERR_GRID
     use fc_output, only: fc_case_summary, write_case_json, write_case_csv, write_case_report
     use fc_auto, only: fc_auto_outcome, solve_case_auto
     implicit none
@@ -63,11 +64,14 @@ contains
     end function driver_usage
 
     !> Run the driver on the command-line arguments `args` (without the program name).
-    subroutine run_driver(args, exit_code, report_unit, error_unit)
+    !! With `only_case` = k (the MPI batch driver): cases before k are read and checked only,
+    !! for what case k inherits; case k is solved and written; no closing summary line.
+    subroutine run_driver(args, exit_code, report_unit, error_unit, only_case)
         character(len=*), intent(in) :: args(:)
         integer, intent(out) :: exit_code
         integer, intent(in), optional :: report_unit   !! report (default: stdout)
         integer, intent(in), optional :: error_unit    !! error messages (default: stderr)
+        integer, intent(in), optional :: only_case     !! solve only this case (1-based)
         integer :: rep, err, i, k, stat, ncase_err, ncase_fail
         character(len=:), allocatable :: case_file, out_dir
         type(fc_case_chunk), allocatable :: cases(:)
@@ -131,6 +135,12 @@ contains
         allocate (used(0), used_case(0))
         ncase_err = 0; ncase_fail = 0
         do k = 1, size(cases)
+            if (present(only_case)) then
+                if (k > only_case) exit
+                if (k < only_case) then
+                    call inherit_case(k); cycle
+                end if
+            end if
             call run_one_case(k, case_status)
             select case (case_status)
             case (0)
@@ -139,9 +149,9 @@ contains
             end select
         end do
         call ops%destroy()
-        write (rep, '(a,i0,a,i0,a,i0,a,i0,a)') 'fastcontact: ', size(cases), ' case(s): ', &
-            size(cases) - ncase_err - ncase_fail, ' converged, ', ncase_fail, ' not converged, ', ncase_err, &
-            ' with input errors'
+        if (.not. present(only_case)) write (rep, '(a,i0,a,i0,a,i0,a,i0,a)') 'fastcontact: ', size(cases), &
+            ' case(s): ', size(cases) - ncase_err - ncase_fail, ' converged, ', ncase_fail, ' not converged, ', &
+            ncase_err, ' with input errors'
         if (ncase_err > 0) then
             exit_code = EXIT_INPUT_ERROR
         else if (ncase_fail > 0) then
@@ -155,16 +165,11 @@ contains
             integer, intent(out) :: case_status
             character(len=:), allocatable :: dir
             type(fc_material) :: mat
-            type(fc_grid) :: grid
-            real(dp), allocatable :: h0(:, :)
-            type(fc_normal_result) :: res
-            type(fc_tangential_result) :: tres
             type(fc_case_summary) :: s
             integer(int64) :: t0, t1, t2, rate
-            integer :: j, rounds, final_status
+            integer :: j, final_status
             real(dp) :: ca, cb
             logical :: tang
-            type(fc_auto_outcome) :: auto
             type(fc_case) :: kase
             call system_clock(t0, rate)
             case_status = 1
@@ -203,34 +208,25 @@ contains
                 call run_strip_case(dir, kase, t0, rate, case_status)
                 return
             end if
-            ! ---- solve: model choice, potential area, accuracy target (fc_auto); operators reused
+            ! ---- solve: model choice, potential area, accuracy target (fc_auto); operators reused;
+            !      the outcome goes straight into the summary
             call system_clock(t1)
-            call solve_case_auto(kase, ops, auto, stat, errmsg)
+            call solve_case_auto(kase, ops, s%outcome, stat, errmsg)
             call system_clock(t2)
             if (stat /= 0) then
-                call library_context(stat, errmsg, state, auto)
+                call library_context(stat, errmsg, state, s%outcome)
                 call case_error(); return
             end if
-            tang = auto%tangential
-            mat = auto%material
+            tang = s%outcome%tangential
+            mat = s%outcome%material
             ! ---- summary
             s%name = state%name; s%title = state%title; s%problem = state%problem; s%geometry = state%kind
-            s%material = mat; s%force_prescribed = state%force_prescribed
+            s%force_prescribed = state%force_prescribed
             s%tol = kase%settings%normal%tol
-            if (auto%tol > 0) s%tol = auto%tol
+            if (s%outcome%tol > 0) s%tol = s%outcome%tol
             s%notes = state%notes//case_notes(state)
-            s%model = auto%model; s%reductions = auto%reductions; s%warnings = auto%warnings
-            s%grid_auto = auto%grid_auto; s%enlargements = auto%enlargements
-            s%touches_boundary = auto%touches_boundary
-            s%target = auto%target; s%estimate = auto%estimate; s%reliable = auto%reliable
-            s%target_met = auto%target_met; s%quantities = auto%quantities; s%levels = auto%levels
-            if (auto%sufficient > 0) then
-                s%sufficient_nx = auto%levels(auto%sufficient)%nx; s%sufficient_ny = auto%levels(auto%sufficient)%ny
-                s%sufficient_bound = auto%sufficient_bound
-            end if
-            s%levels_seconds = auto%total_seconds
-            if (auto%analytic) then
-                call analytic_summary(s, auto, state)
+            if (s%outcome%analytic) then
+                call analytic_summary(s, state)
                 final_status = FC_CONVERGED
                 call remove_file(dir//'/'//trim(state%name)//'.csv')
                 call system_clock(t2)
@@ -243,34 +239,28 @@ contains
                 case_status = 0
                 return
             end if
-            grid = auto%grid
-            call move_alloc(auto%h0, h0)
-            call move_alloc(auto%res%pn, res%pn); call move_alloc(auto%res%gap, res%gap)
-            res%approach = auto%res%approach; res%fn = auto%res%fn; res%pmax = auto%res%pmax
-            res%ncon = auto%res%ncon; res%status = auto%res%status; res%iterations = auto%res%iterations
-            res%outer_iterations = auto%res%outer_iterations; res%matvecs = auto%res%matvecs
-            res%residual = auto%res%residual; res%cpu_seconds = auto%res%cpu_seconds; res%message = auto%res%message
-            if (tang) tres = auto%tres
-            rounds = auto%rounds
-            s%setup_seconds = auto%setup_seconds; s%setup_seconds_tangential = auto%setup_seconds_tangential
-            s%grid = grid
-            s%status = status_name(res%status); s%message = res%message
-            s%solver = kase%settings%normal%solver; s%solver_normal = kase%settings%normal%solver
-            s%status_normal = status_name(res%status)
-            s%fn = res%fn; s%approach = res%approach; s%pmax = res%pmax
-            s%ncon = res%ncon; s%nadh = res%ncon; s%nslip = 0
-            s%iterations = res%iterations; s%outer_iterations = res%outer_iterations; s%matvecs = res%matvecs
-            s%iterations_normal = res%iterations; s%outer_iterations_normal = res%outer_iterations
-            if (kase%settings%normal%solver == 'fmg') then
-                s%work_units = auto%work_units; s%convergence_factor = auto%convergence_factor
-                s%cycle = state%cycle
-            end if
-            s%matvecs_normal = res%matvecs; s%residual_normal = res%residual
-            s%residual = res%residual
-            s%cpu_seconds_normal = s%setup_seconds + res%cpu_seconds
-            if (size(auto%levels) > 1) s%cpu_seconds_normal = real(t2 - t1, dp)/rate
-            final_status = res%status
-            if (tang) call tangential_summary(s, state, kase, res, tres, auto%tangential_run, rounds, final_status)
+            associate (res => s%outcome%result%normal, grid => s%outcome%grid)
+                s%setup_seconds = s%outcome%result%setup_seconds_normal
+                s%setup_seconds_tangential = s%outcome%result%setup_seconds_tangential
+                s%status = status_name(res%status); s%message = res%message
+                s%solver = kase%settings%normal%solver; s%solver_normal = kase%settings%normal%solver
+                s%status_normal = status_name(res%status)
+                s%fn = res%fn; s%approach = res%approach; s%pmax = res%pmax
+                s%ncon = res%ncon; s%nadh = res%ncon; s%nslip = 0
+                s%iterations = res%iterations; s%outer_iterations = res%outer_iterations; s%matvecs = res%matvecs
+                s%iterations_normal = res%iterations; s%outer_iterations_normal = res%outer_iterations
+                if (kase%settings%normal%solver == 'fmg') then
+                    s%work_units = s%outcome%result%work_units
+                    s%convergence_factor = s%outcome%result%convergence_factor
+                    s%cycle = state%cycle
+                end if
+                s%matvecs_normal = res%matvecs; s%residual_normal = res%residual
+                s%residual = res%residual
+                s%cpu_seconds_normal = s%setup_seconds + res%cpu_seconds
+                if (size(s%outcome%levels) > 1) s%cpu_seconds_normal = real(t2 - t1, dp)/rate
+                final_status = res%status
+                if (tang) call tangential_summary(s, state, kase, final_status)
+            end associate
             if (mat%k /= 0 .and. .not. tang) s%notes = s%notes//'K = '//fmt_real(mat%k)// &
                 ' /= 0: the normal problem is solved without the tangential coupling. '
             if (state%kind == 'quadratic' .and. state%rx > 0 .and. state%ry > 0) then
@@ -284,12 +274,15 @@ contains
             end if
             ! ---- outputs
             if (state%table) then
-                if (tang) then
-                    call write_case_csv(dir//'/'//trim(state%name)//'.csv', grid, res%pn, res%gap, stat, errmsg, &
-                        tres%state, tres%px, tres%py, tres%sx, tres%sy)
-                else
-                    call write_case_csv(dir//'/'//trim(state%name)//'.csv', grid, res%pn, res%gap, stat, errmsg)
-                end if
+                associate (res => s%outcome%result%normal, tres => s%outcome%result%tangential)
+                    if (tang) then
+                        call write_case_csv(dir//'/'//trim(state%name)//'.csv', s%outcome%grid, res%pn, res%gap, stat, &
+                            errmsg, tres%state, tres%px, tres%py, tres%sx, tres%sy)
+                    else
+                        call write_case_csv(dir//'/'//trim(state%name)//'.csv', s%outcome%grid, res%pn, res%gap, stat, &
+                            errmsg)
+                    end if
+                end associate
                 if (stat /= 0) then
                     call case_error(); return
                 end if
@@ -304,9 +297,9 @@ contains
                 call case_error(); return
             end if
             if (tang) then
-                call write_case_report(rep, s, res%pn, tres%state)
+                call write_case_report(rep, s, s%outcome%result%normal%pn, s%outcome%result%tangential%state)
             else
-                call write_case_report(rep, s, res%pn)
+                call write_case_report(rep, s, s%outcome%result%normal%pn)
             end if
             if (final_status == FC_CONVERGED) then
                 case_status = 0
@@ -362,6 +355,21 @@ contains
                     trim(status_name(final_status))//': '//trim(s%message)
             end if
         end subroutine run_strip_case
+
+        !> Apply and check case k without solving or writing: the state later cases inherit
+        !! (as [[run_one_case]] leaves it, except after an error found only while solving).
+        subroutine inherit_case(k)
+            integer, intent(in) :: k
+            saved_state = state
+            call apply_case(cases(k), k, state, name, stat, errmsg)
+            if (stat /= 0 .or. any(used == state%name)) then
+                state = saved_state; return
+            end if
+            used = [character(len=64) :: used, name]
+            used_case = [used_case, k]
+            call validate_case(state, stat, errmsg)
+            if (stat /= 0) state = saved_state
+        end subroutine inherit_case
 
         !> Report an input error of the current case and remove stale outputs.
         subroutine case_error(clean)
@@ -430,7 +438,7 @@ contains
         case ('fft-rsm')
             call solve_strip_fft_rsm(prob, t, r, stat, errmsg)
         case default
-            stat = 1; errmsg = 'unknown strip solver'
+            stat = FC_ERR_VALUE; errmsg = 'unknown strip solver'
         end select
         if (stat /= 0) then
             errmsg = "&solver strip = '"//trim(state%strip)//"': "//trim(errmsg); return
@@ -441,8 +449,8 @@ contains
         el = reshape(merge(EL_ADHESION, EL_EXTERIOR, prob%contact), [n, 1])
         final_status = r%status
         s%name = state%name; s%title = state%title; s%problem = state%problem; s%geometry = 'strip2d'
-        s%material = prob%material; s%grid = grid; s%model = 'strip2d'
-        allocate (s%reductions(0), s%warnings(0))
+        s%outcome%material = prob%material; s%outcome%grid = grid; s%outcome%model = 'strip2d'
+        allocate (s%outcome%reductions(0), s%outcome%warnings(0))
         s%notes = state%notes//case_notes(state)
         s%status = status_name(r%status); s%message = r%message
         s%solver = state%strip
@@ -459,75 +467,69 @@ contains
     end subroutine solve_strip_case
 
     !> Summary of an analytic (problem = 'hertz') case: no grid, Hertz values as results.
-    subroutine analytic_summary(s, auto, state)
+    subroutine analytic_summary(s, state)
         type(fc_case_summary), intent(inout) :: s
-        type(fc_auto_outcome), intent(in) :: auto
         type(fc_case_input), intent(in) :: state
-        s%analytic = .true.
         s%status = 'converged'; s%message = 'analytic Hertz solution'
         s%solver = 'hertz'; s%solver_normal = 'hertz'; s%status_normal = 'converged'
-        s%has_hertz = .true.; s%hertz = auto%hertz
-        s%fn = auto%hertz%fn; s%approach = auto%hertz%approach; s%pmax = auto%hertz%p0
+        s%has_hertz = .true.; s%hertz = s%outcome%hertz
+        s%fn = s%outcome%hertz%fn; s%approach = s%outcome%hertz%approach; s%pmax = s%outcome%hertz%p0
         s%residual = 0
-        s%has_cattaneo = auto%has_cattaneo
-        if (auto%has_cattaneo) then
-            s%cattaneo = auto%cattaneo
-            s%fx = auto%fx; s%fy = auto%fy
+        if (s%outcome%has_cattaneo) then
+            s%fx = s%outcome%fx; s%fy = s%outcome%fy
             s%mu = state%mu
             ! the shift opposes the force (tractions act on body 1 and oppose its slip)
-            s%xi = -auto%cattaneo%shift*auto%fx/max(hypot(auto%fx, auto%fy), tiny(1.0_dp))
-            s%eta = -auto%cattaneo%shift*auto%fy/max(hypot(auto%fx, auto%fy), tiny(1.0_dp))
+            s%xi = -s%outcome%cattaneo%shift*s%outcome%fx/max(hypot(s%outcome%fx, s%outcome%fy), tiny(1.0_dp))
+            s%eta = -s%outcome%cattaneo%shift*s%outcome%fy/max(hypot(s%outcome%fx, s%outcome%fy), tiny(1.0_dp))
         end if
     end subroutine analytic_summary
 
     !> Tangential part of the summary; status = worst of both stages.  When the normal
     !! stage failed the tangential stage was not run: zero tractions, states from the
     !! pressure (adhesion where pn > 0), status of the normal stage.
-    subroutine tangential_summary(s, state, kase, res, tres, tangential_run, rounds, final_status)
+    subroutine tangential_summary(s, state, kase, final_status)
         type(fc_case_summary), intent(inout) :: s
         type(fc_case_input), intent(in) :: state
         type(fc_case), intent(in) :: kase
-        type(fc_normal_result), intent(in) :: res
-        type(fc_tangential_result), intent(in) :: tres
-        logical, intent(in) :: tangential_run
-        integer, intent(in) :: rounds
         integer, intent(inout) :: final_status
-        s%tangential = .true.
-        s%solver_tangential = kase%settings%tangential%solver
-        s%solver = trim(kase%settings%normal%solver)//'+'//trim(kase%settings%tangential%solver)
-        s%mu = state%mu; s%tforce_prescribed = state%tforce_prescribed
-        s%fx_prescribed = state%fx; s%fy_prescribed = state%fy
-        s%panagiotopoulos_rounds = rounds
-        s%cpu_seconds_normal = s%setup_seconds + res%cpu_seconds
-        s%tangential_run = tangential_run
-        if (.not. s%tangential_run) then
-            ! (the orchestrator's result has zero tractions and adhesion where pn > 0)
-            s%status_tangential = 'not_run'
-            s%message = trim(res%message)//' (tangential stage not run)'
-            s%xi = state%xi; s%eta = state%eta; s%phi = state%phi
-            s%cpu_seconds_tangential = s%setup_seconds_tangential
-            return
-        end if
-        s%status_tangential = status_name(tres%status)
-        s%fx = tres%fx; s%fy = tres%fy; s%mz = tres%mz
-        s%xi = tres%xi; s%eta = tres%eta; s%phi = tres%phi
-        s%nadh = tres%nadh; s%nslip = tres%nslip
-        s%iterations_tangential = tres%iterations; s%outer_iterations_tangential = tres%outer_iterations
-        s%matvecs_tangential = tres%matvecs; s%residual_tangential = tres%residual
-        s%iterations = res%iterations + tres%iterations
-        s%outer_iterations = res%outer_iterations + tres%outer_iterations
-        s%matvecs = res%matvecs + tres%matvecs
-        s%residual = max(res%residual, tres%residual)
-        s%cpu_seconds_tangential = s%setup_seconds_tangential + tres%cpu_seconds
-        final_status = max(res%status, tres%status)
-        s%status = status_name(final_status)
-        if (tres%status /= FC_CONVERGED) then
-            if (res%status == FC_CONVERGED) then
-                s%message = 'tangential: '//trim(tres%message)
-            else
-                s%message = 'normal: '//trim(res%message)//'; tangential: '//trim(tres%message)
+        associate (res => s%outcome%result%normal, tres => s%outcome%result%tangential)
+            s%tangential = .true.
+            s%solver_tangential = kase%settings%tangential%solver
+            s%solver = trim(kase%settings%normal%solver)//'+'//trim(kase%settings%tangential%solver)
+            s%mu = state%mu; s%tforce_prescribed = state%tforce_prescribed
+            s%fx_prescribed = state%fx; s%fy_prescribed = state%fy
+            s%panagiotopoulos_rounds = s%outcome%result%rounds
+            s%cpu_seconds_normal = s%setup_seconds + res%cpu_seconds
+            s%tangential_run = s%outcome%result%tangential_run
+            if (.not. s%tangential_run) then
+                ! (the orchestrator's result has zero tractions and adhesion where pn > 0)
+                s%status_tangential = 'not_run'
+                s%message = trim(res%message)//' (tangential stage not run)'
+                s%xi = state%xi; s%eta = state%eta; s%phi = state%phi
+                s%cpu_seconds_tangential = s%setup_seconds_tangential
+                return
             end if
-        end if
+            s%status_tangential = status_name(tres%status)
+            s%fx = tres%fx; s%fy = tres%fy; s%mz = tres%mz
+            s%xi = tres%xi; s%eta = tres%eta; s%phi = tres%phi
+            s%nadh = tres%nadh; s%nslip = tres%nslip
+            s%iterations_tangential = tres%iterations; s%outer_iterations_tangential = tres%outer_iterations
+            s%matvecs_tangential = tres%matvecs; s%residual_tangential = tres%residual
+            s%iterations = res%iterations + tres%iterations
+            s%outer_iterations = res%outer_iterations + tres%outer_iterations
+            s%matvecs = res%matvecs + tres%matvecs
+            s%residual = max(res%residual, tres%residual)
+            s%cpu_seconds_tangential = s%setup_seconds_tangential + tres%cpu_seconds
+            final_status = max(res%status, tres%status)
+            s%status = status_name(final_status)
+            if (tres%status /= FC_CONVERGED) then
+                if (res%status == FC_CONVERGED) then
+                    s%message = 'tangential: '//trim(tres%message)
+                else
+                    s%message = 'normal: '//trim(res%message)//'; tangential: '//trim(tres%message)
+                end if
+            end if
+        end associate
     end subroutine tangential_summary
 
     !> Name the namelist group, keys and values of a library error that the input checks
@@ -536,7 +538,7 @@ contains
         integer, intent(in) :: stat
         character(len=*), intent(inout) :: errmsg
         type(fc_case_input), intent(in) :: state
-        type(fc_auto_outcome), intent(in) :: auto
+        type(fc_auto_outcome), intent(in) :: auto   !! (grid of the failed solve)
         select case (stat)
         case (FC_ERR_FRICTION_BOUND)
             errmsg = '&tangential fx = '//fmt_real(state%fx)//', fy = '//fmt_real(state%fy)//', mu = '// &

@@ -1,4 +1,5 @@
-!> Error codes returned in `stat` by every library routine (0: success) and mapped onto the
+!> Error codes returned in `stat` by every library routine (0: success; the values live in
+!! [[fc_kinds]], the bottom of the module graph, and are re-exported here) and mapped onto the
 !! flat API's documented `ierr` codes (doc/legacy_api.md) by [[fc_legacy_registry]].
 !!
 !! Library messages (`errmsg`) speak library terms (argument names of the routine); the
@@ -6,22 +7,13 @@
 !! choose their context from the code, never by reading the message.  Solver outcomes
 !! (converged, not converged, diverged) are statuses in the results (fc_kinds), not errors.
 module fc_errors
+    use fc_kinds, only: FC_OK, FC_ERR_VALUE, FC_ERR_NOT_READY, FC_ERR_SHAPE, FC_ERR_UNSUPPORTED, FC_ERR_IO, &
+        FC_ERR_NO_CONTACT, FC_ERR_FRICTION_BOUND, FC_ERR_GRID, FC_ERR_ALLOC, FC_ERR_INTERNAL, FC_ERR_GEOMETRY
     implicit none
     private
 
-    integer, parameter, public :: FC_OK = 0                 !! success
-    integer, parameter, public :: FC_ERR_VALUE = 1          !! an argument is out of range or invalid
-    integer, parameter, public :: FC_ERR_NOT_READY = 2      !! required data missing (operator not built, order)
-    integer, parameter, public :: FC_ERR_SHAPE = 3          !! an array does not match the grid
-    integer, parameter, public :: FC_ERR_UNSUPPORTED = 4    !! a valid combination the solvers do not offer
-    integer, parameter, public :: FC_ERR_IO = 5             !! a file cannot be read or written
-    integer, parameter, public :: FC_ERR_NO_CONTACT = 6     !! the loading brings no element into contact
-    integer, parameter, public :: FC_ERR_FRICTION_BOUND = 7 !! prescribed |(Fx, Fy)| ≥ μ·Fn: no unique shift
-    integer, parameter, public :: FC_ERR_GRID = 8           !! the grid does not suit the chosen solver
-    integer, parameter, public :: FC_ERR_ALLOC = 9          !! memory allocation failed
-    integer, parameter, public :: FC_ERR_INTERNAL = 10      !! unexpected internal error
-    integer, parameter, public :: FC_ERR_GEOMETRY = 11      !! the geometry cannot touch on this grid
-
+    public :: FC_OK, FC_ERR_VALUE, FC_ERR_NOT_READY, FC_ERR_SHAPE, FC_ERR_UNSUPPORTED, FC_ERR_IO, FC_ERR_NO_CONTACT
+    public :: FC_ERR_FRICTION_BOUND, FC_ERR_GRID, FC_ERR_ALLOC, FC_ERR_INTERNAL, FC_ERR_GEOMETRY
     public :: error_name
 
 contains

@@ -1,25 +1,11 @@
-!> Full multigrid (FMG) for the normal contact LCP (thesis ch. 2, §2.4; SPEC §3).
+!> Full multigrid (FMG) for the normal contact LCP (thesis ch. 2, §2.4).
 !!
 !! The LCP e = h + A p ≥ 0, p ≥ 0, e·p = 0 is solved by an *MG + active set* iteration:
 !! each active-set iteration applies ONE multigrid V-cycle to A_CC p_C = −h_C on the
 !! current contact set C, then updates C (drop p < 0, add e ≤ 0; thesis §2.4.1).
-!!
-!! Multigrid components (thesis §2.4.2):
-!!
-!! * smoother: damped Gauss–Seidel (ω = 0.8 by default) acting on the contact set only
-!!   (lexicographic order).  A is dense, so a sweep costs O(n_C·n) — O(n²) — as in the
-!!   thesis; the rows are read from the BTTB kernel, never from a stored dense matrix.
-!!   Damped Jacobi is available only to demonstrate its failure (thesis Fig. 2.6), and
-!!   'fft-rsm' is the O(n log n) smoother beyond the thesis (its outlook §6.3): Richardson
-!!   with the Toeplitz approximation M ≈ A⁻¹ (§3.3.1 in 2D) reduced to C and row-sum
-!!   modified as in eq. (3.21).
-!! * restriction: four-point average of the defect; a coarse cell is in contact when any
-!!   of its four fine cells is (restriction of the active set);
-!! * interpolation: copy (piecewise constant) of the coarse correction, zero outside C;
-!! * coarse operators: each level's own influence coefficients (same material, doubled
-!!   element size); coarsest grid (4×4 by default) solved exactly with LAPACK (dposv) on
-!!   the contact subset;
-!! * all exterior quantities (pressure, defect, correction) are zero.
+!! The grid hierarchy and transfers are in [[fc_fmg_levels]], the smoothers and the
+!! coarsest exact solve in [[fc_fmg_smoothers]]; all exterior quantities (pressure,
+!! defect, correction) are zero.
 !!
 !! FMG (nested iteration, §2.4.3): the coarsest LCP is solved exactly; going up one level
 !! the pressure is copied, the deformation u = A p is interpolated bilinearly, and the
@@ -40,68 +26,19 @@
 !! plus 1 per cycle and level for the row sums M·1_C.
 module fc_fmg
     use fc_kinds
-    use fc_errors, only: FC_ERR_GRID
-    use fc_geometry, only: fc_grid, make_grid, h_no_contact, quadratic_gap, punch_rough_gap, wavy_gap, &
-        fc_rough_params
+    use fc_geometry, only: fc_grid, h_no_contact
+    use fc_geometry_surfaces, only: fc_surface, fc_quadratic_surface, fc_punch_rough_surface, fc_wavy_surface
     use fc_influence
     use fc_norm, only: fc_normal_result
+    use fc_fmg_levels, only: fc_fmg_settings, fc_fmg_hierarchy, build_fmg_hierarchy, &
+        build_preconditioners, fmg_cycle_from_name, restrict_defect, interp_copy, interp_bilinear
+    use fc_fmg_smoothers, only: smooth, direct_solve
     implicit none
     private
 
-    !> Undeformed distance h0 (without approach) as a formula that can be evaluated on
-    !! any grid; FMG evaluates it on every level.  Extend it for your own geometry.
-    type, abstract, public :: fc_surface
-    contains
-        procedure(surface_evaluate), deferred :: evaluate
-    end type fc_surface
-
-    abstract interface
-        !> h0 [mm] at the element centres of `grid`; `h_no_contact` where no contact can occur.
-        subroutine surface_evaluate(self, grid, h0)
-            import :: fc_surface, fc_grid, dp
-            class(fc_surface), intent(in) :: self
-            type(fc_grid), intent(in) :: grid
-            real(dp), intent(out) :: h0(:, :)
-        end subroutine surface_evaluate
-    end interface
-
-    !> Quadratic (Hertzian) profile h0 = x²/(2 rx) + y²/(2 ry), thesis §2.5.1.
-    type, extends(fc_surface), public :: fc_quadratic_surface
-        real(dp) :: rx = 0, ry = 0   !! relative radii of curvature [mm] (0: flat)
-    contains
-        procedure :: evaluate => quadratic_evaluate
-    end type fc_quadratic_surface
-
-    !> Rigid flat punch on a random rough surface, thesis §2.5.2 (eqs. 2.13–2.16).
-    type, extends(fc_surface), public :: fc_punch_rough_surface
-        real(dp) :: diameter = 8.97_dp        !! punch diameter [mm]
-        type(fc_rough_params) :: rough        !! σ, γ, M, N, seed
-    contains
-        procedure :: evaluate => punch_rough_evaluate
-    end type fc_punch_rough_surface
-
-    !> Wavy surface A·(1 − cos(2πx/λx)·cos(2πy/λy)).
-    type, extends(fc_surface), public :: fc_wavy_surface
-        real(dp) :: amplitude = 0, wavelength_x = 0, wavelength_y = 0  !! [mm]
-    contains
-        procedure :: evaluate => wavy_evaluate
-    end type fc_wavy_surface
-
-    !> Settings of the FMG / MG + active-set solver.
-    type, public :: fc_fmg_settings
-        integer :: nu1 = 1                 !! pre-smoothing sweeps (V(nu1,nu2))
-        integer :: nu2 = 1                 !! post-smoothing sweeps
-        real(dp) :: omega = 0.8_dp         !! damping of the smoother (thesis Table 2.1)
-        real(dp) :: beta = 0.003_dp        !! initial-area parameter of eq. (2.17)
-        real(dp) :: tol = 1.0e-6_dp        !! stopping rule (2.18) on the target grid
-        integer :: maxit = 100             !! active-set iterations (cycles) on the target grid
-        integer :: maxit_level = 50        !! active-set iterations on intermediate grids
-        integer :: coarsest = 4            !! stop coarsening below this many cells per direction
-        logical :: nested = .true.         !! .true.: FMG; .false.: MG + active set from {h ≤ 0}
-        character(len=8) :: smoother = 'gs'  !! 'gs' (thesis), 'jacobi' (fails), 'fft-rsm' (§6.3)
-        logical :: keep_history = .false.  !! store the pressure after every target-grid cycle
-        real(dp) :: rsm_floor = 0.8_dp     !! 'fft-rsm': diagonal of M̄ floored at rsm_floor/A_ii (0: thesis RSM)
-    end type fc_fmg_settings
+    ! the surfaces, the settings and the hierarchy are part of this solver's interface
+    public :: fc_surface, fc_quadratic_surface, fc_punch_rough_surface, fc_wavy_surface
+    public :: fc_fmg_settings, fc_fmg_hierarchy, build_fmg_hierarchy, fmg_cycle_from_name
 
     !> Diagnostics of one FMG solve.
     type, public :: fc_fmg_stats
@@ -117,240 +54,9 @@ module fc_fmg
         real(dp) :: convergence_factor = 0            !! (2.18) residual: (r_m/r_1)^(1/(m−1)) on the target grid
     end type fc_fmg_stats
 
-    !> One grid level: grid, influence operator, undeformed distance.
-    type :: fmg_level
-        type(fc_grid) :: grid
-        type(fc_bttb) :: op                 !! A on this level (FFT products, kernel rows for GS)
-        type(fc_bttb) :: prec               !! M ≈ A⁻¹ (only for the 'fft-rsm' smoother)
-        real(dp) :: gamma = 0               !! RSM level γ = min row sum of M (eq. 3.19)
-        real(dp), allocatable :: h0(:, :)   !! undeformed distance without approach
-        logical, allocatable :: allowed(:, :)
-        real(dp) :: cost = 1                !! n_level / n_target
-        integer :: fx = 1, fy = 1           !! coarsening factors towards the next coarser level
-    end type fmg_level
-
-    !> Grid hierarchy with its operators; build once, solve for many approaches.
-    type, public :: fc_fmg_hierarchy
-        integer :: nlev = 0
-        type(fmg_level), allocatable :: lev(:)   !! 1 = coarsest, nlev = target
-        type(fc_material) :: material
-        logical :: has_prec = .false.
-        real(dp) :: work = 0                      !! running work-unit counter
-        real(dp) :: checks = 0                    !! running count of uncounted products
-    contains
-        procedure :: destroy => hierarchy_destroy
-    end type fc_fmg_hierarchy
-
-    interface
-        subroutine dposv(uplo, n, nrhs, a, lda, b, ldb, info)
-            import :: dp
-            character(len=1), intent(in) :: uplo
-            integer, intent(in) :: n, nrhs, lda, ldb
-            real(dp), intent(inout) :: a(lda, *), b(ldb, *)
-            integer, intent(out) :: info
-        end subroutine dposv
-        subroutine dgeev(jobvl, jobvr, n, a, lda, wr, wi, vl, ldvl, vr, ldvr, work, lwork, info)
-            import :: dp
-            character(len=1), intent(in) :: jobvl, jobvr
-            integer, intent(in) :: n, lda, ldvl, ldvr, lwork
-            real(dp), intent(inout) :: a(lda, *)
-            real(dp), intent(out) :: wr(*), wi(*), vl(ldvl, *), vr(ldvr, *), work(*)
-            integer, intent(out) :: info
-        end subroutine dgeev
-    end interface
-
-    integer, parameter :: max_coarsest_cells = 4096   !! dense LAPACK solve on the coarsest grid
-
-    public :: solve_normal_fmg, build_fmg_hierarchy, fmg_solve_lcp, mg_solve_fixed
-    public :: fmg_cycle_from_name, smoother_eigenvalues
+    public :: solve_normal_fmg, fmg_solve_lcp, mg_solve_fixed
 
 contains
-
-    ! ---- surfaces ------------------------------------------------------------------------
-
-    subroutine quadratic_evaluate(self, grid, h0)
-        class(fc_quadratic_surface), intent(in) :: self
-        type(fc_grid), intent(in) :: grid
-        real(dp), intent(out) :: h0(:, :)
-        h0 = quadratic_gap(grid, self%rx, self%ry)
-    end subroutine quadratic_evaluate
-
-    subroutine punch_rough_evaluate(self, grid, h0)
-        class(fc_punch_rough_surface), intent(in) :: self
-        type(fc_grid), intent(in) :: grid
-        real(dp), intent(out) :: h0(:, :)
-        call punch_rough_gap(grid, self%diameter, self%rough, h0)
-    end subroutine punch_rough_evaluate
-
-    subroutine wavy_evaluate(self, grid, h0)
-        class(fc_wavy_surface), intent(in) :: self
-        type(fc_grid), intent(in) :: grid
-        real(dp), intent(out) :: h0(:, :)
-        h0 = wavy_gap(grid, self%amplitude, self%wavelength_x, self%wavelength_y)
-    end subroutine wavy_evaluate
-
-    !> Parse a cycle name 'V(1,1)', 'V(1,0)', 'V(0,1)' (any ν1, ν2 ≥ 0, not both 0) into ν1, ν2.
-    subroutine fmg_cycle_from_name(name, nu1, nu2, stat, errmsg)
-        character(len=*), intent(in) :: name
-        integer, intent(out) :: nu1, nu2
-        integer, intent(out) :: stat
-        character(len=*), intent(out) :: errmsg
-        integer :: i1, i2, ic, ios
-        character(len=:), allocatable :: s
-        stat = 0; errmsg = ''; nu1 = 1; nu2 = 1
-        s = trim(adjustl(name))
-        i1 = index(s, '('); ic = index(s, ','); i2 = index(s, ')')
-        ios = 1
-        if (len(s) > 0 .and. i1 == 2 .and. ic > i1 .and. i2 == len(s) .and. i2 > ic) then
-            if (s(1:1) == 'V' .or. s(1:1) == 'v') then
-                read (s(i1 + 1:ic - 1), *, iostat=ios) nu1
-                if (ios == 0) read (s(ic + 1:i2 - 1), *, iostat=ios) nu2
-            end if
-        end if
-        if (ios /= 0 .or. nu1 < 0 .or. nu2 < 0 .or. (nu1 == 0 .and. nu2 == 0)) then   ! no nu1 + nu2: it can overflow
-            stat = 1; errmsg = "solver: cycle = '"//trim(name)//"' is not 'V(n1,n2)' with n1, n2 >= 0, n1 + n2 > 0"
-            nu1 = 1; nu2 = 1
-        end if
-    end subroutine fmg_cycle_from_name
-
-    ! ---- hierarchy -----------------------------------------------------------------------
-
-    !> Build the grid hierarchy for `grid` (target) and material `mat` (combined constants
-    !! set).  h0 on the coarse levels comes from `surface` when given, else from averaging
-    !! the target `h0` over 2×2 cells (cells outside every child stay out of contact).
-    subroutine build_fmg_hierarchy(hier, mat, grid, h0, settings, stat, errmsg, surface)
-        type(fc_fmg_hierarchy), intent(inout) :: hier
-        type(fc_material), intent(in) :: mat
-        type(fc_grid), intent(in) :: grid
-        real(dp), intent(in) :: h0(:, :)
-        type(fc_fmg_settings), intent(in) :: settings
-        integer, intent(out) :: stat
-        character(len=*), intent(out) :: errmsg
-        class(fc_surface), intent(in), optional :: surface
-        integer :: nlev, nx, ny, l, fx, fy
-        integer :: sx(64), sy(64), fxs(64), fys(64)
-        stat = 0; errmsg = ''
-        call hier%destroy()
-        if (size(h0, 1) /= grid%nx .or. size(h0, 2) /= grid%ny) then
-            stat = 1; write (errmsg, '(a,2(i0,1x),a,2(i0,1x))') 'fmg: h0 has shape ', shape(h0), &
-                'but the grid is ', grid%nx, grid%ny
-            return
-        end if
-        if (.not. (mat%g > 0)) then
-            stat = 1; errmsg = 'fmg: material not combined (call combine_material first)'; return
-        end if
-        if (settings%coarsest < 1) then
-            stat = 1; write (errmsg, '(a,i0,a)') 'solver: coarsest = ', settings%coarsest, ' must be >= 1'; return
-        end if
-        ! level sizes, finest first
-        nlev = 1; nx = grid%nx; ny = grid%ny
-        sx(1) = nx; sy(1) = ny; fxs(1) = 1; fys(1) = 1
-        do
-            fx = 1; fy = 1
-            if (mod(nx, 2) == 0 .and. nx/2 >= settings%coarsest) fx = 2
-            if (mod(ny, 2) == 0 .and. ny/2 >= settings%coarsest) fy = 2
-            if (fx*fy == 1 .or. nlev == 64) exit
-            ! keep the cells' aspect ratio: coarsen both directions or stop (unless ny = 1 / nx = 1)
-            if (fx /= fy .and. .not. (nx == 1 .or. ny == 1)) exit
-            fxs(nlev) = fx; fys(nlev) = fy
-            nx = nx/fx; ny = ny/fy
-            nlev = nlev + 1
-            sx(nlev) = nx; sy(nlev) = ny; fxs(nlev) = 1; fys(nlev) = 1
-        end do
-        if (nx*ny > max_coarsest_cells) then
-            stat = FC_ERR_GRID
-            write (errmsg, '(a,i0,a,i0,a,i0,a,i0,a,i0,a)') 'grid ', grid%nx, 'x', grid%ny, ' coarsens only to ', &
-                nx, 'x', ny, ' (more than ', max_coarsest_cells, ' cells for the direct coarsest solve); '// &
-                'use nx, ny with more factors of 2'
-            return
-        end if
-        hier%nlev = nlev
-        hier%material = mat
-        allocate (hier%lev(nlev))
-        do l = 1, nlev   ! l = 1 coarsest ↔ index nlev+1−l in the finest-first lists
-            associate (lv => hier%lev(l), k => nlev + 1 - l)
-                call make_grid(lv%grid, sx(k), sy(k), grid%xmin, grid%xmax, grid%ymin, grid%ymax, stat, errmsg)
-                if (stat /= 0) return
-                lv%fx = 1; lv%fy = 1
-                if (l > 1) then
-                    lv%fx = fxs(k); lv%fy = fys(k)
-                end if
-                lv%cost = real(sx(k), dp)*sy(k)/(real(grid%nx, dp)*grid%ny)
-                call build_bttb(lv%op, IC_ZZ, mat, lv%grid)
-                allocate (lv%h0(sx(k), sy(k)), lv%allowed(sx(k), sy(k)))
-            end associate
-        end do
-        hier%lev(nlev)%h0 = h0
-        do l = nlev - 1, 1, -1
-            if (present(surface)) then
-                call surface%evaluate(hier%lev(l)%grid, hier%lev(l)%h0)
-            else
-                call restrict_h0(hier%lev(l + 1)%h0, hier%lev(l + 1)%fx, hier%lev(l + 1)%fy, hier%lev(l)%h0)
-            end if
-        end do
-        do l = 1, nlev
-            hier%lev(l)%allowed = hier%lev(l)%h0 < 0.5_dp*h_no_contact
-        end do
-        if (settings%smoother == 'fft-rsm') call build_preconditioners(hier)
-    end subroutine build_fmg_hierarchy
-
-    !> M ≈ A⁻¹ on every level (thesis §3.3.1 in 2D) and γ = min row sum of M (eq. 3.19).
-    subroutine build_preconditioners(hier)
-        type(fc_fmg_hierarchy), intent(inout) :: hier
-        integer :: l
-        real(dp), allocatable :: ones(:, :), rs(:, :)
-        do l = 1, hier%nlev
-            associate (lv => hier%lev(l))
-                call build_inverse_toeplitz(IC_ZZ, hier%material, lv%grid, lv%prec)
-                allocate (ones(lv%grid%nx, lv%grid%ny), rs(lv%grid%nx, lv%grid%ny))
-                ones = 1
-                call lv%prec%apply(ones, rs)
-                lv%gamma = minval(rs)
-                deallocate (ones, rs)
-            end associate
-        end do
-        hier%has_prec = .true.
-    end subroutine build_preconditioners
-
-    !> Coarse h0: average over the allowed children; no contact if none is allowed.
-    subroutine restrict_h0(hf, fx, fy, hc)
-        real(dp), intent(in) :: hf(:, :)
-        integer, intent(in) :: fx, fy
-        real(dp), intent(out) :: hc(:, :)
-        integer :: i, j, a, b, cnt
-        real(dp) :: s
-        do j = 1, size(hc, 2)
-            do i = 1, size(hc, 1)
-                s = 0; cnt = 0
-                do b = 1, fy
-                    do a = 1, fx
-                        if (hf(fx*(i - 1) + a, fy*(j - 1) + b) < 0.5_dp*h_no_contact) then
-                            s = s + hf(fx*(i - 1) + a, fy*(j - 1) + b); cnt = cnt + 1
-                        end if
-                    end do
-                end do
-                if (cnt > 0) then
-                    hc(i, j) = s/cnt
-                else
-                    hc(i, j) = h_no_contact
-                end if
-            end do
-        end do
-    end subroutine restrict_h0
-
-    subroutine hierarchy_destroy(self)
-        class(fc_fmg_hierarchy), intent(inout) :: self
-        integer :: l
-        if (allocated(self%lev)) then
-            do l = 1, size(self%lev)
-                call self%lev(l)%op%destroy()
-                call self%lev(l)%prec%destroy()
-            end do
-            deallocate (self%lev)
-        end if
-        self%nlev = 0
-        self%has_prec = .false.
-    end subroutine hierarchy_destroy
 
     ! ---- public drivers ------------------------------------------------------------------
 
@@ -395,7 +101,7 @@ contains
         call check_settings(hier, settings, stat, errmsg)
         if (stat /= 0) return
         if (present(approach) .eqv. present(fn)) then
-            stat = 1; errmsg = 'fmg: give exactly one of approach and fn'; return
+            stat = FC_ERR_VALUE; errmsg = 'fmg: give exactly one of approach and fn'; return
         end if
         call system_clock(t0, rate)
         if (present(approach)) then
@@ -414,24 +120,24 @@ contains
         character(len=*), intent(out) :: errmsg
         stat = 0; errmsg = ''
         if (hier%nlev < 1) then
-            stat = 1; errmsg = 'fmg: hierarchy not built'; return
+            stat = FC_ERR_NOT_READY; errmsg = 'fmg: hierarchy not built'; return
         end if
         if (settings%nu1 < 0 .or. settings%nu2 < 0 .or. settings%nu1 + settings%nu2 == 0) then
-            stat = 1; write (errmsg, '(a,i0,a,i0,a)') 'solver: cycle V(', settings%nu1, ',', settings%nu2, &
+            stat = FC_ERR_VALUE; write (errmsg, '(a,i0,a,i0,a)') 'solver: cycle V(', settings%nu1, ',', settings%nu2, &
                 ') needs nu1, nu2 >= 0 and nu1 + nu2 > 0'
             return
         end if
         if (.not. (settings%omega > 0 .and. settings%omega < 2)) then
-            stat = 1; write (errmsg, '(a,g0.4,a)') 'solver: omega = ', settings%omega, ' must lie in (0, 2)'; return
+            stat = FC_ERR_VALUE; write (errmsg, '(a,g0.4,a)') 'solver: omega = ', settings%omega, ' must lie in (0, 2)'; return
         end if
         if (.not. (settings%beta >= 0)) then
-            stat = 1; write (errmsg, '(a,g0.4,a)') 'solver: beta = ', settings%beta, ' must be >= 0'; return
+            stat = FC_ERR_VALUE; write (errmsg, '(a,g0.4,a)') 'solver: beta = ', settings%beta, ' must be >= 0'; return
         end if
         if (.not. (settings%tol > 0)) then
-            stat = 1; write (errmsg, '(a,es12.4,a)') 'solver: tol = ', settings%tol, ' must be > 0'; return
+            stat = FC_ERR_VALUE; write (errmsg, '(a,es12.4,a)') 'solver: tol = ', settings%tol, ' must be > 0'; return
         end if
         if (settings%maxit < 1 .or. settings%maxit_level < 1) then
-            stat = 1; write (errmsg, '(a,i0,a,i0,a)') 'solver: maxit = ', settings%maxit, ', maxit_level = ', &
+            stat = FC_ERR_VALUE; write (errmsg, '(a,i0,a,i0,a)') 'solver: maxit = ', settings%maxit, ', maxit_level = ', &
                 settings%maxit_level, ' must be >= 1'
             return
         end if
@@ -440,7 +146,8 @@ contains
         case ('fft-rsm')
             if (.not. hier%has_prec) call build_preconditioners(hier)
         case default
-            stat = 1; errmsg = "solver: smoother = '"//trim(settings%smoother)//"' is not one of 'gs', 'jacobi', 'fft-rsm'"
+            stat = FC_ERR_VALUE
+            errmsg = "solver: smoother = '"//trim(settings%smoother)//"' is not one of 'gs', 'jacobi', 'fft-rsm'"
         end select
     end subroutine check_settings
 
@@ -462,7 +169,7 @@ contains
         nlev = hier%nlev
         associate (top => hier%lev(nlev))
             if (.not. any(top%allowed .and. top%h0 - delta <= 0)) then
-                stat = 1; write (errmsg, '(a,es12.4,a)') 'normal: approach = ', delta, &
+                stat = FC_ERR_VALUE; write (errmsg, '(a,es12.4,a)') 'normal: approach = ', delta, &
                     ' gives no contact (h0 − approach > 0 everywhere)'
                 return
             end if
@@ -483,6 +190,9 @@ contains
             p = 0
             call active_set(hier, 1, settings, delta, con, p, .false., 100, nit, status, resid, msg)
             stats%level_iterations(1) = nit
+            if (status == FC_ERROR) then
+                call fail_on_level(); return
+            end if
             do l = 2, nlev
                 ! nested iteration: copy p, bilinear u, initial area e ≤ β max(u) (eq. 2.17)
                 call move_alloc(p, pc)
@@ -501,6 +211,9 @@ contains
                     call active_set(hier, l, settings, delta, con, p, .false., settings%maxit_level, nit, status, &
                         resid, msg)
                     stats%level_iterations(l) = nit
+                    if (status == FC_ERROR) then
+                        call fail_on_level(); return
+                    end if
                 end if
             end do
             if (nlev == 1) then
@@ -519,6 +232,14 @@ contains
         stats%level_iterations(nlev) = nit
         call finish(status, resid, msg, nit)
     contains
+        !> A coarse level failed (LAPACK): report it with zero pressure on the target grid.
+        subroutine fail_on_level()
+            deallocate (p)
+            allocate (p(hier%lev(nlev)%grid%nx, hier%lev(nlev)%grid%ny))
+            p = 0
+            call finish(status, resid, msg, nit)
+        end subroutine fail_on_level
+
         subroutine finish(status, resid, msg, nit)
             integer, intent(in) :: status, nit
             real(dp), intent(in) :: resid
@@ -563,7 +284,7 @@ contains
         integer :: it, nsolve, iters
         stat = 0; errmsg = ''
         if (.not. (fn > 0)) then
-            stat = 1; write (errmsg, '(a,es12.4,a)') 'normal: fn = ', fn, ' must be > 0'; return
+            stat = FC_ERR_VALUE; write (errmsg, '(a,es12.4,a)') 'normal: fn = ', fn, ' must be > 0'; return
         end if
         associate (top => hier%lev(hier%nlev))
             hmin = minval(top%h0, mask=top%allowed)
@@ -639,6 +360,8 @@ contains
         integer :: k, kk
         real(dp), allocatable :: rhist(:), phist(:, :, :)
         logical, allocatable :: chist(:)
+        integer :: vstat
+        character(len=msg_len) :: vmsg
         allocate (h(size(p, 1), size(p, 2)), u(size(p, 1), size(p, 2)), rhs(size(p, 1), size(p, 2)))
         allocate (con_new(size(p, 1), size(p, 2)))
         associate (lv => hier%lev(l))
@@ -662,7 +385,11 @@ contains
                     elsewhere
                         rhs = 0
                     end where
-                    call vcycle(hier, l, settings, con, rhs, p)
+                    call vcycle(hier, l, settings, con, rhs, p, vstat, vmsg)
+                    if (vstat /= 0) then
+                        status = FC_ERROR; msg = vmsg
+                        exit
+                    end if
                     call lv%op%apply(p, u)
                     hier%checks = hier%checks + lv%cost
                 end if
@@ -757,7 +484,10 @@ contains
                 if (d <= settings%tol*hn) then
                     status = FC_CONVERGED; exit
                 end if
-                call vcycle(hier, hier%nlev, settings, con, rhs, p)
+                call vcycle(hier, hier%nlev, settings, con, rhs, p, stat, msg)
+                if (stat /= 0) then
+                    status = FC_ERROR; exit
+                end if
                 call lv%op%apply(p, u)
                 d = sqrt(sum((rhs - u)**2, mask=con))
                 cycles = k
@@ -774,21 +504,25 @@ contains
     ! ---- V-cycle ---------------------------------------------------------------------------
 
     !> One V(ν1,ν2)-cycle for A_CC p_C = rhs_C on level l (p = 0 outside `con`).
-    recursive subroutine vcycle(hier, l, settings, con, rhs, p)
+    !! stat ≠ 0 (with errmsg) when the coarsest-grid Cholesky solve fails.
+    recursive subroutine vcycle(hier, l, settings, con, rhs, p, stat, errmsg)
         type(fc_fmg_hierarchy), intent(inout) :: hier
         integer, intent(in) :: l
         type(fc_fmg_settings), intent(in) :: settings
         logical, intent(in) :: con(:, :)
         real(dp), intent(in) :: rhs(:, :)
         real(dp), intent(inout) :: p(:, :)
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
         real(dp), allocatable :: d(:, :), dc(:, :), vc(:, :), v(:, :), rs(:, :)
         logical, allocatable :: conc(:, :)
         integer :: k, ncx, ncy
+        stat = 0; errmsg = ''
         if (.not. any(con)) then
             p = 0; return
         end if
         if (l == 1) then
-            call direct_solve(hier%lev(1), con, rhs, p)
+            call direct_solve(hier%lev(1), con, rhs, p, stat, errmsg)
             return
         end if
         associate (lv => hier%lev(l), lc => hier%lev(l - 1))
@@ -807,7 +541,8 @@ contains
             allocate (dc(ncx, ncy), conc(ncx, ncy), vc(ncx, ncy), v(size(p, 1), size(p, 2)))
             call restrict_defect(d, lv%fx, lv%fy, con, dc, conc)
             vc = 0
-            call vcycle(hier, l - 1, settings, conc, dc, vc)
+            call vcycle(hier, l - 1, settings, conc, dc, vc, stat, errmsg)
+            if (stat /= 0) return
             call interp_copy(vc, lv%fx, lv%fy, v)
             where (con) p = p + v
             do k = 1, settings%nu2
@@ -815,286 +550,5 @@ contains
             end do
         end associate
     end subroutine vcycle
-
-    !> Four-point (fx·fy-point) average of the defect; a coarse cell is in contact if any
-    !! child is (thesis §2.4.2).
-    subroutine restrict_defect(d, fx, fy, con, dc, conc)
-        real(dp), intent(in) :: d(:, :)
-        integer, intent(in) :: fx, fy
-        logical, intent(in) :: con(:, :)
-        real(dp), intent(out) :: dc(:, :)
-        logical, intent(out) :: conc(:, :)
-        integer :: i, j
-        do j = 1, size(dc, 2)
-            do i = 1, size(dc, 1)
-                dc(i, j) = sum(d(fx*(i - 1) + 1:fx*i, fy*(j - 1) + 1:fy*j))/(fx*fy)
-                conc(i, j) = any(con(fx*(i - 1) + 1:fx*i, fy*(j - 1) + 1:fy*j))
-            end do
-        end do
-        where (.not. conc) dc = 0
-    end subroutine restrict_defect
-
-    !> Copy (piecewise-constant) interpolation from the coarse to the fine grid.
-    subroutine interp_copy(vc, fx, fy, v)
-        real(dp), intent(in) :: vc(:, :)
-        integer, intent(in) :: fx, fy
-        real(dp), intent(out) :: v(:, :)
-        integer :: i, j
-        do j = 1, size(v, 2)
-            do i = 1, size(v, 1)
-                v(i, j) = vc((i - 1)/fx + 1, (j - 1)/fy + 1)
-            end do
-        end do
-    end subroutine interp_copy
-
-    !> Bilinear interpolation of cell-centred values (linear extrapolation at the edges).
-    subroutine interp_bilinear(uc, fx, fy, u)
-        real(dp), intent(in) :: uc(:, :)
-        integer, intent(in) :: fx, fy
-        real(dp), intent(out) :: u(:, :)
-        real(dp), allocatable :: tmp(:, :)
-        integer :: i, j, i0, j0, nc
-        real(dp) :: t, w
-        allocate (tmp(size(u, 1), size(uc, 2)))
-        nc = size(uc, 1)
-        do i = 1, size(u, 1)
-            if (nc == 1 .or. fx == 1) then
-                tmp(i, :) = uc(min((i - 1)/fx + 1, nc), :)
-                cycle
-            end if
-            t = (i - 0.5_dp)/fx + 0.5_dp            ! fine centre in coarse index units
-            i0 = min(max(floor(t), 1), nc - 1)
-            w = t - i0
-            tmp(i, :) = (1 - w)*uc(i0, :) + w*uc(i0 + 1, :)
-        end do
-        nc = size(uc, 2)
-        do j = 1, size(u, 2)
-            if (nc == 1 .or. fy == 1) then
-                u(:, j) = tmp(:, min((j - 1)/fy + 1, nc))
-                cycle
-            end if
-            t = (j - 0.5_dp)/fy + 0.5_dp
-            j0 = min(max(floor(t), 1), nc - 1)
-            w = t - j0
-            u(:, j) = (1 - w)*tmp(:, j0) + w*tmp(:, j0 + 1)
-        end do
-    end subroutine interp_bilinear
-
-    ! ---- smoothers -------------------------------------------------------------------------
-
-    !> One smoothing sweep on level l.  A GS sweep counts as one product on that level (the
-    !! thesis' convention), a Jacobi sweep as one FFT product, an FFT+RSM sweep as two (A and M).
-    subroutine smooth(hier, l, settings, con, rhs, p, rs)
-        type(fc_fmg_hierarchy), intent(inout) :: hier
-        integer, intent(in) :: l
-        type(fc_fmg_settings), intent(in) :: settings
-        logical, intent(in) :: con(:, :)
-        real(dp), intent(in) :: rhs(:, :)
-        real(dp), intent(inout) :: p(:, :)
-        real(dp), allocatable, intent(inout) :: rs(:, :)
-        select case (settings%smoother)
-        case ('jacobi')
-            call jacobi_sweep(hier%lev(l), con, rhs, p, settings%omega)
-            hier%work = hier%work + hier%lev(l)%cost
-        case ('fft-rsm')
-            if (.not. allocated(rs)) then
-                call rsm_rowsums(hier%lev(l), con, rs)
-                hier%work = hier%work + hier%lev(l)%cost
-            end if
-            call fft_rsm_sweep(hier%lev(l), con, rhs, p, rs, settings%rsm_floor)
-            hier%work = hier%work + 2*hier%lev(l)%cost
-        case default
-            call gs_sweep(hier%lev(l)%op%kernel, con, rhs, p, settings%omega)
-            hier%work = hier%work + hier%lev(l)%cost
-        end select
-    end subroutine smooth
-
-    !> Damped Gauss–Seidel on the contact set, lexicographic order (thesis §2.4.2).
-    !! Row I of A is the kernel shifted to I; the sum runs over the bounding box of the
-    !! contact set only (p = 0 elsewhere).  kernel(a,b) = kernel(−a,b) = kernel(a,−b).
-    subroutine gs_sweep(kernel, con, rhs, p, omega)
-        logical, intent(in) :: con(:, :)
-        real(dp), intent(in) :: kernel(-(size(con, 1) - 1):, -(size(con, 2) - 1):)
-        real(dp), intent(in) :: rhs(:, :)
-        real(dp), intent(inout) :: p(:, :)
-        real(dp), intent(in) :: omega
-        integer :: nx, ny, i, j, l, lo(size(con, 2)), hi(size(con, 2)), jlo, jhi
-        real(dp) :: s, diag
-        nx = size(con, 1); ny = size(con, 2)
-        jlo = ny + 1; jhi = 0
-        do l = 1, ny
-            lo(l) = nx + 1; hi(l) = 0
-            do i = 1, nx
-                if (con(i, l)) then
-                    lo(l) = min(lo(l), i); hi(l) = i
-                end if
-            end do
-            if (hi(l) > 0) then
-                jlo = min(jlo, l); jhi = l
-            end if
-        end do
-        diag = kernel(0, 0)
-        do j = 1, ny
-            do i = 1, nx
-                if (.not. con(i, j)) cycle
-                s = 0
-                do l = jlo, jhi
-                    if (hi(l) < lo(l)) cycle
-                    s = s + dot_product(kernel(lo(l) - i:hi(l) - i, l - j), p(lo(l):hi(l), l))
-                end do
-                p(i, j) = p(i, j) + omega*(rhs(i, j) - s)/diag
-            end do
-        end do
-    end subroutine gs_sweep
-
-    !> Damped Jacobi on the contact set (an FFT product per sweep).
-    subroutine jacobi_sweep(lv, con, rhs, p, omega)
-        type(fmg_level), intent(inout) :: lv
-        logical, intent(in) :: con(:, :)
-        real(dp), intent(in) :: rhs(:, :)
-        real(dp), intent(inout) :: p(:, :)
-        real(dp), intent(in) :: omega
-        real(dp), allocatable :: u(:, :)
-        allocate (u(size(p, 1), size(p, 2)))
-        call lv%op%apply(p, u)
-        where (con) p = p + omega*(rhs - u)/lv%op%kernel(0, 0)
-    end subroutine jacobi_sweep
-
-    !> FFT smoother with row-sum modification on the contact set (thesis eqs. 3.10, 3.21),
-    !! undamped: p_C ← p_C + M̄ (rhs − A p)_C,  M̄ = M_CC − diag(sum(M_CC) − γ),
-    !! γ = min row sum of M.  Beyond the thesis, M̄'s diagonal is floored at θ/A_ii: on the
-    !! isolated contact spots of rough surfaces the row-sum shift removes almost all of the
-    !! diagonal and the smoother stalls (measured: no convergence in 100 cycles at 128²
-    !! with θ = 0).  `rs` holds sum(M_CC) = M·1_C (computed once per cycle and level).
-    subroutine fft_rsm_sweep(lv, con, rhs, p, rs, theta)
-        type(fmg_level), intent(inout) :: lv
-        logical, intent(in) :: con(:, :)
-        real(dp), intent(in) :: rhs(:, :), rs(:, :), theta
-        real(dp), intent(inout) :: p(:, :)
-        real(dp), allocatable :: u(:, :), d(:, :)
-        allocate (u(size(p, 1), size(p, 2)), d(size(p, 1), size(p, 2)))
-        call lv%op%apply(p, u)
-        where (con)
-            d = rhs - u
-        elsewhere
-            d = 0
-        end where
-        call lv%prec%apply(d, u)
-        ! diagonal of M̄ = M_CC − diag(sum(M_CC) − γ), floored at θ/A_ii: on isolated
-        ! contact elements (rough surfaces) the row-sum shift leaves almost no diagonal
-        where (con) p = p + u - min(rs - lv%gamma, lv%prec%kernel(0, 0) - theta/lv%op%kernel(0, 0))*d
-    end subroutine fft_rsm_sweep
-
-    !> Row sums of M over the contact set, M·1_C (one product).
-    subroutine rsm_rowsums(lv, con, rs)
-        type(fmg_level), intent(inout) :: lv
-        logical, intent(in) :: con(:, :)
-        real(dp), allocatable, intent(out) :: rs(:, :)
-        real(dp), allocatable :: one(:, :)
-        allocate (rs(size(con, 1), size(con, 2)), one(size(con, 1), size(con, 2)))
-        one = merge(1.0_dp, 0.0_dp, con)
-        call lv%prec%apply(one, rs)
-    end subroutine rsm_rowsums
-
-    !> Exact solve of A_CC p_C = rhs_C on the coarsest level (LAPACK dposv).
-    subroutine direct_solve(lv, con, rhs, p)
-        type(fmg_level), intent(in) :: lv
-        logical, intent(in) :: con(:, :)
-        real(dp), intent(in) :: rhs(:, :)
-        real(dp), intent(out) :: p(:, :)
-        integer, allocatable :: ix(:), iy(:)
-        real(dp), allocatable :: a(:, :), b(:, :)
-        integer :: n, i, j, k, info
-        n = count(con)
-        p = 0
-        if (n == 0) return
-        allocate (ix(n), iy(n), a(n, n), b(n, 1))
-        k = 0
-        do j = 1, size(con, 2)
-            do i = 1, size(con, 1)
-                if (con(i, j)) then
-                    k = k + 1; ix(k) = i; iy(k) = j; b(k, 1) = rhs(i, j)
-                end if
-            end do
-        end do
-        do j = 1, n
-            do i = 1, n
-                a(i, j) = lv%op%kernel(ix(i) - ix(j), iy(i) - iy(j))
-            end do
-        end do
-        call dposv('U', n, 1, a, n, b, n, info)
-        if (info /= 0) return     ! A is SPD; a failure leaves the correction zero
-        do k = 1, n
-            p(ix(k), iy(k)) = b(k, 1)
-        end do
-    end subroutine direct_solve
-
-    ! ---- smoother analysis (thesis §2.4.4) --------------------------------------------------
-
-    !> Eigenvalues (wr + i·wi) of the iteration matrix I − W⁻¹A of an undamped or damped
-    !! 'jacobi' (W = D/ω) or 'gs' (W = D/ω + L) smoother for A^zz on the whole of a small
-    !! grid (dense, LAPACK dgeev; n ≤ 2048).  Thesis Fig. 2.6: Jacobi has one eigenvalue far
-    !! below −1, GS has all |λ| < 1.
-    subroutine smoother_eigenvalues(mat, grid, smoother, omega, wr, wi, stat, errmsg)
-        type(fc_material), intent(in) :: mat
-        type(fc_grid), intent(in) :: grid
-        character(len=*), intent(in) :: smoother
-        real(dp), intent(in) :: omega
-        real(dp), allocatable, intent(out) :: wr(:), wi(:)
-        integer, intent(out) :: stat
-        character(len=*), intent(out) :: errmsg
-        real(dp), allocatable :: kernel(:, :), a(:, :), w(:, :), r(:, :), vl(:, :), vr(:, :), work(:)
-        integer :: n, i, j, info
-        stat = 0; errmsg = ''
-        n = grid%n()
-        if (n > 2048) then
-            stat = 1; write (errmsg, '(a,i0,a)') 'smoother_eigenvalues: n = ', n, ' > 2048 (dense analysis)'; return
-        end if
-        call ic_kernel(IC_ZZ, mat, grid, kernel)
-        allocate (a(n, n), w(n, n), r(n, n))
-        do j = 1, n
-            do i = 1, n
-                a(i, j) = kernel(mod(i - 1, grid%nx) - mod(j - 1, grid%nx), (i - 1)/grid%nx - (j - 1)/grid%nx)
-            end do
-        end do
-        w = 0
-        select case (smoother)
-        case ('jacobi')
-            do i = 1, n
-                w(i, i) = a(i, i)/omega
-            end do
-        case ('gs')
-            do j = 1, n
-                do i = j + 1, n
-                    w(i, j) = a(i, j)
-                end do
-                w(j, j) = a(j, j)/omega
-            end do
-        case default
-            stat = 1; errmsg = "smoother_eigenvalues: smoother '"//trim(smoother)//"' is not 'jacobi' or 'gs'"; return
-        end select
-        ! R = I − W⁻¹A: solve W X = A (W lower triangular), R = I − X
-        r = a
-        call solve_lower(w, r)
-        r = -r
-        do i = 1, n
-            r(i, i) = r(i, i) + 1
-        end do
-        allocate (wr(n), wi(n), vl(1, 1), vr(1, 1), work(8*n))
-        call dgeev('N', 'N', n, r, n, wr, wi, vl, 1, vr, 1, work, size(work), info)
-        if (info /= 0) then
-            stat = 1; write (errmsg, '(a,i0)') 'smoother_eigenvalues: dgeev info = ', info
-        end if
-    contains
-        subroutine solve_lower(lw, x)
-            real(dp), intent(in) :: lw(:, :)
-            real(dp), intent(inout) :: x(:, :)
-            integer :: ii
-            do ii = 1, size(x, 1)
-                if (ii > 1) x(ii, :) = x(ii, :) - matmul(lw(ii, 1:ii - 1), x(1:ii - 1, :))
-                x(ii, :) = x(ii, :)/lw(ii, ii)
-            end do
-        end subroutine solve_lower
-    end subroutine smoother_eigenvalues
 
 end module fc_fmg

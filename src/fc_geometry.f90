@@ -1,4 +1,4 @@
-!> Potential contact grid and undeformed distance (SPEC §2, thesis §2.2.4–2.2.5).
+!> Potential contact grid and undeformed distance (thesis §2.2.4–2.2.5; doc/conventions.md).
 !!
 !! The potential contact area is the rectangle [xmin,xmax]×[ymin,ymax] divided into
 !! nx×ny cell-centred elements; element (i,j) has its centre at
@@ -6,7 +6,7 @@
 !! contain the approach: the solvers use h = h0 − δ.
 module fc_geometry
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
-    use fc_kinds, only: dp, i8, pi, msg_len
+    use fc_kinds, only: dp, i8, pi, msg_len, FC_ERR_VALUE, FC_ERR_IO
     use fc_limits, only: max_length
     implicit none
     private
@@ -39,7 +39,7 @@ module fc_geometry
         integer :: seed = 2015        !! seed of the portable generator
     end type fc_rough_params
 
-    public :: make_grid, quadratic_gap, rough_heights, punch_rough_gap, wavy_gap, read_gap_table
+    public :: make_grid, quadratic_gap, rough_heights, rough_heights_rows, punch_rough_gap, wavy_gap, read_gap_table
 
     integer(i8), parameter :: rng_a = 48271_i8, rng_m = 2147483647_i8
 
@@ -54,26 +54,29 @@ contains
         character(len=*), intent(out) :: errmsg
         stat = 0; errmsg = ''
         if (nx < 1 .or. ny < 1) then
-            stat = 1; write (errmsg, '(a,i0,a,i0)') 'grid: nx and ny must be >= 1, got nx = ', nx, ', ny = ', ny
+            stat = FC_ERR_VALUE; write (errmsg, '(a,i0,a,i0)') 'grid: nx and ny must be >= 1, got nx = ', nx, ', ny = ', ny
             return
         end if
         ! finite first: no comparison touches a NaN (floating-point traps stay quiet)
         if (.not. all(ieee_is_finite([xmin, xmax, ymin, ymax]))) then
-            stat = 1; write (errmsg, '(a,4(1x,g0.6))') 'grid: xmin, xmax, ymin, ymax must be finite, got', &
+            stat = FC_ERR_VALUE; write (errmsg, '(a,4(1x,g0.6))') 'grid: xmin, xmax, ymin, ymax must be finite, got', &
                 xmin, xmax, ymin, ymax
             return
         end if
         if (maxval(abs([xmin, xmax, ymin, ymax])) > max_length) then
-            stat = 1; write (errmsg, '(a,4(1x,g0.6),a,es8.1,a)') 'grid: xmin, xmax, ymin, ymax =', xmin, xmax, ymin, ymax, &
+            stat = FC_ERR_VALUE
+            write (errmsg, '(a,4(1x,g0.6),a,es8.1,a)') 'grid: xmin, xmax, ymin, ymax =', xmin, xmax, ymin, ymax, &
                 ' exceed the limit |x|, |y| <= ', max_length, ' mm'
             return
         end if
         if (.not. (xmax > xmin) .or. .not. (ymax > ymin)) then
-            stat = 1; write (errmsg, '(a,4(es12.4))') 'grid: need xmax > xmin and ymax > ymin, got ', xmin, xmax, ymin, ymax
+            stat = FC_ERR_VALUE
+            write (errmsg, '(a,4(es12.4))') 'grid: need xmax > xmin and ymax > ymin, got ', xmin, xmax, ymin, ymax
             return
         end if
         if ((xmax - xmin)/nx < min_element_size .or. (ymax - ymin)/ny < min_element_size) then
-            stat = 1; write (errmsg, '(a,2(es11.3e3),a,es8.1,a)') 'grid: element size dx, dy =', (xmax - xmin)/nx, &
+            stat = FC_ERR_VALUE
+            write (errmsg, '(a,2(es11.3e3),a,es8.1,a)') 'grid: element size dx, dy =', (xmax - xmin)/nx, &
                 (ymax - ymin)/ny, ' below the limit ', min_element_size, ' mm'
             return
         end if
@@ -149,6 +152,16 @@ contains
         type(fc_grid), intent(in) :: grid
         type(fc_rough_params), intent(in) :: par
         real(dp), intent(out) :: z(grid%nx, grid%ny)
+        call rough_heights_rows(grid, par, 1, grid%ny, z)
+    end subroutine rough_heights
+
+    !> Rows jfirst…jlast of [[rough_heights]] (a distributed run generates its own slab;
+    !! the values equal the whole-grid ones bit for bit: same modes, same arithmetic).
+    subroutine rough_heights_rows(grid, par, jfirst, jlast, z)
+        type(fc_grid), intent(in) :: grid
+        type(fc_rough_params), intent(in) :: par
+        integer, intent(in) :: jfirst, jlast
+        real(dp), intent(out) :: z(grid%nx, jfirst:jlast)
         real(dp) :: amp(par%m_modes, par%n_modes), phx(par%m_modes, par%n_modes), phy(par%m_modes, par%n_modes)
         real(dp) :: r, lx, ly, r00, xi, yj
         real(dp), allocatable :: cx(:), cy(:)
@@ -166,7 +179,7 @@ contains
         amp = amp*par%sigma/sqrt(r00)                     ! eq. (2.16)
         lx = grid%xmax - grid%xmin
         ly = grid%ymax - grid%ymin
-        allocate (cx(grid%nx), cy(grid%ny))
+        allocate (cx(grid%nx), cy(jfirst:jlast))
         z = 0
         do n = 1, par%n_modes
             do m = 1, par%m_modes
@@ -174,16 +187,16 @@ contains
                     xi = grid%x(i) - grid%xmin
                     cx(i) = cos(2*pi*m*xi/lx + phx(m, n))
                 end do
-                do j = 1, grid%ny
+                do j = jfirst, jlast
                     yj = grid%y(j) - grid%ymin
                     cy(j) = cos(2*pi*n*yj/ly + phy(m, n))
                 end do
-                do j = 1, grid%ny
+                do j = jfirst, jlast
                     z(:, j) = z(:, j) + amp(m, n)*cx*cy(j)
                 end do
             end do
         end do
-    end subroutine rough_heights
+    end subroutine rough_heights_rows
 
     !> Flat rigid circular punch of diameter `diameter` on a rough surface (thesis §2.5.2):
     !! h0 = −z inside the punch, `h_no_contact` outside (the approach δ is added by the solver).
@@ -241,7 +254,7 @@ contains
         stat = 0; errmsg = ''
         open (newunit=unit, file=filename, status='old', action='read', iostat=ios)
         if (ios /= 0) then
-            stat = 1; errmsg = "cannot open table file '"//trim(filename)//"'"
+            stat = FC_ERR_IO; errmsg = "cannot open table file '"//trim(filename)//"'"
             return
         end if
         nread = 0; lineno = 0
@@ -254,11 +267,11 @@ contains
             if (line(1:1) == '#' .or. line(1:1) == '!') cycle
             nline = count_numbers(line)
             if (nline < 0) then
-                stat = 1; write (errmsg, '(a,i0,a)') "table file '"//trim(filename)//"', line ", lineno, ': not a number'
+                stat = FC_ERR_IO; write (errmsg, '(a,i0,a)') "table file '"//trim(filename)//"', line ", lineno, ': not a number'
                 close (unit); return
             end if
             if (nread + nline > size(vals)) then
-                stat = 1; write (errmsg, '(a,i0,a)') "table file '"//trim(filename)//"' has more than nx*ny = ", &
+                stat = FC_ERR_IO; write (errmsg, '(a,i0,a)') "table file '"//trim(filename)//"' has more than nx*ny = ", &
                     size(vals), ' values'
                 close (unit); return
             end if
@@ -268,7 +281,7 @@ contains
         end do
         close (unit)
         if (nread /= size(vals)) then
-            stat = 1; write (errmsg, '(a,i0,a,i0)') "table file '"//trim(filename)//"' has ", nread, &
+            stat = FC_ERR_IO; write (errmsg, '(a,i0,a,i0)') "table file '"//trim(filename)//"' has ", nread, &
                 ' values, expected nx*ny = ', size(vals)
             return
         end if

@@ -1,7 +1,7 @@
 !> Analytic Hertz solution for elliptic contact (thesis §2.5.1; Johnson 1985 §3.5, §4.2).
 !!
 !! Undeformed distance h = A x² + B y² − δ with A = 1/(2Rx), B = 1/(2Ry), and the
-!! combined material of SPEC §2, whose point kernel (1−ν)/(πG)/ρ equals 1/(πE*) with
+!! combined material of doc/conventions.md, whose point kernel (1−ν)/(πG)/ρ equals 1/(πE*) with
 !! E* = G/(1−ν).  Pressure p = p0·sqrt(1 − (x/a)² − (y/b)²) on the contact ellipse.
 module fc_hertz
     use fc_kinds, only: dp, pi
@@ -130,7 +130,7 @@ contains
     end function hertz_pressure
 
     !> Cattaneo–Mindlin for a circular contact of radius a with maximum pressure p0, total
-    !! force P, friction μ and tangential force Q (0 ≤ Q < μP); combined G, ν (SPEC §2).
+    !! force P, friction μ and tangential force Q (0 ≤ Q < μP); combined G, ν (doc/conventions.md).
     !! Shift δ = 3μP(2−ν)/(8Ga)·[1 − (1 − Q/μP)^{2/3}] (two bodies, Johnson eq. 7.40).
     pure function cattaneo_mindlin(a, p0, fn, mu, q, g, nu) result(sol)
         real(dp), intent(in) :: a, p0, fn, mu, q, g, nu

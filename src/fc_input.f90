@@ -10,8 +10,9 @@
 !! * `&case name, title, problem` — name: file stem of the outputs, not inherited, default
 !!   `case<N>`; title: ''; problem: 'normal' (default), 'normal+tangential' or 'tangential'
 !!   (the same pipeline: the normal problem is solved as the prerequisite of the tangential one).
-!! * `&material g1, g2, nu1, nu2, ic_file` — g1, g2 required (≥ 1e29: rigid);
-!!   nu1 = nu2 = 0.28; ic_file: not yet supported.
+!! * `&material g1, g2, nu1, nu2, ic_file, ic_file2` — g1, g2 required (≥ 1e29: rigid);
+!!   nu1 = nu2 = 0.28; ic_file: influence coefficients of body 1 (or combined) from a file,
+!!   ic_file2: body 2's (default: the half-space g2, nu2) — doc/numerical_ic.md.
 !! * `&grid nx, ny, xmin, xmax, ymin, ymax` — all required (outer edges of the potential
 !!   contact area); strip2d: ny defaults to 1 and must be 1.  nx·ny ≤ 4096².
 !! * `&geometry kind, ...` — kind required: 'quadratic' (rx > 0, ry ≥ 0; 0 = flat),
@@ -65,13 +66,15 @@ module fc_input
         ! &material
         real(dp) :: g1 = 0, g2 = 0                 !! shear moduli [N/mm²] (≥ 1e29: rigid)
         real(dp) :: nu1 = 0.28_dp, nu2 = 0.28_dp   !! Poisson ratios
-        character(len=path_len) :: ic_file = ''    !! influence coefficients from file (not yet)
+        character(len=path_len) :: ic_file = ''    !! influence coefficients of body 1 (or combined) from a file
+        character(len=path_len) :: ic_file2 = ''   !! influence coefficients of body 2 from a file
         ! &grid
         integer :: nx = 0, ny = 0                  !! elements per direction
         real(dp) :: xmin = 0, xmax = 0, ymin = 0, ymax = 0  !! outer edges [mm]
         logical :: grid_auto = .false.             !! &grid auto as given (see [[grid_is_auto]])
         real(dp) :: margin = 0.25_dp               !! auto grid: margin around the Hertz estimate (fraction)
         integer :: n_across = 0                    !! auto grid: elements across the contact (0: 32, or 8 with a target)
+        logical :: periodic = .false.              !! periodic half-space: the grid is one cell of a periodic surface
         ! &geometry
         character(len=16) :: kind = ''             !! quadratic, punch_rough, wavy, strip2d, table
         real(dp) :: rx = 0, ry = 0                 !! radii of the quadratic profile [mm]
@@ -110,6 +113,7 @@ module fc_input
         logical :: target_pmax = .false.           !! the target also applies to pmax
         integer :: max_levels = 5                  !! most grids visited by the accuracy target
         character(len=16) :: model = 'auto'        !! 'auto': apply model reductions; 'full': never
+        integer :: threads = 0                     !! threads (0: OMP_NUM_THREADS, else 1)
         ! &output
         character(len=path_len) :: dir = 'out'     !! output directory
         logical :: table = .true.                  !! write the CSV table
@@ -336,12 +340,12 @@ contains
         integer, intent(out) :: ios
         character(len=*), intent(out) :: iomsg
         real(dp) :: g1, g2, nu1, nu2
-        character(len=path_len) :: ic_file
-        namelist /material/ g1, g2, nu1, nu2, ic_file
-        g1 = s%g1; g2 = s%g2; nu1 = s%nu1; nu2 = s%nu2; ic_file = s%ic_file
+        character(len=path_len) :: ic_file, ic_file2
+        namelist /material/ g1, g2, nu1, nu2, ic_file, ic_file2
+        g1 = s%g1; g2 = s%g2; nu1 = s%nu1; nu2 = s%nu2; ic_file = s%ic_file; ic_file2 = s%ic_file2
         read (text, nml=material, iostat=ios, iomsg=iomsg)
         if (ios /= 0) return
-        s%g1 = g1; s%g2 = g2; s%nu1 = nu1; s%nu2 = nu2; s%ic_file = ic_file
+        s%g1 = g1; s%g2 = g2; s%nu1 = nu1; s%nu2 = nu2; s%ic_file = ic_file; s%ic_file2 = ic_file2
     end subroutine read_material_group
 
     subroutine read_grid_group(text, s, ios, iomsg)
@@ -351,14 +355,14 @@ contains
         character(len=*), intent(out) :: iomsg
         integer :: nx, ny, n_across
         real(dp) :: xmin, xmax, ymin, ymax, margin
-        logical :: auto
-        namelist /grid/ nx, ny, xmin, xmax, ymin, ymax, auto, margin, n_across
+        logical :: auto, periodic
+        namelist /grid/ nx, ny, xmin, xmax, ymin, ymax, auto, margin, n_across, periodic
         nx = s%nx; ny = s%ny; xmin = s%xmin; xmax = s%xmax; ymin = s%ymin; ymax = s%ymax
-        auto = s%grid_auto; margin = s%margin; n_across = s%n_across
+        auto = s%grid_auto; margin = s%margin; n_across = s%n_across; periodic = s%periodic
         read (text, nml=grid, iostat=ios, iomsg=iomsg)
         if (ios /= 0) return
         s%nx = nx; s%ny = ny; s%xmin = xmin; s%xmax = xmax; s%ymin = ymin; s%ymax = ymax
-        s%grid_auto = auto; s%margin = margin; s%n_across = n_across
+        s%grid_auto = auto; s%margin = margin; s%n_across = n_across; s%periodic = periodic
     end subroutine read_grid_group
 
     subroutine read_geometry_group(text, s, ios, iomsg)
@@ -421,17 +425,17 @@ contains
         character(len=8) :: smoother
         character(len=16) :: strip
         real(dp) :: tol, omega, beta, target
-        integer :: maxit, inner_maxit, inner_k, max_levels
+        integer :: maxit, inner_maxit, inner_k, max_levels, threads
         logical :: precondition, precondition_tangential, deflation, target_pmax
         character(len=16) :: model
         namelist /solver/ normal, tangential, tol, maxit, inner_maxit, precondition, precondition_tangential, &
-            deflation, inner_k, cycle, omega, beta, target, target_pmax, max_levels, model, smoother, strip
+            deflation, inner_k, cycle, omega, beta, target, target_pmax, max_levels, model, smoother, strip, threads
         normal = s%normal_solver; tangential = s%tangential; tol = s%tol; maxit = s%maxit
         inner_maxit = s%inner_maxit; precondition = s%precondition
         precondition_tangential = s%precondition_tangential
         deflation = s%deflation; inner_k = s%inner_k; cycle = s%cycle; omega = s%omega; beta = s%beta
         target = s%target; target_pmax = s%target_pmax; max_levels = s%max_levels; model = s%model
-        smoother = s%smoother; strip = s%strip
+        smoother = s%smoother; strip = s%strip; threads = s%threads
         read (text, nml=solver, iostat=ios, iomsg=iomsg)
         if (ios /= 0) return
         s%normal_solver = lower(normal); s%tangential = lower(tangential); s%tol = tol
@@ -439,7 +443,7 @@ contains
         s%precondition_tangential = precondition_tangential
         s%deflation = deflation; s%inner_k = inner_k; s%cycle = cycle; s%omega = omega; s%beta = beta
         s%target = target; s%target_pmax = target_pmax; s%max_levels = max_levels; s%model = lower(model)
-        s%smoother = lower(smoother); s%strip = lower(strip)
+        s%smoother = lower(smoother); s%strip = lower(strip); s%threads = threads
     end subroutine read_solver_group
 
     subroutine read_output_group(text, s, ios, iomsg)
@@ -462,15 +466,15 @@ contains
         character(len=:), allocatable :: keys
         select case (group)
         case ('case');       keys = 'name title problem'
-        case ('material');   keys = 'g1 g2 nu1 nu2 ic_file'
-        case ('grid');       keys = 'nx ny xmin xmax ymin ymax auto margin n_across'
+        case ('material');   keys = 'g1 g2 nu1 nu2 ic_file ic_file2'
+        case ('grid');       keys = 'nx ny xmin xmax ymin ymax auto margin n_across periodic'
         case ('geometry')
             keys = 'kind rx ry diameter sigma gamma m_modes n_modes seed amplitude wavelength_x wavelength_y file length'
         case ('normal');     keys = 'approach fn'
         case ('tangential'); keys = 'mu xi eta phi fx fy'
         case ('solver')
             keys = 'normal tangential tol maxit inner_maxit inner_k precondition precondition_tangential deflation '// &
-                'cycle omega beta smoother strip target target_pmax max_levels model'
+                'cycle omega beta smoother strip target target_pmax max_levels model threads'
         case ('output');     keys = 'dir table'
         case default;        keys = ''
         end select

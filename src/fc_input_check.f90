@@ -10,7 +10,7 @@ module fc_input_check
     implicit none
     private
 
-    public :: check_value
+    public :: check_value, value_kind
 
 contains
 
@@ -49,6 +49,14 @@ contains
         end select
     end subroutine check_value
 
+    !> Type of the value of `key` ('real', 'integer', 'logical', 'string'; '' unknown).
+    function value_kind(key) result(kind)
+        character(len=*), intent(in) :: key
+        character(len=:), allocatable :: kind
+        integer :: maxlen
+        kind = kind_of(key, maxlen)
+    end function value_kind
+
     !> Type of a key ('real', 'integer', 'logical', 'string'; '' unknown) and, for strings,
     !! the length of the field that holds it.
     function kind_of(key, maxlen) result(kind)
@@ -61,16 +69,17 @@ contains
               'gamma', 'amplitude', 'wavelength_x', 'wavelength_y', 'length', 'approach', 'fn', 'mu', 'xi', 'eta', &
               'phi', 'fx', 'fy', 'tol', 'omega', 'beta', 'target')
             kind = 'real'
-        case ('nx', 'ny', 'n_across', 'm_modes', 'n_modes', 'seed', 'maxit', 'inner_maxit', 'inner_k', 'max_levels')
+        case ('nx', 'ny', 'n_across', 'm_modes', 'n_modes', 'seed', 'maxit', 'inner_maxit', 'inner_k', 'max_levels', &
+              'threads')
             kind = 'integer'
-        case ('auto', 'precondition', 'precondition_tangential', 'deflation', 'target_pmax', 'table')
+        case ('auto', 'precondition', 'precondition_tangential', 'deflation', 'target_pmax', 'table', 'periodic')
             kind = 'logical'
         case ('name'); kind = 'string'; maxlen = 64
         case ('title'); kind = 'string'; maxlen = 128
         case ('problem', 'normal', 'tangential'); kind = 'string'; maxlen = 32
         case ('kind', 'cycle', 'strip', 'model'); kind = 'string'; maxlen = 16
         case ('smoother'); kind = 'string'; maxlen = 8
-        case ('ic_file', 'file', 'dir'); kind = 'string'; maxlen = 256
+        case ('ic_file', 'ic_file2', 'file', 'dir'); kind = 'string'; maxlen = 256
         case default; kind = ''
         end select
     end function kind_of

@@ -4,11 +4,12 @@
 !! keys the case does not use.
 module fc_input_scene
     use fc_kinds, only: dp, msg_len
-    use fc_fmg, only: fmg_cycle_from_name
-    use fc_contact, only: FC_PROBLEM_NORMAL, FC_PROBLEM_TANGENTIAL
+    use fc_fmg_levels, only: fmg_cycle_from_name
+    use fc_contact_types, only: FC_PROBLEM_NORMAL, FC_PROBLEM_TANGENTIAL
     use fc_scene, only: fc_case
     use fc_input, only: fc_case_input, is_given, grid_is_auto, is_tangential, strip_model_index
     use fc_input_validate, only: effective_record
+    use fc_strings, only: fmt_real
     implicit none
     private
 
@@ -27,11 +28,12 @@ contains
         c%problem = merge(FC_PROBLEM_TANGENTIAL, FC_PROBLEM_NORMAL, is_tangential(s))
         c%analytic = s%problem == 'hertz'
         c%material%g1 = s%g1; c%material%g2 = s%g2; c%material%nu1 = s%nu1; c%material%nu2 = s%nu2
+        c%ic_file = s%ic_file; c%ic_file2 = s%ic_file2
         ! potential contact area
         c%nx = s%nx; c%ny = s%ny
         c%xmin = s%xmin; c%xmax = s%xmax; c%ymin = s%ymin; c%ymax = s%ymax
         c%grid_auto = grid_is_auto(s)
-        c%margin = s%margin; c%n_across = s%n_across
+        c%margin = s%margin; c%n_across = s%n_across; c%periodic = s%periodic
         ! geometry
         c%kind = s%kind; c%rx = s%rx; c%ry = s%ry; c%length = s%length
         c%diameter = s%diameter; c%rough = s%rough
@@ -63,6 +65,7 @@ contains
         end associate
         c%target = s%target; c%target_pmax = s%target_pmax; c%max_levels = s%max_levels
         c%reduce = s%model == 'auto'
+        c%threads = s%threads
     end function build_case
 
     !> Report notes on keys a validated case gives but does not use.
@@ -81,6 +84,8 @@ contains
             is_given(s, 'solver', 'beta') .or. is_given(s, 'solver', 'smoother'))) &
             notes = notes//"&solver cycle, omega, beta, smoother: used only by normal = 'fmg' (not by '"// &
             trim(s%normal_solver)//"'). "
+        if (s%periodic) notes = notes//'periodic half-space: the grid is one cell of a surface repeated in x and y; '// &
+            'mean pressure fn/area = '//fmt_real(s%fn/((s%xmax - s%xmin)*(s%ymax - s%ymin)))//' N/mm2. '
     end function case_notes
 
 end module fc_input_scene

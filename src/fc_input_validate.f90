@@ -9,7 +9,7 @@ module fc_input_validate
     use fc_errors, only: FC_OK, FC_ERR_VALUE
     use fc_strings, only: fmt_int, fmt_real
     use fc_influence, only: fc_material, combine_material, rigid_modulus
-    use fc_fmg, only: fmg_cycle_from_name
+    use fc_fmg_levels, only: fmg_cycle_from_name
     use fc_input, only: fc_case_input, is_given, grid_is_auto, is_tangential, strip_model_index, max_grid_elements
     use fc_limits
     implicit none
@@ -66,6 +66,7 @@ contains
                 if (len_trim(errmsg) == 0) call validate_normal(s, errmsg)
                 if (len_trim(errmsg) == 0) call validate_tangential(s, errmsg)
                 if (len_trim(errmsg) == 0) call validate_solver(s, errmsg)
+                if (len_trim(errmsg) == 0 .and. s%periodic) call validate_periodic(s, errmsg)
                 if (len_trim(errmsg) == 0) call validate_output(s, errmsg)
             end if
         end if
@@ -109,8 +110,8 @@ contains
             errmsg = '&material nu2 = '//fmt_real(s%nu2)//': must lie in [0, 0.5)'
         else if (s%g1 >= rigid_modulus .and. s%g2 >= rigid_modulus) then
             errmsg = '&material g1 = '//fmt_real(s%g1)//', g2 = '//fmt_real(s%g2)//': both bodies rigid'
-        else if (len_trim(s%ic_file) > 0) then
-            errmsg = "&material ic_file = '"//trim(s%ic_file)//"': not yet supported"
+        else if (len_trim(s%ic_file) == 0 .and. len_trim(s%ic_file2) > 0) then
+            errmsg = "&material ic_file2 = '"//trim(s%ic_file2)//"': needs ic_file (body 1) too"
         end if
     end subroutine validate_material
 
@@ -367,6 +368,10 @@ contains
                 '] (TangCG iterations between subdivision checks)'
             return
         end if
+        if (s%threads < 0 .or. s%threads > 1024) then
+            errmsg = '&solver threads = '//fmt_int(s%threads)//': must lie in [0, 1024] (0: OMP_NUM_THREADS, else 1)'
+            return
+        end if
         ! (with mu = 0 and model = 'auto' the tangential stage is dropped: no coupling)
         if (s%normal_solver == 'fmg' .and. is_tangential(s) .and. .not. (s%model == 'auto' .and. s%mu == 0)) then
             m%g1 = s%g1; m%g2 = s%g2; m%nu1 = s%nu1; m%nu2 = s%nu2
@@ -453,5 +458,34 @@ contains
         character(len=*), intent(in) :: path
         inquire (file=trim(path), exist=file_exists)
     end function file_exists
+
+    !> `&grid periodic = .true.`: the grid is one cell of a surface repeated in x and y
+    !! (periodic half-space, normal contact): an explicit grid of even nx, ny, the mean
+    !! pressure prescribed through fn, a normal problem, BCCG or NORM.
+    subroutine validate_periodic(s, errmsg)
+        type(fc_case_input), intent(in) :: s
+        character(len=*), intent(out) :: errmsg
+        errmsg = ''
+        if (grid_is_auto(s)) then
+            errmsg = '&grid periodic = .true. with an automatic grid: give the cell (nx, ny, xmin, xmax, ymin, ymax)'
+        else if (s%nx < 2 .or. s%ny < 2 .or. modulo(s%nx, 2) /= 0 .or. modulo(s%ny, 2) /= 0) then
+            errmsg = '&grid periodic = .true., nx = '//fmt_int(s%nx)//', ny = '//fmt_int(s%ny)// &
+                ': the periodic cell needs even nx and ny >= 2'
+        else if (is_tangential(s) .or. s%problem == 'hertz') then
+            errmsg = "&grid periodic = .true. with problem = '"//trim(s%problem)// &
+                "': the periodic half-space is available for normal contact only"
+        else if (.not. s%force_prescribed) then
+            errmsg = '&grid periodic = .true. with &normal approach: prescribe fn (mean pressure x cell area); '// &
+                'the displacements of a periodic cell are defined up to a constant'
+        else if (s%normal_solver == 'fmg') then
+            errmsg = "&grid periodic = .true. with &solver normal = 'fmg': use 'bccg' or 'norm'"
+        else if (len_trim(s%ic_file) > 0) then
+            errmsg = '&grid periodic = .true. with &material ic_file: the periodic half-space has its own '// &
+                'influence coefficients'
+        else if (s%kind == 'strip2d' .or. s%kind == 'cylinder') then
+            errmsg = "&grid periodic = .true. with &geometry kind = '"//trim(s%kind)//"': use a 3D surface "// &
+                "(quadratic, wavy, punch_rough, table)"
+        end if
+    end subroutine validate_periodic
 
 end module fc_input_validate

@@ -2,7 +2,6 @@
 module fc_kinds
     use, intrinsic :: iso_fortran_env, only: real64, int64
     use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
-    use fc_errors, only: FC_ERR_VALUE
     implicit none
     private
 
@@ -21,6 +20,21 @@ module fc_kinds
     !> Largest iteration limit (`maxit`) any solver accepts: bounds the per-iteration history
     !! buffers (8 bytes per iteration) and the run time of a solve that never converges.
     integer, parameter, public :: max_iterations = 1000000
+
+    !> Error codes returned in `stat` (0: success); use them through [[fc_errors]].
+    integer, parameter, public :: FC_OK = 0                 !! success
+    integer, parameter, public :: FC_ERR_VALUE = 1          !! an argument is out of range or invalid
+    integer, parameter, public :: FC_ERR_NOT_READY = 2      !! required data missing (operator not built, order)
+    integer, parameter, public :: FC_ERR_SHAPE = 3          !! an array does not match the grid
+    integer, parameter, public :: FC_ERR_UNSUPPORTED = 4    !! a valid combination the solvers do not offer
+    integer, parameter, public :: FC_ERR_IO = 5             !! a file cannot be read or written
+    integer, parameter, public :: FC_ERR_NO_CONTACT = 6     !! the loading brings no element into contact
+    integer, parameter, public :: FC_ERR_FRICTION_BOUND = 7 !! prescribed |(Fx, Fy)| ≥ μ·Fn: no unique shift
+    integer, parameter, public :: FC_ERR_GRID = 8           !! the grid does not suit the chosen solver
+    integer, parameter, public :: FC_ERR_ALLOC = 9          !! memory allocation failed
+    integer, parameter, public :: FC_ERR_INTERNAL = 10      !! unexpected internal error
+    integer, parameter, public :: FC_ERR_GEOMETRY = 11      !! the geometry cannot touch on this grid
+
 
     public :: status_name, check_iteration_settings
 

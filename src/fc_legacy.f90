@@ -21,7 +21,9 @@
 !! grid size/spacing and the material are unchanged; the previous solution warm-starts the
 !! next call and, in the transient modes, is the previous state (u', p') of the step.
 !!
-!! The handles live in [[fc_legacy_registry]]; every calculation goes through the library's
+!! Size: one bind(C) routine with its argument checks per entry of the documented API (30
+!! entries, ~650 lines), kept together so that this module, include/fc_legacy.h and
+!! doc/legacy_api.md list the same surface.  The handles live in [[fc_legacy_registry]]; every calculation goes through the library's
 !! orchestrator [[solve_contact]].  Fortran-77 callers link through [[fc_legacy_f77]].
 module fc_legacy
     use, intrinsic :: iso_c_binding, only: c_int, c_double, c_char, c_null_char
@@ -36,6 +38,9 @@ module fc_legacy
     use fc_errors
     use fc_legacy_registry
     use fc_limits
+    use fc_icfile, only: fc_ic_set
+    use fc_icfile_load, only: load_influence_source
+    use fc_threads, only: set_thread_count, max_threads_allowed
     implicit none
     private
 
@@ -45,6 +50,8 @@ module fc_legacy
     public :: fc_get_forces, fc_get_approach, fc_get_pmax, fc_get_shifts, fc_get_contact_stats
     public :: fc_get_tractions, fc_get_slip, fc_get_gap, fc_get_status_array, fc_get_iterations
     public :: fc_get_rebuilds, fc_get_grid_size, fc_get_error_message, fc_get_nhandles
+    public :: fc_set_influence_file
+    public :: fc_set_periodic, fc_set_threads
     public :: shift_along_x
     public :: FCL_OK, FCL_INVALID_HANDLE, FCL_ORDER, FCL_INVALID_VALUE, FCL_NOT_CONVERGED, FCL_DIVERGED
     public :: FCL_ARRAY_SIZE, FCL_INTERNAL, FCL_FROM_REST, FCL_CONTINUE, FCL_ROLLING
@@ -71,6 +78,9 @@ contains
         type(legacy_state), pointer :: s
         call lookup(handle, 'fc_finalize', s, ierr)
         if (ierr /= FCL_OK) return
+        if (s%busy) then
+            call fail(s, ierr, FCL_ORDER, 'fc_finalize: the handle is calculating in another thread'); return
+        end if
         call close_handle(handle)
         handle = 0
     end subroutine fc_finalize
@@ -108,6 +118,50 @@ contains
         s%mat = m
         s%has_material = .true.
     end subroutine fc_set_material
+
+    !> Influence coefficients from files instead of the half-space ones (doc/numerical_ic.md):
+    !! `path` body 1's (written by `fastcontact-ic`) or combined ones (either format),
+    !! `path2` body 2's ('' : the half-space of fc_set_material's g2, nu2).  Null-terminated
+    !! strings; path = '' returns to the half-space kernels.  Call after fc_set_material;
+    !! the grid must have the file's element size.  The operators are rebuilt at the next
+    !! calculation.
+    subroutine fc_set_influence_file(handle, path, path2, ierr) bind(C, name='fc_set_influence_file')
+        integer(c_int), intent(in) :: handle
+        character(kind=c_char), intent(in) :: path(*), path2(*)
+        integer(c_int), intent(out) :: ierr
+        type(legacy_state), pointer :: s
+        type(fc_ic_set) :: ic
+        integer :: stat
+        character(len=msg_len) :: msg
+        character(len=:), allocatable :: p1, p2
+        call lookup(handle, 'fc_set_influence_file', s, ierr)
+        if (ierr /= FCL_OK) return
+        p1 = c_string(path); p2 = c_string(path2)
+        if (len(p1) == 0) then
+            call clear_influence_coefficients(s%ops); return
+        end if
+        if (.not. s%has_material) then
+            call fail(s, ierr, FCL_ORDER, 'fc_set_influence_file: material not set (call fc_set_material first)')
+            return
+        end if
+        call load_influence_source(p1, p2, s%mat%g1, s%mat%nu1, s%mat%g2, s%mat%nu2, ic, stat, msg)
+        if (stat == 0) call set_influence_coefficients(s%ops, ic, stat, msg)
+        if (stat /= 0) then
+            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_influence_file: '//trim(msg)); return
+        end if
+    contains
+        function c_string(c) result(f)
+            character(kind=c_char), intent(in) :: c(*)
+            character(len=:), allocatable :: f
+            integer :: n
+            n = 0
+            do while (c(n + 1) /= c_null_char .and. n < 4096)
+                n = n + 1
+            end do
+            allocate (character(len=n) :: f)
+            f = transfer(c(1:n), f)
+        end function c_string
+    end subroutine fc_set_influence_file
 
     !> Potential contact area [xmin,xmax]×[ymin,ymax] [mm] with nx×ny elements.  A changed
     !! element count or size rebuilds the operators and drops the previous state; moving
@@ -386,6 +440,38 @@ contains
         s%prev%warm_start = warm_start == 1
     end subroutine fc_set_reuse
 
+    !> Periodic half-space (1) or not (0, default): the grid is one cell of a surface repeated
+    !! in x and y (even nx, ny; normal contact with a prescribed force).
+    subroutine fc_set_periodic(handle, periodic, ierr) bind(C, name='fc_set_periodic')
+        integer(c_int), intent(in) :: handle
+        integer(c_int), intent(in) :: periodic   !! 0 or 1
+        integer(c_int), intent(out) :: ierr
+        type(legacy_state), pointer :: s
+        call lookup(handle, 'fc_set_periodic', s, ierr)
+        if (ierr /= FCL_OK) return
+        if (periodic /= 0 .and. periodic /= 1) then
+            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_periodic: periodic = '//fmt_int(periodic)//' must be 0 or 1')
+            return
+        end if
+        s%ops%periodic = periodic == 1
+    end subroutine fc_set_periodic
+
+    !> Threads of this handle's solves: 0 (default: OMP_NUM_THREADS if set, else 1) … 1024.
+    !! The FFT thread count is process-wide: hosts calculating handles concurrently keep 1.
+    subroutine fc_set_threads(handle, nthreads, ierr) bind(C, name='fc_set_threads')
+        integer(c_int), intent(in) :: handle
+        integer(c_int), intent(in) :: nthreads
+        integer(c_int), intent(out) :: ierr
+        type(legacy_state), pointer :: s
+        call lookup(handle, 'fc_set_threads', s, ierr)
+        if (ierr /= FCL_OK) return
+        if (nthreads < 0 .or. nthreads > max_threads_allowed) then
+            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_threads: nthreads = '//fmt_int(nthreads)// &
+                ' must lie in [0, 1024] (0: OMP_NUM_THREADS, else 1)'); return
+        end if
+        s%threads = nthreads
+    end subroutine fc_set_threads
+
     ! =====================================================================================
     ! calculation
     ! =====================================================================================
@@ -397,9 +483,19 @@ contains
         integer(c_int), intent(in) :: handle
         integer(c_int), intent(out) :: ierr
         type(legacy_state), pointer :: s
+        logical :: taken
         call lookup(handle, 'fc_calculate', s, ierr)
         if (ierr /= FCL_OK) return
+        !$omp critical (fc_legacy_busy)
+        taken = s%busy
+        s%busy = .true.
+        !$omp end critical (fc_legacy_busy)
+        if (taken) then
+            ierr = FCL_ORDER   ! the message slot belongs to the running calculation: left alone
+            return
+        end if
         call calculate(s, ierr)
+        s%busy = .false.
     end subroutine fc_calculate
 
     subroutine calculate(s, ierr)
@@ -428,7 +524,12 @@ contains
             call fail(s, ierr, FCL_ORDER, 'fc_calculate: shifts or forces set but no friction (call fc_set_friction)')
             return
         end if
+        if (s%ops%periodic .and. .not. s%load%normal%force_prescribed) then
+            call fail(s, ierr, FCL_ORDER, 'fc_calculate: the periodic half-space needs the normal force (mean '// &
+                'pressure x cell area, fc_set_normal_force)'); return
+        end if
         s%has_result = .false.
+        call set_thread_count(s%threads)
         if (s%gap_kind == GAP_QUADRATIC) then
             h0 = quadratic_gap(s%grid, s%rx, s%ry)
         else

@@ -127,6 +127,18 @@ contains
         call fc_set_reuse(handle, reuse_operators, warm_start, ierr)
     end subroutine fc_set_reuse_f77
 
+    subroutine fc_set_periodic_f77(handle, periodic, ierr) bind(C, name='fc_set_periodic_')
+        integer(c_int), intent(in) :: handle, periodic
+        integer(c_int), intent(out) :: ierr
+        call fc_set_periodic(handle, periodic, ierr)
+    end subroutine fc_set_periodic_f77
+
+    subroutine fc_set_threads_f77(handle, nthreads, ierr) bind(C, name='fc_set_threads_')
+        integer(c_int), intent(in) :: handle, nthreads
+        integer(c_int), intent(out) :: ierr
+        call fc_set_threads(handle, nthreads, ierr)
+    end subroutine fc_set_threads_f77
+
     subroutine fc_calculate_f77(handle, ierr) bind(C, name='fc_calculate_')
         integer(c_int), intent(in) :: handle
         integer(c_int), intent(out) :: ierr

@@ -4,6 +4,9 @@
 !!
 !! The registry is the only mutable module state of the library.  Slots hold pointers, so
 !! growing the registry never copies an operator (FFTW plans stay with their buffers).
+!! It is changed and read under a lock (named OpenMP critical section, a mutex also for
+!! threads the host created itself), so different handles may be used from different
+!! threads; a handle's own state is its caller's (one thread at a time, `busy` guard).
 module fc_legacy_registry
     use, intrinsic :: iso_c_binding, only: c_int
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
@@ -14,6 +17,7 @@ module fc_legacy_registry
     use fc_influence, only: fc_material
     use fc_contact, only: fc_contact_loading, fc_contact_settings, fc_contact_operators, fc_contact_state, &
         fc_contact_result
+    use fc_threads, only: set_thread_count
     implicit none
     private
 
@@ -49,6 +53,8 @@ module fc_legacy_registry
         type(fc_contact_operators) :: ops
         type(fc_contact_state) :: prev
         integer :: calculations = 0
+        integer :: threads = 0                     !! threads of the solves (0: OMP_NUM_THREADS, else 1)
+        logical :: busy = .false.                  !! fc_calculate running (guards against a second caller)
         ! --- result of the last calculation ---
         logical :: has_result = .false.
         type(fc_contact_result) :: result
@@ -83,6 +89,7 @@ contains
         character(len=*), intent(in) :: caller
         type(legacy_state), pointer, intent(out) :: s
         integer(c_int), intent(out) :: ierr
+        !$omp critical (fc_legacy_registry)
         call ensure_registry()
         s => null()
         ierr = FCL_OK
@@ -92,6 +99,7 @@ contains
             write (registry(0)%s%message, '(a,i0,a)') trim(caller)//': invalid handle ', handle, &
                 ' (not initialised by fc_init or already finalised)'
         end if
+        !$omp end critical (fc_legacy_registry)
     end subroutine lookup
 
     !> Record an error on a state.
@@ -114,6 +122,8 @@ contains
         integer(c_int), intent(out) :: handle
         type(state_slot), allocatable :: bigger(:)
         integer :: i, n
+        !$omp critical (fc_legacy_registry)
+        call set_thread_count(0)   ! the first call makes FFTW's planner thread-safe
         call ensure_registry()
         handle = 0
         do i = 1, ubound(registry, 1)
@@ -129,24 +139,33 @@ contains
             handle = n + 1
         end if
         allocate (registry(handle)%s)
+        !$omp end critical (fc_legacy_registry)
     end subroutine open_handle
 
     !> Release the state of a valid `handle` (operators, FFT plans, arrays).
     subroutine close_handle(handle)
         integer(c_int), intent(in) :: handle
-        call registry(handle)%s%ops%destroy()
-        deallocate (registry(handle)%s)
+        type(legacy_state), pointer :: s
+        !$omp critical (fc_legacy_registry)
+        s => registry(handle)%s
         registry(handle)%s => null()
+        !$omp end critical (fc_legacy_registry)
+        call s%ops%destroy()
+        ! Through a local pointer: gfortran 12 has an internal compiler error on deallocating
+        ! the registry component directly once the operators carry final bindings.
+        deallocate (s)
     end subroutine close_handle
 
     !> Number of handles in use.
     integer function live_handles() result(n)
         integer :: i
+        !$omp critical (fc_legacy_registry)
         call ensure_registry()
         n = 0
         do i = 1, ubound(registry, 1)
             if (associated(registry(i)%s)) n = n + 1
         end do
+        !$omp end critical (fc_legacy_registry)
     end function live_handles
 
     !> Message of the last failing call on `handle`; for an invalid handle, that of the
@@ -154,11 +173,13 @@ contains
     function last_message(handle) result(msg)
         integer(c_int), intent(in) :: handle
         character(len=msg_len) :: msg
+        !$omp critical (fc_legacy_registry)
         call ensure_registry()
         msg = registry(0)%s%message
         if (handle >= 1 .and. handle <= ubound(registry, 1)) then
             if (associated(registry(handle)%s)) msg = registry(handle)%s%message
         end if
+        !$omp end critical (fc_legacy_registry)
     end function last_message
 
     !> Same element count and size (relative 1e−12): the operators can be reused.

@@ -35,6 +35,7 @@ module fc_mg2d
     use fc_geometry, only: fc_grid, make_grid
     use fc_influence
     use fc_fftw
+    use fc_lapack, only: solve_spd, eigenvalues_general
     implicit none
     private
 
@@ -93,24 +94,6 @@ module fc_mg2d
         integer :: nlev = 0
         real(dp) :: work = 0
     end type strip_hierarchy
-
-    interface
-        subroutine dposv(uplo, n, nrhs, a, lda, b, ldb, info)
-            import :: dp
-            character(len=1), intent(in) :: uplo
-            integer, intent(in) :: n, nrhs, lda, ldb
-            real(dp), intent(inout) :: a(lda, *), b(ldb, *)
-            integer, intent(out) :: info
-        end subroutine dposv
-        subroutine dgeev(jobvl, jobvr, n, a, lda, wr, wi, vl, ldvl, vr, ldvr, work, lwork, info)
-            import :: dp
-            character(len=1), intent(in) :: jobvl, jobvr
-            integer, intent(in) :: n, lda, ldvl, ldvr, lwork
-            real(dp), intent(inout) :: a(lda, *)
-            real(dp), intent(out) :: wr(*), wi(*), vl(ldvl, *), vr(ldvr, *), work(*)
-            integer, intent(out) :: info
-        end subroutine dgeev
-    end interface
 
     public :: strip_model_problem, solve_strip_mg, solve_strip_fft_rsm, mg2d_spectral_radius
     public :: strip_toeplitz_inverse, strip_smoother_radius
@@ -347,13 +330,16 @@ contains
     end subroutine smooth_step
 
     !> Direct solve A_r v = d on the coarsest level (dposv); v = 0 off the strips.
-    subroutine coarse_solve(lv, d, v)
+    subroutine coarse_solve(lv, d, v, stat, errmsg)
         type(strip_level), intent(in) :: lv
         real(dp), intent(in) :: d(:, :)
         real(dp), intent(out) :: v(:, :)
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
         integer, allocatable :: idx(:)
         real(dp), allocatable :: a(:, :), b(:, :)
-        integer :: nc, i, j, info
+        integer :: nc, i, j
+        stat = 0; errmsg = ''
         v = 0
         nc = count(lv%con)
         if (nc == 0) return
@@ -365,24 +351,30 @@ contains
             end do
             b(j, 1) = d(idx(j), 1)
         end do
-        call dposv('U', nc, 1, a, nc, b, nc, info)
-        if (info /= 0) return
+        call solve_spd(a, b, stat, errmsg)
+        if (stat /= 0) then
+            errmsg = 'strip2d coarsest-grid solve: '//trim(errmsg); return
+        end if
         v(idx, 1) = b(:, 1)
     end subroutine coarse_solve
 
     !> One V(ν1,ν2)-cycle for A_r p = rhs on level l.  On entry d is the defect of p, on exit
     !! the defect of the new p (so the caller's stopping test and the next cycle reuse it).
-    recursive subroutine vcycle(hier, l, settings, rhs, p, d)
+    recursive subroutine vcycle(hier, l, settings, rhs, p, d, stat, errmsg)
         type(strip_hierarchy), intent(inout) :: hier
         integer, intent(in) :: l
         type(fc_mg2d_settings), intent(in) :: settings
         real(dp), intent(in) :: rhs(:, :)
         real(dp), intent(inout) :: p(:, :), d(:, :)
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
         real(dp), allocatable :: dc(:, :), pc(:, :), dd(:, :)
         integer :: k, nc, i
+        stat = 0; errmsg = ''
         if (l == 1) then
             allocate (pc(size(p, 1), 1))
-            call coarse_solve(hier%lev(1), d, pc)
+            call coarse_solve(hier%lev(1), d, pc, stat, errmsg)
+            if (stat /= 0) return
             p = p + pc
             d = 0
             return
@@ -398,7 +390,8 @@ contains
         end do
         where (.not. hier%lev(l - 1)%con) dc = 0
         pc = 0; dd = dc
-        call vcycle(hier, l - 1, settings, dc, pc, dd)
+        call vcycle(hier, l - 1, settings, dc, pc, dd, stat, errmsg)
+        if (stat /= 0) return
         do i = 1, nc                                                ! eq. (3.13)
             where (hier%lev(l)%con(2*i - 1:2*i, 1)) p(2*i - 1:2*i, 1) = p(2*i - 1:2*i, 1) + pc(i, 1)
         end do
@@ -496,7 +489,8 @@ contains
         type(strip_hierarchy) :: hier
         real(dp), allocatable :: p(:, :), d(:, :), rhs(:, :)
         real(dp) :: unorm, d0, dn
-        integer :: k, n, t0, t1, rate
+        integer :: k, n, t0, t1, rate, vstat
+        character(len=msg_len) :: vmsg
         call check_input(prob, settings, stat, errmsg)
         if (stat /= 0) return
         call system_clock(t0, rate)
@@ -528,7 +522,10 @@ contains
                 res%status = FC_CONVERGED; res%message = 'converged'; exit
             end if
             if (multigrid) then
-                call vcycle(hier, hier%nlev, settings, rhs, p, d)
+                call vcycle(hier, hier%nlev, settings, rhs, p, d, vstat, vmsg)
+                if (vstat /= 0) then
+                    res%status = FC_ERROR; res%message = vmsg; exit
+                end if
             else
                 call smooth_step(hier, 1, 'fft-rsm', d, p)
                 call defect(hier, 1, rhs, p, d)
@@ -550,7 +547,7 @@ contains
         if (res%iterations > 0 .and. d0 > 0 .and. dn > 0) res%factor = (dn/d0)**(1.0_dp/res%iterations)
         call trim_history(res%history, res%iterations)
         res%work_units = hier%work
-        if (res%status == FC_DIVERGED) then
+        if (res%status == FC_DIVERGED .or. res%status == FC_ERROR) then
             allocate (res%p(n)); res%p = 0       ! never hand back a diverged iterate as a result
         else
             res%p = p(:, 1)
@@ -599,7 +596,10 @@ contains
             p = 0; p(j, 1) = 1
             where (.not. hier%lev(hier%nlev)%con) p = 0
             call defect(hier, hier%nlev, zero, p, d)
-            call vcycle(hier, hier%nlev, settings, zero, p, d)
+            call vcycle(hier, hier%nlev, settings, zero, p, d, stat, errmsg)
+            if (stat /= 0) then
+                call destroy_hierarchy(hier); return
+            end if
             t(:, j) = p(:, 1)
         end do
         call destroy_hierarchy(hier)
@@ -645,15 +645,10 @@ contains
         real(dp), intent(out) :: rho
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
-        real(dp), allocatable :: wr(:), wi(:), work(:)
-        real(dp) :: vl(1, 1), vr(1, 1)
-        integer :: n, info
-        n = size(t, 1)
-        allocate (wr(n), wi(n), work(8*n))
-        call dgeev('N', 'N', n, t, n, wr, wi, vl, 1, vr, 1, work, size(work), info)
-        stat = 0; errmsg = ''
-        if (info /= 0) then
-            stat = 1; write (errmsg, '(a,i0)') 'dgeev failed, info = ', info; rho = -1; return
+        real(dp), allocatable :: wr(:), wi(:)
+        call eigenvalues_general(t, wr, wi, stat, errmsg)
+        if (stat /= 0) then
+            rho = -1; return
         end if
         rho = maxval(hypot(wr, wi))
     end subroutine radius_of

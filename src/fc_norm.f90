@@ -1,4 +1,4 @@
-!> Normal contact problem: the LCP e = h + A p ≥ 0, p ≥ 0, e·p = 0 (thesis §2.2, SPEC §2–§3).
+!> Normal contact problem: the LCP e = h + A p ≥ 0, p ≥ 0, e·p = 0 (thesis §2.2; doc/conventions.md).
 !!
 !! Two solvers share one operator object ([[fc_normal_operator]], built once per grid and
 !! material and reused across calls):
@@ -28,6 +28,9 @@ module fc_norm
     use fc_errors, only: FC_ERR_NO_CONTACT
     use fc_geometry, only: fc_grid, h_no_contact
     use fc_influence
+    use fc_icfile, only: fc_ic_set, ic_set_kernel
+    use, intrinsic :: iso_c_binding, only: c_loc, c_associated
+    use fc_errors, only: FC_ERR_VALUE
     implicit none
     private
 
@@ -39,9 +42,17 @@ module fc_norm
         integer :: inner_maxit = 0            !! NORM: CG steps per active-set iteration (0: until converged)
         logical :: precondition = .true.      !! BCCG: FFT-based preconditioner
         logical :: deflation = .false.        !! BCCG: coarse correction on the contact indicator (measured: no gain)
+        !> Reading of NORM's active-set step (thesis §2.3, §2.4.1) — '' (ours: warm-started
+        !! CG, drop p < 0 and add e < 0 in one step); research alternatives for thesis Table 2.8
+        !! (bench/norm_table28.f90): 'restart' (CG from p = 0), 'keep_negative' (dropped
+        !! elements keep p), 'add_if_no_drop', 'add_on_zero' (add e ≤ 0), 'continue_cg'
+        !! (search direction kept across active-set steps), 'recompute_u' (e after the drop)
+        character(len=16) :: norm_reading = ''
     end type fc_normal_settings
 
-    !> Influence operator A^zz and the preconditioner for one grid and material.
+    !> Influence operator A^zz and the preconditioner for one grid and material; the two
+    !! share one set of FFT plans and buffers.  Plans are released by `destroy` or when the
+    !! operator is dropped; a copy (assignment) is independent of the original.
     type, public :: fc_normal_operator
         type(fc_grid) :: grid
         type(fc_material) :: material
@@ -51,6 +62,8 @@ module fc_norm
     contains
         procedure :: destroy => normal_operator_destroy
         procedure :: matches => normal_operator_matches
+        procedure, private :: normal_operator_assign
+        generic :: assignment(=) => normal_operator_assign
     end type fc_normal_operator
 
     !> Result of a normal solve.
@@ -79,22 +92,30 @@ module fc_norm
 contains
 
     !> Build A^zz and its preconditioner for `grid` and `material` (combined constants
-    !! already set by [[combine_material]]).
-    subroutine build_normal_operator(nop, material, grid)
+    !! already set by [[combine_material]]); with `ic`, from that set's coefficients (checked
+    !! against the grid by the caller, see [[ic_set_kernel]]) instead of the half-space ones.
+    subroutine build_normal_operator(nop, material, grid, ic)
         type(fc_normal_operator), intent(inout) :: nop
         type(fc_material), intent(in) :: material
         type(fc_grid), intent(in) :: grid
-        integer :: t0, t1, rate
+        type(fc_ic_set), intent(in), optional :: ic
+        integer :: t0, t1, rate, stat
         real(dp), allocatable :: kext(:, :)
+        character(len=msg_len) :: msg
         call system_clock(t0, rate)
         call nop%destroy()
         nop%grid = grid
         nop%material = material
         ! one coefficient evaluation serves both A (offsets < n) and M (offsets ≤ n)
-        call ic_kernel_extended(IC_ZZ, material, grid, grid%nx, grid%ny, kext)
+        if (present(ic)) then
+            call ic_set_kernel(ic, IC_ZZ, grid, kext, stat, msg)
+        else
+            call ic_kernel_extended(IC_ZZ, material, grid, grid%nx, grid%ny, kext)
+        end if
         call build_bttb_from_kernel(nop%a_zz, kext(-(grid%nx - 1):grid%nx - 1, -(grid%ny - 1):grid%ny - 1), &
             grid%nx, grid%ny)
-        call inverse_toeplitz_from_kernel(kext, grid%nx, grid%ny, nop%precond)
+        ! M shares A's FFT plans and buffers (one set per grid)
+        call inverse_toeplitz_from_kernel(kext, grid%nx, grid%ny, nop%precond, plans_from=nop%a_zz)
         call system_clock(t1)
         nop%setup_seconds = real(t1 - t0, dp)/rate
     end subroutine build_normal_operator
@@ -116,6 +137,26 @@ contains
         call self%precond%destroy()
     end subroutine normal_operator_destroy
 
+    !> `lhs = rhs`: deep copy; the copy's two blocks share their own new plan set.
+    !! (Explicit rather than component-wise: gfortran 12 finalizes a shallow temporary in
+    !! the intrinsic assignment of a type with finalizable components.)
+    subroutine normal_operator_assign(lhs, rhs)
+        class(fc_normal_operator), intent(inout) :: lhs
+        type(fc_normal_operator), intent(in) :: rhs
+        if (same_object(lhs, rhs)) return
+        lhs%grid = rhs%grid
+        lhs%material = rhs%material
+        lhs%setup_seconds = rhs%setup_seconds
+        call copy_bttb(lhs%a_zz, rhs%a_zz)
+        call copy_bttb(lhs%precond, rhs%precond, plans_from=lhs%a_zz)
+    contains
+        logical function same_object(a, b)
+            class(fc_normal_operator), intent(in), target :: a
+            type(fc_normal_operator), intent(in), target :: b
+            same_object = c_associated(c_loc(a%setup_seconds), c_loc(b%setup_seconds))
+        end function same_object
+    end subroutine normal_operator_assign
+
     !> Solve the normal contact problem for undeformed distance h0 (without approach) with
     !! either a prescribed `approach` δ [mm] or a prescribed total force `fn` [N].
     !! `p_start` (optional) warm-starts the iteration.
@@ -134,20 +175,20 @@ contains
         stat = 0; errmsg = ''
         nx = nop%grid%nx; ny = nop%grid%ny
         if (.not. nop%a_zz%built()) then
-            stat = 1; errmsg = 'solve_normal: operator not built'; return
+            stat = FC_ERR_NOT_READY; errmsg = 'solve_normal: operator not built'; return
         end if
         if (size(h0, 1) /= nx .or. size(h0, 2) /= ny) then
-            stat = 1; write (errmsg, '(a,2(i0,1x),a,2(i0,1x))') 'solve_normal: h0 has shape ', shape(h0), &
+            stat = FC_ERR_SHAPE; write (errmsg, '(a,2(i0,1x),a,2(i0,1x))') 'solve_normal: h0 has shape ', shape(h0), &
                 'but the grid is ', nx, ny
             return
         end if
         if (present(approach) .eqv. present(fn)) then
-            stat = 1; errmsg = 'solve_normal: give exactly one of approach and fn'; return
+            stat = FC_ERR_VALUE; errmsg = 'solve_normal: give exactly one of approach and fn'; return
         end if
         force_mode = present(fn)
         if (force_mode) then
             if (.not. (fn > 0)) then
-                stat = 1; write (errmsg, '(a,es12.4,a)') 'normal: fn = ', fn, ' must be > 0'; return
+                stat = FC_ERR_VALUE; write (errmsg, '(a,es12.4,a)') 'normal: fn = ', fn, ' must be > 0'; return
             end if
             if (.not. any(h0 < 0.5_dp*h_no_contact)) then
                 stat = FC_ERR_NO_CONTACT
@@ -158,13 +199,20 @@ contains
         else
             delta = approach
             if (.not. any(h0 - delta <= 0 .and. h0 < 0.5_dp*h_no_contact)) then
-                stat = 1; write (errmsg, '(a,es12.4,a)') 'normal: approach = ', approach, &
+                stat = FC_ERR_VALUE; write (errmsg, '(a,es12.4,a)') 'normal: approach = ', approach, &
                     ' gives no contact (h0 − approach > 0 everywhere)'
                 return
             end if
         end if
         call check_iteration_settings(settings%tol, settings%maxit, stat, errmsg)
         if (stat /= 0) return
+        select case (settings%norm_reading)
+        case ('', 'restart', 'keep_negative', 'add_if_no_drop', 'add_on_zero', 'continue_cg', 'recompute_u')
+        case default
+            stat = FC_ERR_VALUE; errmsg = "solve_normal: norm_reading = '"//trim(settings%norm_reading)//"' is not one of '', "// &
+                "'restart', 'keep_negative', 'add_if_no_drop', 'add_on_zero', 'continue_cg', 'recompute_u'"
+            return
+        end select
         allocate (res%pn(nx, ny), res%gap(nx, ny))
         res%pn = 0
         if (present(p_start)) then
@@ -181,7 +229,7 @@ contains
         case ('norm')
             call run_norm(nop, h0, settings, force_mode, delta, fn_or_zero(), res)
         case default
-            stat = 1; errmsg = "solver: normal = '"//trim(settings%solver)//"' is not one of 'bccg', 'norm'"
+            stat = FC_ERR_VALUE; errmsg = "solver: normal = '"//trim(settings%solver)//"' is not one of 'bccg', 'norm'"
             return
         end select
         call system_clock(t1)
@@ -404,8 +452,8 @@ contains
         type(fc_normal_result), intent(inout) :: res
         real(dp), dimension(size(h0, 1), size(h0, 2)) :: p, u, r, d, q, h
         logical, dimension(size(h0, 1), size(h0, 2)) :: con, con_new, allowed
-        real(dp) :: delta, area, alpha, beta, rr, rr_old, dq, hnorm, rnorm, inner_tol, e, best
-        integer :: outer, inner, inner_max, ncon, total_inner, i, j, since_best
+        real(dp) :: delta, area, alpha, beta, rr, rr_old, dq, hnorm, rnorm, inner_tol, e, rr_keep, best
+        integer :: outer, inner, inner_max, ncon, total_inner, i, j, ndrop, since_best
         logical :: changed
         !> Outer iterations without an active-set change and without a 0.1 % residual decrease
         !! after which NORM reports stagnation (the tolerance is below what rounding allows).
@@ -431,6 +479,7 @@ contains
         allocate (hist(settings%maxit))
         total_inner = 0
         best = huge(1.0_dp); since_best = 0
+        rr_keep = 0; d = 0
         res%status = FC_NOT_CONVERGED
         do outer = 1, settings%maxit
             res%outer_iterations = outer
@@ -439,6 +488,7 @@ contains
                 res%message = 'NORM: contact area became empty'
                 exit
             end if
+            if (settings%norm_reading == 'restart') p = 0
             if (force_mode) then
                 where (con)
                     p = max(p, 0.0_dp)
@@ -457,7 +507,12 @@ contains
             if (force_mode) call project_mean(r, con)
             hnorm = sqrt(sum(h**2, mask=con))
             rr = sum(r*r)
-            d = r
+            if (settings%norm_reading == 'continue_cg' .and. outer > 1 .and. rr_keep > 0) then
+                where (.not. con) d = 0
+                d = r + (rr/rr_keep)*d
+            else
+                d = r
+            end if
             do inner = 1, inner_max
                 if (sqrt(rr) <= inner_tol*hnorm) exit
                 call nop%a_zz%apply(d, q)
@@ -474,6 +529,7 @@ contains
                 d = r + beta*d
                 total_inner = total_inner + 1
             end do
+            rr_keep = rr
             call nop%a_zz%apply(p, u)
             if (force_mode) delta = sum(h0 + u, mask=con)/ncon
             h = h0 - delta
@@ -490,21 +546,29 @@ contains
             ! active-set update (thesis §2.4.1 step 4): (a) drop negative pressures,
             ! (b) add exterior elements that penetrate
             con_new = con
-            changed = .false.
+            ndrop = 0
             do j = 1, size(h0, 2)
                 do i = 1, size(h0, 1)
-                    if (con(i, j)) then
-                        if (p(i, j) < 0) then
-                            con_new(i, j) = .false.; p(i, j) = 0; changed = .true.
-                        end if
-                    else if (allowed(i, j)) then
-                        e = h(i, j) + u(i, j)
-                        if (e < 0) then
-                            con_new(i, j) = .true.; changed = .true.
-                        end if
+                    if (con(i, j) .and. p(i, j) < 0) then
+                        con_new(i, j) = .false.; ndrop = ndrop + 1
+                        if (settings%norm_reading /= 'keep_negative') p(i, j) = 0
                     end if
                 end do
             end do
+            changed = ndrop > 0
+            if (settings%norm_reading == 'recompute_u' .and. ndrop > 0) call nop%a_zz%apply(p, u)
+            if (.not. (settings%norm_reading == 'add_if_no_drop' .and. ndrop > 0)) then
+                do j = 1, size(h0, 2)
+                    do i = 1, size(h0, 1)
+                        if (.not. con(i, j) .and. allowed(i, j)) then
+                            e = h(i, j) + u(i, j)
+                            if (e < 0 .or. (settings%norm_reading == 'add_on_zero' .and. e <= 0)) then
+                                con_new(i, j) = .true.; changed = .true.
+                            end if
+                        end if
+                    end do
+                end do
+            end if
             con = con_new
             if (.not. changed .and. res%residual <= settings%tol) then
                 res%status = FC_CONVERGED

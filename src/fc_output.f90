@@ -1,6 +1,7 @@
-!> Output of the batch driver (SPEC §5): per case a JSON summary, a CSV table of the
-!! element values and a readable text report with a character map of the contact area
-!! in the style of Kalker's CONTACT.
+!> Output of the batch driver (doc/user_guide.md): per case a JSON summary, a CSV table of
+!! the element values and a readable text report with a character map of the contact area
+!! in the style of Kalker's CONTACT.  It writes results only: the summary of a case and the
+!! outcome of the automatic layer ([[fc_case_result]]), never computing them.
 module fc_output
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use fc_kinds, only: dp, msg_len
@@ -8,7 +9,7 @@ module fc_output
     use fc_geometry, only: fc_grid
     use fc_influence, only: fc_material
     use fc_hertz, only: fc_hertz_solution, fc_cattaneo_solution
-    use fc_auto, only: fc_level
+    use fc_case_result, only: fc_auto_outcome
     implicit none
     private
 
@@ -26,8 +27,6 @@ module fc_output
         logical :: tangential_run = .false.          !! tangential stage was reached
         character(len=16) :: status_normal = 'error' !! status of the normal stage
         character(len=16) :: status_tangential = 'not_run' !! status of the tangential stage
-        type(fc_material) :: material                !! combined constants
-        type(fc_grid) :: grid                        !! potential contact area
         logical :: force_prescribed = .false.        !! fn prescribed (else approach)
         real(dp) :: fn = 0, fx = 0, fy = 0, mz = 0   !! total forces [N] and moment [N mm]
         real(dp) :: approach = 0                     !! approach δ used [mm]
@@ -56,26 +55,11 @@ module fc_output
         type(fc_hertz_solution) :: hertz             !! analytic Hertz solution
         character(len=msg_len) :: message = ''       !! solver message
         character(len=:), allocatable :: notes       !! remarks (ignored keys)
-        ! ---- automatic layer (issue 7)
-        character(len=32) :: model = 'full'          !! 'full', 'strip2d', 'hertz_analytic'
-        character(len=256), allocatable :: reductions(:)  !! model reductions and automatic decisions
-        character(len=512), allocatable :: warnings(:)    !! warnings (clipped contact, target not met, ...)
-        logical :: grid_auto = .false.               !! potential area sized automatically
-        integer :: enlargements = 0                  !! automatic enlargements of the area
-        logical :: touches_boundary = .false.        !! contact reaches the edge of the area
-        real(dp) :: target = 0                       !! accuracy target (0: none)
-        real(dp) :: estimate = -1                    !! estimated relative error of the final grid
-        logical :: reliable = .true.                 !! monotone convergence
-        logical :: target_met = .false.              !! estimate ≤ target
-        character(len=64) :: quantities = ''         !! quantities covered by the estimate
-        integer :: sufficient_nx = 0, sufficient_ny = 0  !! coarsest grid visited certified to meet the target (0: none)
-        real(dp) :: sufficient_bound = -1            !! its certified relative error bound
-        type(fc_level), allocatable :: levels(:)     !! grids visited
-        real(dp) :: levels_seconds = 0               !! all grids incl. set-up [s]
-        logical :: analytic = .false.                !! analytic answer, no grid
-        logical :: has_cattaneo = .false.            !! analytic Cattaneo–Mindlin present
-        type(fc_cattaneo_solution) :: cattaneo       !! analytic Cattaneo–Mindlin
-        ! ---- multigrid (issue 4)
+        !> what the automatic layer decided and computed (grid, material, grids visited,
+        !! accuracy, reductions, warnings, analytic answers) and the final solution; strip
+        !! model problems fill grid, material and model only
+        type(fc_auto_outcome) :: outcome
+        ! ---- multigrid
         real(dp) :: work_units = -1                  !! FMG / strip solvers: work units (−1: not a multigrid solve)
         real(dp) :: convergence_factor = -1          !! FMG / strip solvers: convergence factor (−1: n/a)
         character(len=16) :: cycle = ''              !! multigrid cycle used ('' for one-grid solvers)
@@ -157,34 +141,36 @@ contains
             call kv_int('panagiotopoulos_rounds', s%panagiotopoulos_rounds)
             call kv_real('setup_seconds_tangential', s%setup_seconds_tangential)
         end if
-        call kv_int('nx', s%grid%nx)
-        call kv_int('ny', s%grid%ny)
-        call kv_real('dx', s%grid%dx)
-        call kv_real('dy', s%grid%dy)
-        call kv_real('xmin', s%grid%xmin)
-        call kv_real('xmax', s%grid%xmax)
-        call kv_real('ymin', s%grid%ymin)
-        call kv_real('ymax', s%grid%ymax)
-        call kv_real('g', s%material%g)
-        call kv_real('nu', s%material%nu)
-        call kv_str('model', s%model)
-        call kv_list('reductions', s%reductions)
-        call kv_list('warnings', s%warnings)
-        write (u, '(a)') '  "grid_auto": '//trim(merge('true ', 'false', s%grid_auto))//','
-        call kv_int('enlargements', s%enlargements)
-        write (u, '(a)') '  "touches_boundary": '//trim(merge('true ', 'false', s%touches_boundary))//','
-        if (s%target > 0) then
-            write (u, '(a)') '  "accuracy": {"target": '//json_real(s%target)//', "estimate": '//json_real(s%estimate)// &
-                ', "target_met": '//trim(merge('true ', 'false', s%target_met))//', "reliable": '// &
-                trim(merge('true ', 'false', s%reliable))//', "quantities": '//json_string(trim(s%quantities))// &
-                ', "seconds": '//json_real(s%levels_seconds)//', "coarsest_sufficient": '//sufficient_json()//'},'
+        call kv_int('nx', s%outcome%grid%nx)
+        call kv_int('ny', s%outcome%grid%ny)
+        call kv_real('dx', s%outcome%grid%dx)
+        call kv_real('dy', s%outcome%grid%dy)
+        call kv_real('xmin', s%outcome%grid%xmin)
+        call kv_real('xmax', s%outcome%grid%xmax)
+        call kv_real('ymin', s%outcome%grid%ymin)
+        call kv_real('ymax', s%outcome%grid%ymax)
+        call kv_real('g', s%outcome%material%g)
+        call kv_real('nu', s%outcome%material%nu)
+        call kv_str('model', s%outcome%model)
+        call kv_list('reductions', s%outcome%reductions)
+        call kv_list('warnings', s%outcome%warnings)
+        write (u, '(a)') '  "grid_auto": '//trim(merge('true ', 'false', s%outcome%grid_auto))//','
+        call kv_int('enlargements', s%outcome%enlargements)
+        write (u, '(a)') '  "touches_boundary": '//trim(merge('true ', 'false', s%outcome%touches_boundary))//','
+        if (s%outcome%target > 0) then
+            write (u, '(a)') '  "accuracy": {"target": '//json_real(s%outcome%target)//', "estimate": '// &
+                json_real(s%outcome%estimate)// &
+                ', "target_met": '//trim(merge('true ', 'false', s%outcome%target_met))//', "reliable": '// &
+                trim(merge('true ', 'false', s%outcome%reliable))//', "quantities": '//json_string(trim(s%outcome%quantities))// &
+                ', "seconds": '//json_real(s%outcome%total_seconds)//', "coarsest_sufficient": '//sufficient_json()//'},'
         end if
-        if (allocated(s%levels)) call kv_levels()
-        if (s%has_cattaneo) then
-            write (u, '(a)') '  "cattaneo": {"a": '//json_real(s%cattaneo%a)//', "c": '//json_real(s%cattaneo%c)// &
-                ', "shift": '//json_real(s%cattaneo%shift)//', "mu": '//json_real(s%cattaneo%mu)//'},'
+        if (allocated(s%outcome%levels)) call kv_levels()
+        if (s%outcome%has_cattaneo) then
+            write (u, '(a)') '  "cattaneo": {"a": '//json_real(s%outcome%cattaneo%a)//', "c": '// &
+                json_real(s%outcome%cattaneo%c)// &
+                ', "shift": '//json_real(s%outcome%cattaneo%shift)//', "mu": '//json_real(s%outcome%cattaneo%mu)//'},'
         end if
-        call kv_real('k', s%material%k, last=.not. s%has_hertz)
+        call kv_real('k', s%outcome%material%k, last=.not. s%has_hertz)
         if (s%has_hertz) then
             write (u, '(a)') '  "hertz": {"a": '//json_real(s%hertz%a)//', "b": '//json_real(s%hertz%b)// &
                 ', "p0": '//json_real(s%hertz%p0)//', "fn": '//json_real(s%hertz%fn)// &
@@ -233,26 +219,28 @@ contains
         function sufficient_json() result(text)
             character(len=:), allocatable :: text
             character(len=40) :: buf
-            if (s%sufficient_nx == 0) then
+            if (s%outcome%sufficient == 0) then
                 text = 'null'
             else
-                write (buf, '(i0,a,i0)') s%sufficient_nx, ', "ny": ', s%sufficient_ny
-                text = '{"nx": '//trim(buf)//', "bound": '//json_real(s%sufficient_bound)//'}'
+                associate (l => s%outcome%levels(s%outcome%sufficient))
+                    write (buf, '(i0,a,i0)') l%nx, ', "ny": ', l%ny
+                end associate
+                text = '{"nx": '//trim(buf)//', "bound": '//json_real(s%outcome%sufficient_bound)//'}'
             end if
         end function sufficient_json
         subroutine kv_levels()
             integer :: k
             character(len=40) :: buf
             write (u, '(a)') '  "levels": ['
-            do k = 1, size(s%levels)
-                associate (l => s%levels(k))
+            do k = 1, size(s%outcome%levels)
+                associate (l => s%outcome%levels(k))
                     write (buf, '(i0,a,i0,a,i0)') l%nx, ', "ny": ', l%ny, ', "ncon": ', l%ncon
                     write (u, '(a)') '    {"nx": '//trim(buf)//', "fn": '//json_real(l%fn)//', "approach": '// &
                         json_real(l%approach)//', "fx": '//json_real(l%fx)//', "fy": '//json_real(l%fy)//', "xi": '// &
                         json_real(l%xi)//', "eta": '//json_real(l%eta)//', "pmax": '//json_real(l%pmax)// &
                         ', "estimate": '//json_real(l%estimate)//', "ratio": '//json_real(l%ratio)//', "monotone": '// &
                         trim(merge('true ', 'false', l%monotone))//', "seconds": '//json_real(l%seconds)// &
-                        ', "status": '//json_string(trim(l%status))//'}'//trim(merge(',', ' ', k < size(s%levels)))
+                        ', "status": '//json_string(trim(l%status))//'}'//trim(merge(',', ' ', k < size(s%outcome%levels)))
                 end associate
             end do
             write (u, '(a)') '  ],'
@@ -425,13 +413,15 @@ contains
         write (unit, '(a)') ' case '//trim(s%name)//'   '//trim(s%title)
         write (unit, '(a)') rule
         write (unit, '(a,a)') ' problem      ', trim(s%problem)//', geometry '//trim(s%geometry)
-        write (unit, '(a,4(1x,es12.5))') ' material     G1, G2, nu1, nu2 =', s%material%g1, s%material%g2, &
-            s%material%nu1, s%material%nu2
-        write (unit, '(a,es12.5,a,f8.5,a,es12.5)') ' combined     G = ', s%material%g, '   nu = ', s%material%nu, &
-            '   K = ', s%material%k
-        write (unit, '(a,i0,a,i0,a,4(1x,g0.6),a)') ' grid         ', s%grid%nx, ' x ', s%grid%ny, &
-            ' elements on [xmin,xmax]x[ymin,ymax] =', s%grid%xmin, s%grid%xmax, s%grid%ymin, s%grid%ymax, ''
-        write (unit, '(a,es12.5,a,es12.5)') '              dx = ', s%grid%dx, '   dy = ', s%grid%dy
+        write (unit, '(a,4(1x,es12.5))') ' material     G1, G2, nu1, nu2 =', s%outcome%material%g1, s%outcome%material%g2, &
+            s%outcome%material%nu1, s%outcome%material%nu2
+        write (unit, '(a,es12.5,a,f8.5,a,es12.5)') ' combined     G = ', s%outcome%material%g, '   nu = ', &
+            s%outcome%material%nu, &
+            '   K = ', s%outcome%material%k
+        write (unit, '(a,i0,a,i0,a,4(1x,g0.6),a)') ' grid         ', s%outcome%grid%nx, ' x ', s%outcome%grid%ny, &
+            ' elements on [xmin,xmax]x[ymin,ymax] =', s%outcome%grid%xmin, s%outcome%grid%xmax, s%outcome%grid%ymin, &
+            s%outcome%grid%ymax, ''
+        write (unit, '(a,es12.5,a,es12.5)') '              dx = ', s%outcome%grid%dx, '   dy = ', s%outcome%grid%dy
         if (s%force_prescribed) then
             write (unit, '(a)') ' load         prescribed total normal force fn'
         else
@@ -441,7 +431,7 @@ contains
             '   Fy = ', s%fy, '   Mz = ', s%mz
         write (unit, '(a,es16.8,a,es16.8)') ' approach     ', s%approach, '      pmax = ', s%pmax
         pct = 0
-        if (s%grid%nx*s%grid%ny > 0) pct = 100.0_dp*s%ncon/(real(s%grid%nx, dp)*s%grid%ny)
+        if (s%outcome%grid%nx*s%outcome%grid%ny > 0) pct = 100.0_dp*s%ncon/(real(s%outcome%grid%nx, dp)*s%outcome%grid%ny)
         write (unit, '(a,i0,a,f6.2,a,i0,a,i0)') ' contact      ncon = ', s%ncon, ' (', pct, ' % of the grid)   nadh = ', &
             s%nadh, '   nslip = ', s%nslip
         if (s%has_hertz) then
@@ -541,38 +531,40 @@ contains
         integer, intent(in) :: unit
         type(fc_case_summary), intent(in) :: s
         integer :: k
-        if (s%grid_auto) then
-            write (unit, '(a)') ' model        '//trim(s%model)//' (potential area sized automatically)'
+        if (s%outcome%grid_auto) then
+            write (unit, '(a)') ' model        '//trim(s%outcome%model)//' (potential area sized automatically)'
         else
-            write (unit, '(a)') ' model        '//trim(s%model)
+            write (unit, '(a)') ' model        '//trim(s%outcome%model)
         end if
-        if (allocated(s%reductions)) then
-            do k = 1, size(s%reductions)
-                write (unit, '(a)') ' reduction    '//trim(s%reductions(k))
+        if (allocated(s%outcome%reductions)) then
+            do k = 1, size(s%outcome%reductions)
+                write (unit, '(a)') ' reduction    '//trim(s%outcome%reductions(k))
             end do
         end if
-        if (s%target > 0 .and. allocated(s%levels)) then
-            write (unit, '(a,es10.3,a)') ' accuracy     target ', s%target, ' (relative error of '//trim(s%quantities)//')'
+        if (s%outcome%target > 0 .and. allocated(s%outcome%levels)) then
+            write (unit, '(a,es10.3,a)') ' accuracy     target ', s%outcome%target, ' (relative error of '// &
+                trim(s%outcome%quantities)//')'
             write (unit, '(a)') '              grid            fn               approach         pmax          '// &
                 'estimate    ratio   seconds'
-            do k = 1, size(s%levels)
-                associate (l => s%levels(k))
+            do k = 1, size(s%outcome%levels)
+                associate (l => s%outcome%levels(k))
                     write (unit, '(14x,i5,a,i5,3(1x,es16.8),1x,es10.3,1x,f7.2,1x,f9.4,a)') l%nx, ' x', l%ny, l%fn, &
                         l%approach, l%pmax, l%estimate, l%ratio, l%seconds, trim(merge('             ', ' non-monotone', &
                         l%monotone))
                 end associate
             end do
-            write (unit, '(a,es10.3,a,a,a,f9.4,a)') '              estimate ', s%estimate, '  target ', &
-                trim(merge('met    ', 'NOT MET', s%target_met)), '   all grids ', s%levels_seconds, ' s'
-            if (s%sufficient_nx > 0) write (unit, '(a,i0,a,i0,a,es10.3,a)') '              coarsest grid meeting the '// &
-                'target: ', s%sufficient_nx, ' x ', s%sufficient_ny, ' (error bound ', s%sufficient_bound, &
+            write (unit, '(a,es10.3,a,a,a,f9.4,a)') '              estimate ', s%outcome%estimate, '  target ', &
+                trim(merge('met    ', 'NOT MET', s%outcome%target_met)), '   all grids ', s%outcome%total_seconds, ' s'
+            if (s%outcome%sufficient > 0) write (unit, '(a,i0,a,i0,a,es10.3,a)') '              coarsest grid '// &
+                'meeting the target: ', s%outcome%levels(s%outcome%sufficient)%nx, ' x ', &
+                s%outcome%levels(s%outcome%sufficient)%ny, ' (error bound ', s%outcome%sufficient_bound, &
                 ', certified by the finest grid; use it for further solves of this scene)'
         end if
-        if (s%has_cattaneo) write (unit, '(a,3(a,es12.5))') ' Cattaneo     ', 'a = ', s%cattaneo%a, '   c = ', &
-            s%cattaneo%c, '   shift = ', s%cattaneo%shift
-        if (allocated(s%warnings)) then
-            do k = 1, size(s%warnings)
-                write (unit, '(a)') ' *** WARNING  '//trim(s%warnings(k))
+        if (s%outcome%has_cattaneo) write (unit, '(a,3(a,es12.5))') ' Cattaneo     ', 'a = ', s%outcome%cattaneo%a, &
+            '   c = ', s%outcome%cattaneo%c, '   shift = ', s%outcome%cattaneo%shift
+        if (allocated(s%outcome%warnings)) then
+            do k = 1, size(s%outcome%warnings)
+                write (unit, '(a)') ' *** WARNING  '//trim(s%outcome%warnings(k))
             end do
         end if
     end subroutine write_auto_report

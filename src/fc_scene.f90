@@ -11,8 +11,8 @@ module fc_scene
     use fc_geometry, only: fc_grid, fc_rough_params, make_grid, quadratic_gap, punch_rough_gap, wavy_gap, &
         read_gap_table, h_no_contact
     use fc_influence, only: fc_material, combine_material
-    use fc_contact, only: fc_normal_loading, fc_tangential_loading, fc_contact_settings, FC_PROBLEM_NORMAL, &
-        FC_PROBLEM_TANGENTIAL
+    use fc_tangcg, only: fc_tangential_loading
+    use fc_contact_types, only: fc_normal_loading, fc_contact_settings, FC_PROBLEM_NORMAL, FC_PROBLEM_TANGENTIAL
     implicit none
     private
 
@@ -23,12 +23,15 @@ module fc_scene
         integer :: problem = FC_PROBLEM_NORMAL       !! FC_PROBLEM_NORMAL or FC_PROBLEM_TANGENTIAL
         logical :: analytic = .false.                !! answer by the analytic Hertz solution, no grid
         type(fc_material) :: material                !! g1, g2, nu1, nu2 (combined when solved)
+        character(len=path_len) :: ic_file = ''      !! influence coefficients of body 1 (or combined) from a file
+        character(len=path_len) :: ic_file2 = ''     !! body 2's coefficients from a file ('': half-space g2, nu2)
         ! ---- potential contact area
         integer :: nx = 0, ny = 0                    !! elements per direction
         real(dp) :: xmin = 0, xmax = 0, ymin = 0, ymax = 0  !! outer edges [mm]
         logical :: grid_auto = .false.               !! size the area from the Hertz estimate
         real(dp) :: margin = 0.25_dp                 !! automatic area: margin around the estimate (fraction)
         integer :: n_across = 0                      !! automatic area: elements across the contact (0: default)
+        logical :: periodic = .false.                !! the area is one cell of a periodic surface ([[fc_periodic]])
         ! ---- geometry of the undeformed distance
         character(len=16) :: kind = ''               !! quadratic, cylinder, strip2d, punch_rough, wavy, table
         real(dp) :: rx = 0, ry = 0                   !! radii of the quadratic profile [mm] (ry = 0: flat in y)
@@ -48,6 +51,7 @@ module fc_scene
         logical :: target_pmax = .false.             !! the target also covers pmax
         integer :: max_levels = 5                    !! most grids visited by the accuracy target
         logical :: reduce = .true.                   !! model reductions allowed
+        integer :: threads = 0                       !! threads of the solve (0: OMP_NUM_THREADS, else 1)
     end type fc_case
 
     public :: case_setup, is_line_contact, is_tangential

@@ -1,4 +1,4 @@
-!> Tangential (frictional) contact problem: TangCG(K) and ConvexGS (thesis ch. 4, SPEC §2–§3).
+!> Tangential (frictional) contact problem: TangCG(K) and ConvexGS (thesis ch. 4; conventions in doc/conventions.md).
 !!
 !! Given the pressure pn on the contact area C and the Coulomb bound g = μ·pn, find the
 !! tangential tractions p = (px, py) on C with slip s = w + (u − u') + offset,
@@ -26,6 +26,7 @@ module fc_tangcg
     use fc_kinds
     use fc_geometry, only: fc_grid
     use fc_influence
+    use fc_tangcg_operator, only: fc_tangential_operator, build_tangential_operator, coupling_displacements
     implicit none
     private
 
@@ -39,23 +40,6 @@ module fc_tangcg
         integer :: inner_k = 3                   !! TangCG: NLCG iterations between subdivision checks
         logical :: precondition = .true.         !! TangCG: diagonal preconditioner (eq. 4.43)
     end type fc_tangential_settings
-
-    !> Tangential influence blocks on one grid (and the coupling blocks when K ≠ 0).
-    type, public :: fc_tangential_operator
-        type(fc_grid) :: grid
-        type(fc_material) :: material
-        type(fc_bttb) :: a_xx, a_xy, a_yy   !! tangential blocks (A^yx = A^xy)
-        type(fc_bttb) :: a_xz, a_yz         !! u_t from pn (built only when K ≠ 0)
-        type(fc_bttb) :: a_zx, a_zy         !! u_z from p_t (built only when K ≠ 0)
-        complex(dp), allocatable :: spec_x(:, :), spec_y(:, :), work(:, :)
-        integer :: nproducts = 0            !! combined 2×2 block products
-        real(dp) :: setup_seconds = 0
-    contains
-        procedure :: apply => tangential_apply
-        procedure :: destroy => tangential_destroy
-        procedure :: coupled => tangential_coupled
-        procedure :: matches => tangential_matches
-    end type fc_tangential_operator
 
     !> Result of a tangential solve.
     type, public :: fc_tangential_result
@@ -78,7 +62,7 @@ module fc_tangcg
     end type fc_tangential_result
 
     !> Tangential loading: friction and either the rigid shift (ξ, η) or the forces (Fx, Fy);
-    !! the spin φ is always prescribed (SPEC §5 `&tangential`).
+    !! the spin φ is always prescribed (doc/namelist.md `&tangential`).
     type, public :: fc_tangential_loading
         real(dp) :: mu = 0                    !! coefficient of friction
         real(dp) :: xi = 0, eta = 0           !! prescribed shifts [mm] (force_prescribed = .false.)
@@ -87,93 +71,12 @@ module fc_tangcg
         logical :: force_prescribed = .false.
     end type fc_tangential_loading
 
-    public :: build_tangential_operator, solve_tangential, coupling_displacements
+    ! the operator (fc_tangcg_operator) is part of this module's interface
+    public :: fc_tangential_operator, build_tangential_operator, coupling_displacements
+    public :: solve_tangential
     public :: solve_tangential_loading
 
 contains
-
-    !> Build the tangential blocks (and coupling blocks if K ≠ 0) for `grid`.
-    subroutine build_tangential_operator(top, material, grid)
-        type(fc_tangential_operator), intent(inout) :: top
-        type(fc_material), intent(in) :: material
-        type(fc_grid), intent(in) :: grid
-        integer :: t0, t1, rate
-        call system_clock(t0, rate)
-        call top%destroy()
-        top%grid = grid
-        top%material = material
-        call build_bttb(top%a_xx, IC_XX, material, grid)
-        call build_bttb(top%a_xy, IC_XY, material, grid)
-        call build_bttb(top%a_yy, IC_YY, material, grid)
-        if (material%k /= 0) then
-            call build_bttb(top%a_xz, IC_XZ, material, grid)
-            call build_bttb(top%a_yz, IC_YZ, material, grid)
-            call build_bttb(top%a_zx, IC_ZX, material, grid)
-            call build_bttb(top%a_zy, IC_ZY, material, grid)
-        end if
-        allocate (top%spec_x, top%spec_y, top%work, mold=top%a_xx%symbol)
-        top%nproducts = 0
-        call system_clock(t1)
-        top%setup_seconds = real(t1 - t0, dp)/rate
-    end subroutine build_tangential_operator
-
-    subroutine tangential_destroy(self)
-        class(fc_tangential_operator), intent(inout) :: self
-        call self%a_xx%destroy(); call self%a_xy%destroy(); call self%a_yy%destroy()
-        call self%a_xz%destroy(); call self%a_yz%destroy()
-        call self%a_zx%destroy(); call self%a_zy%destroy()
-        if (allocated(self%spec_x)) deallocate (self%spec_x, self%spec_y, self%work)
-    end subroutine tangential_destroy
-
-    !> Whether the built blocks serve `grid` and `material`: same element count and size
-    !! (relative 1e−12) and the same G, ν and K (K decides the coupling blocks).
-    pure logical function tangential_matches(self, grid, material) result(ok)
-        class(fc_tangential_operator), intent(in) :: self
-        type(fc_grid), intent(in) :: grid
-        type(fc_material), intent(in) :: material
-        ok = self%a_xx%built() .and. self%grid%nx == grid%nx .and. self%grid%ny == grid%ny .and. &
-            abs(self%grid%dx - grid%dx) <= 1e-12_dp*grid%dx .and. abs(self%grid%dy - grid%dy) <= 1e-12_dp*grid%dy &
-            .and. self%material%g == material%g .and. self%material%nu == material%nu .and. self%material%k == material%k
-    end function tangential_matches
-
-    !> True when the normal and tangential problems are coupled (K ≠ 0).
-    pure logical function tangential_coupled(self)
-        class(fc_tangential_operator), intent(in) :: self
-        tangential_coupled = self%a_xz%built()
-    end function tangential_coupled
-
-    !> (ux, uy) = [A^xx A^xy; A^xy A^yy]·(px, py): two forward and two inverse FFTs.
-    subroutine tangential_apply(self, px, py, ux, uy)
-        class(fc_tangential_operator), intent(inout) :: self
-        real(dp), intent(in) :: px(:, :), py(:, :)
-        real(dp), intent(out) :: ux(:, :), uy(:, :)
-        call self%a_xx%forward(px, self%spec_x)
-        call self%a_xx%forward(py, self%spec_y)
-        self%work = self%spec_x*self%a_xx%symbol + self%spec_y*self%a_xy%symbol
-        call self%a_xx%backward(self%work, ux)
-        self%work = self%spec_x*self%a_xy%symbol + self%spec_y*self%a_yy%symbol
-        call self%a_xx%backward(self%work, uy)
-        self%nproducts = self%nproducts + 1
-    end subroutine tangential_apply
-
-    !> Coupling displacements for K ≠ 0: tangential (A^xz pn, A^yz pn) and normal
-    !! A^zx px + A^zy py.  Zero when the bodies are quasi-identical.
-    subroutine coupling_displacements(top, pn, px, py, ux_from_pn, uy_from_pn, uz_from_pt)
-        type(fc_tangential_operator), intent(inout) :: top
-        real(dp), intent(in) :: pn(:, :), px(:, :), py(:, :)
-        real(dp), intent(out) :: ux_from_pn(:, :), uy_from_pn(:, :), uz_from_pt(:, :)
-        real(dp), allocatable :: tmp(:, :)
-        if (.not. top%coupled()) then
-            ux_from_pn = 0; uy_from_pn = 0; uz_from_pt = 0
-            return
-        end if
-        allocate (tmp, mold=pn)
-        call top%a_xz%apply(pn, ux_from_pn)
-        call top%a_yz%apply(pn, uy_from_pn)
-        call top%a_zx%apply(px, uz_from_pt)
-        call top%a_zy%apply(py, tmp)
-        uz_from_pt = uz_from_pt + tmp
-    end subroutine coupling_displacements
 
     !> Solve the tangential problem for pressure `pn` [N/mm²] and friction `mu`, with the
     !! rigid shift (ξ, η, φ) prescribed.  Optional: previous displacements (ux_prev, uy_prev)
@@ -196,21 +99,21 @@ contains
         stat = 0; errmsg = ''
         nx = top%grid%nx; ny = top%grid%ny
         if (.not. top%a_xx%built()) then
-            stat = 1; errmsg = 'solve_tangential: operator not built'; return
+            stat = FC_ERR_NOT_READY; errmsg = 'solve_tangential: operator not built'; return
         end if
         if (size(pn, 1) /= nx .or. size(pn, 2) /= ny) then
-            stat = 1; errmsg = 'solve_tangential: pn does not match the grid'; return
+            stat = FC_ERR_SHAPE; errmsg = 'solve_tangential: pn does not match the grid'; return
         end if
         if (.not. (mu >= 0)) then
-            stat = 1; write (errmsg, '(a,g0.6,a)') 'tangential: mu = ', mu, ' must be >= 0'; return
+            stat = FC_ERR_VALUE; write (errmsg, '(a,g0.6,a)') 'tangential: mu = ', mu, ' must be >= 0'; return
         end if
         call check_iteration_settings(settings%tol, settings%maxit, stat, errmsg)
         if (stat /= 0) return
         if (settings%inner_k < 1) then
-            stat = 1; write (errmsg, '(a,i0,a)') 'solver: inner_k = ', settings%inner_k, ' must be >= 1'; return
+            stat = FC_ERR_VALUE; write (errmsg, '(a,i0,a)') 'solver: inner_k = ', settings%inner_k, ' must be >= 1'; return
         end if
         if (settings%solver /= 'tangcg' .and. settings%solver /= 'convexgs') then
-            stat = 1; errmsg = "solver: tangential = '"//trim(settings%solver)//"' is not one of 'tangcg', 'convexgs'"
+            stat = FC_ERR_VALUE; errmsg = "solver: tangential = '"//trim(settings%solver)//"' is not one of 'tangcg', 'convexgs'"
             return
         end if
         allocate (wx(nx, ny), wy(nx, ny), g(nx, ny))
@@ -291,7 +194,7 @@ contains
         fn = sum(max(pn, 0.0_dp))*top%grid%area()
         flimit = load%mu*fn
         if (.not. (hypot(load%fx, load%fy) < flimit)) then
-            stat = 1
+            stat = FC_ERR_FRICTION_BOUND
             write (errmsg, '(a,es12.5,a,es12.5,a)') 'tangential: |(fx, fy)| = ', hypot(load%fx, load%fy), &
                 ' must be < mu*fn = ', flimit, ' (full slip has no unique shift)'
             return

@@ -13,6 +13,9 @@ program tester
     use test_auto, only: collect_auto
     use test_stability, only: collect_stability
     use test_legacy, only: collect_legacy
+    use test_operators, only: collect_operators
+    use test_fem_ic, only: collect_fem_ic
+    use test_parallel, only: collect_parallel
     use test_api_fuzz, only: collect_api_fuzz
     use test_reliability, only: collect_reliability
     use test_readme, only: collect_readme
@@ -65,6 +68,15 @@ program tester
     end if
     if (want('auto')) then
         call collect_auto(tests); call run_suite('auto', tests, only, npass, nfail)
+    end if
+    if (want('operators')) then
+        call collect_operators(tests); call run_suite('operators', tests, only, npass, nfail)
+    end if
+    if (want('fem_ic')) then
+        call collect_fem_ic(tests); call run_suite('fem_ic', tests, only, npass, nfail)
+    end if
+    if (want('parallel')) then
+        call collect_parallel(tests); call run_suite('parallel', tests, only, npass, nfail)
     end if
     write (*, '(i0,a,i0,a)') npass, ' passed, ', nfail, ' failed'
     if (nfail > 0 .or. npass == 0) stop 1   ! non-zero exit status (no backtrace, unlike error stop)

@@ -1,4 +1,4 @@
-!> Suite `auto` (issue 7): accuracy-targeted refinement against analytic Hertz, Cattaneo and a
+!> Suite `auto`: accuracy-targeted refinement against analytic Hertz, Cattaneo and a
 !! finer rough-punch reference; the automatic potential contact area; model reductions against
 !! the full model; and the user guide's key tables against the keys the reader accepts.
 !! Cases are read from namelist text exactly as the driver reads them ([[fc_input]]), built into
@@ -11,6 +11,7 @@ module test_auto
     use fc_input, only: fc_case_input, apply_case, namelist_keys
     use fc_input_validate, only: validate_case
     use fc_input_scene, only: build_case
+    use fc_scene, only: fc_case
     use fc_contact, only: fc_contact_operators
     use fc_hertz, only: fc_hertz_solution, hertz_from_approach, hertz_from_force
     use fc_auto, only: fc_auto_outcome, solve_case_auto, richardson_estimate, plane_strain_hertz
@@ -78,6 +79,7 @@ contains
         type(error_type), allocatable, intent(inout) :: error
         type(fc_case_chunk), allocatable :: cases(:)
         type(fc_case_input) :: state
+        type(fc_case) :: kase
         type(fc_contact_operators) :: ops
         character(len=64) :: name
         character(len=msg_len) :: msg
@@ -97,7 +99,8 @@ contains
         call validate_case(state, stat, msg)
         call check(error, stat == 0, 'validate: '//trim(msg))
         if (allocated(error)) return
-        call solve_case_auto(build_case(state), ops, out, stat, msg)
+        kase = build_case(state)
+        call solve_case_auto(kase, ops, out, stat, msg)
         call check(error, stat == 0, 'solve: '//trim(msg))
         call ops%destroy()
     end subroutine solve_text
@@ -190,7 +193,7 @@ contains
         call check(error, out%grid_auto .and. n >= 3 .and. out%target_met .and. out%reliable, &
             'auto grid, >= 3 grids, target met, reliable')
         if (allocated(error)) return
-        err = abs(out%res%fn - hz%fn)/hz%fn
+        err = abs(out%result%normal%fn - hz%fn)/hz%fn
         err_coarse = abs(out%levels(n - 1)%fn - hz%fn)/hz%fn
         call check(error, err <= out%estimate, 'true error '//num(err)//' within the estimate '//num(out%estimate))
         call check(error, err <= 1.0e-3_dp, 'true error '//num(err)//' meets the target')
@@ -214,7 +217,7 @@ contains
         call check(error, out%levels(1)%nx == 8 .and. out%levels(n)%nx == 8*2**(n - 1), 'probe 8, then 16, 32, ... by two')
         call check(error, all(out%levels%seconds >= 0) .and. out%total_seconds > 0, 'cost recorded')
         if (allocated(error)) return
-        err = abs(out%res%fn - hz%fn)/hz%fn
+        err = abs(out%result%normal%fn - hz%fn)/hz%fn
         err_coarse = abs(out%levels(n - 1)%fn - hz%fn)/hz%fn
         call check(error, err <= out%estimate .and. out%estimate <= 5.0e-4_dp, 'true error '//num(err)// &
             ' <= estimate '//num(out%estimate)//' <= target')
@@ -231,8 +234,8 @@ contains
             nl//'&solver target = 1.0e-3, target_pmax = .true. /'//nl, out, error)
         if (allocated(error)) return
         hz = test_i_hertz()
-        efn = abs(out%res%fn - hz%fn)/hz%fn
-        ep = abs(out%res%pmax - hz%p0)/hz%p0
+        efn = abs(out%result%normal%fn - hz%fn)/hz%fn
+        ep = abs(out%result%normal%pmax - hz%p0)/hz%p0
         call check(error, out%target_met .and. index(out%quantities, 'pmax') > 0, 'target met on fn and pmax')
         call check(error, max(efn, ep) <= out%estimate, 'true errors fn '//num(efn)//', pmax '//num(ep)// &
             ' within the estimate '//num(out%estimate))
@@ -262,15 +265,15 @@ contains
             '&solver tol = 1.0e-8 /'//nl, ref, error)
         if (allocated(error)) return
         hz = cattaneo_hertz()
-        efn = abs(out%res%fn - hz%fn)/hz%fn
+        efn = abs(out%result%normal%fn - hz%fn)/hz%fn
         efn_coarse = abs(out%levels(n - 1)%fn - hz%fn)/hz%fn
-        efx = abs(out%tres%fx - ref%tres%fx)/abs(ref%tres%fx)
+        efx = abs(out%result%tangential%fx - ref%result%tangential%fx)/abs(ref%result%tangential%fx)
         call check(error, max(efn, efx) <= out%estimate, 'true errors fn '//num(efn)//', Fx '//num(efx)// &
             ' within the estimate '//num(out%estimate))
         call check(error, out%estimate <= 2.0e-4_dp, 'estimate meets the target')
         call check(error, efn_coarse > 2.0e-4_dp, 'one level coarser misses the target: fn error '//num(efn_coarse))
         q = 0.875_dp*0.4_dp*hz%fn
-        call check(error, abs(out%tres%fx - q)/q < 1.5e-3_dp, 'Fx within 1.5e-3 of Cattaneo-Mindlin 0.875 mu Fn')
+        call check(error, abs(out%result%tangential%fx - q)/q < 1.5e-3_dp, 'Fx within 1.5e-3 of Cattaneo-Mindlin 0.875 mu Fn')
     end subroutine test_cattaneo_target
 
     !> Cattaneo from 16², target 3e-2: the probe grid 8² lets the given grid itself be the
@@ -292,8 +295,8 @@ contains
         call check(error, out%levels(1)%nx == 8 .and. out%grid%nx == 16, 'the answer is on the given 16² grid')
         call check(error, has_line(out%warnings, 'two grids'), 'two-grid estimate flagged')
         hz = cattaneo_hertz()
-        efn = abs(out%res%fn - hz%fn)/hz%fn
-        efx = abs(out%tres%fx - ref%tres%fx)/abs(ref%tres%fx)
+        efn = abs(out%result%normal%fn - hz%fn)/hz%fn
+        efx = abs(out%result%tangential%fx - ref%result%tangential%fx)/abs(ref%result%tangential%fx)
         call check(error, max(efn, efx) <= out%estimate .and. out%estimate <= 3.0e-2_dp, 'true errors fn '//num(efn)// &
             ', Fx '//num(efx)//' <= estimate '//num(out%estimate)//' <= target')
     end subroutine test_loose_target
@@ -331,8 +334,10 @@ contains
         call check(error, out%target_met .and. j >= 2 .and. j < size(out%levels), 'Cattaneo: a grid coarser than '// &
             'the finest is certified')
         if (allocated(error)) return
-        e = max(abs(out%levels(j)%fn - hz%fn)/hz%fn, abs(out%levels(j)%fx - ref%tres%fx)/abs(ref%tres%fx))
-        e_below = max(abs(out%levels(j - 1)%fn - hz%fn)/hz%fn, abs(out%levels(j - 1)%fx - ref%tres%fx)/abs(ref%tres%fx))
+        e = max(abs(out%levels(j)%fn - hz%fn)/hz%fn, &
+            abs(out%levels(j)%fx - ref%result%tangential%fx)/abs(ref%result%tangential%fx))
+        e_below = max(abs(out%levels(j - 1)%fn - hz%fn)/hz%fn, &
+            abs(out%levels(j - 1)%fx - ref%result%tangential%fx)/abs(ref%result%tangential%fx))
         call check(error, e <= out%sufficient_bound .and. out%sufficient_bound <= 1.0e-3_dp, 'Cattaneo: certified '// &
             fmt_grid(out%levels(j)%nx)//' true '//num(e)//' <= bound '//num(out%sufficient_bound)//' <= 1e-3')
         call check(error, e_below > 1.0e-3_dp, 'Cattaneo: one level below the certified grid misses: '//num(e_below))
@@ -353,7 +358,8 @@ contains
         call solve_text(cattaneo_scene//'&grid nx = 256, ny = 256 /'//nl//'&solver tol = 1.0e-8 /'//nl, ref, error)
         if (allocated(error)) return
         hz = cattaneo_hertz()
-        e = max(abs(out%res%fn - hz%fn)/hz%fn, abs(out%tres%fx - ref%tres%fx)/abs(ref%tres%fx))
+        e = max(abs(out%result%normal%fn - hz%fn)/hz%fn, &
+            abs(out%result%tangential%fx - ref%result%tangential%fx)/abs(ref%result%tangential%fx))
         call check(error, out%levels(1)%nx == 32 .and. out%target_met, 'Cattaneo from 64² (probe 32²): target met')
         call check(error, e <= out%estimate .and. out%estimate <= 1.0e-3_dp, 'Cattaneo from 64²: true '//num(e)// &
             ' <= estimate '//num(out%estimate)//' <= 1e-3')
@@ -363,7 +369,7 @@ contains
             '&solver target = 5.0e-3 /'//nl, out, error)
         if (allocated(error)) return
         hz = hertz_from_force(1/40.0_dp, 1/40.0_dp, 82000.0_dp/0.72_dp, 500.0_dp)
-        e = abs(out%res%approach - hz%approach)/hz%approach
+        e = abs(out%result%normal%approach - hz%approach)/hz%approach
         call check(error, out%levels(1)%nx == 8 .and. out%target_met, 'sphere from 16² (probe 8²): target met')
         call check(error, e <= out%estimate .and. out%estimate <= 5.0e-3_dp, 'sphere from 16²: true '//num(e)// &
             ' <= estimate '//num(out%estimate)//' <= 5e-3')
@@ -394,7 +400,7 @@ contains
             call solve_text(hertz_scene//'&grid nx = 16, ny = 16, xmin = -10.0, xmax = 10.0, ymin = -6.0, ymax = 6.0 /'// &
                 nl//'&solver target = '//trim(adjustl(tb))//' /'//nl, out, error)
             if (allocated(error)) return
-            e = abs(out%res%fn - hz%fn)/hz%fn
+            e = abs(out%result%normal%fn - hz%fn)/hz%fn
             call check(error, out%target_met .and. e <= out%estimate .and. out%estimate <= targets(t), 'Hertz T = '// &
                 trim(tb)//': true '//num(e)//' <= estimate '//num(out%estimate)//' <= T, met')
             if (allocated(error)) return
@@ -407,14 +413,15 @@ contains
             if (t == size(targets)) exit
             call solve_text(cattaneo_scene//'&solver target = '//trim(adjustl(tb))//' /'//nl, out, error)
             if (allocated(error)) return
-            e = max(abs(out%res%fn - hc%fn)/hc%fn, abs(out%tres%fx - ref%tres%fx)/abs(ref%tres%fx))
+            e = max(abs(out%result%normal%fn - hc%fn)/hc%fn, &
+                abs(out%result%tangential%fx - ref%result%tangential%fx)/abs(ref%result%tangential%fx))
             call check(error, out%target_met .and. e <= out%estimate .and. out%estimate <= targets(t), 'Cattaneo T = '// &
                 trim(tb)//': true '//num(e)//' <= estimate '//num(out%estimate)//' <= T, met')
             if (allocated(error)) return
             call check(error, out%sufficient >= 1, 'Cattaneo T = '//trim(tb)//': a certified grid')
             if (allocated(error)) return
             associate (l => out%levels(out%sufficient))
-                e = max(abs(l%fn - hc%fn)/hc%fn, abs(l%fx - ref%tres%fx)/abs(ref%tres%fx))
+                e = max(abs(l%fn - hc%fn)/hc%fn, abs(l%fx - ref%result%tangential%fx)/abs(ref%result%tangential%fx))
             end associate
             call check(error, e <= out%sufficient_bound .and. out%sufficient_bound <= targets(t), 'Cattaneo T = '// &
                 trim(tb)//': certified grid true '//num(e)//' <= bound '//num(out%sufficient_bound)//' <= T')
@@ -444,7 +451,7 @@ contains
                 call solve_text('&material g1 = 82000.0, g2 = 82000.0, nu1 = 0.28, nu2 = 0.28 /'//nl//trim(geo)//nl// &
                     '&solver target = '//tnames(t)//' /'//nl, out, error)
                 if (allocated(error)) return
-                e = abs(out%res%approach - hz%approach)/hz%approach
+                e = abs(out%result%normal%approach - hz%approach)/hz%approach
                 call check(error, out%grid_auto .and. out%target_met .and. e <= out%estimate .and. &
                     out%estimate <= targets(t), trim(scenes(c))//' T = '//tnames(t)//': true '//num(e)// &
                     ' <= estimate '//num(out%estimate)//' <= T')
@@ -467,7 +474,7 @@ contains
         call solve_text(punch_scene//'&grid nx = 256, ny = 256 /'//nl//'&solver tol = 1.0e-8 /'//nl, ref, error)
         if (allocated(error)) return
         n = size(out%levels)
-        err = abs(out%res%fn - ref%res%fn)/ref%res%fn
+        err = abs(out%result%normal%fn - ref%result%normal%fn)/ref%result%normal%fn
         call check(error, out%target_met .and. .not. out%reliable, 'target met by the bound, flagged non-monotone')
         call check(error, has_line(out%warnings, 'non-monotone'), 'non-monotone convergence warned about')
         call check(error, out%levels(n)%nx < 256, 'stopped before the reference grid')
@@ -478,11 +485,11 @@ contains
         ! the coarsest grid certified by the finest one: 32² (bound 4.3e-3), and 16² misses
         call check(error, out%sufficient >= 2 .and. out%sufficient < n, 'a coarser grid than the finest is certified')
         if (allocated(error)) return
-        err = abs(out%levels(out%sufficient)%fn - ref%res%fn)/ref%res%fn
+        err = abs(out%levels(out%sufficient)%fn - ref%result%normal%fn)/ref%result%normal%fn
         call check(error, err <= out%sufficient_bound .and. out%sufficient_bound <= 1.0e-2_dp, 'certified '// &
             fmt_grid(out%levels(out%sufficient)%nx)//': true error '//num(err)//' <= bound '// &
             num(out%sufficient_bound)//' <= T')
-        err = abs(out%levels(out%sufficient - 1)%fn - ref%res%fn)/ref%res%fn
+        err = abs(out%levels(out%sufficient - 1)%fn - ref%result%normal%fn)/ref%result%normal%fn
         call check(error, err > 1.0e-2_dp, 'one level below the certified grid misses the target: '//num(err))
     end subroutine test_punch_target
 
@@ -511,10 +518,10 @@ contains
         call check(error, out%grid%ymax, 1.25_dp*hz%b, 'ymax = 1.25 b', rel=1e-9_dp)
         call check(error, -out%grid%xmin >= 1.25_dp*hz%a*(1 - 1e-9_dp), 'xmin covers a with the margin')
         call check(error, .not. out%touches_boundary, 'contact not clipped')
-        call check(error, .not. any(out%res%pn(1, :) > 0) .and. .not. any(out%res%pn(:, out%grid%ny) > 0), &
+        call check(error, .not. any(out%result%normal%pn(1, :) > 0) .and. .not. any(out%result%normal%pn(:, out%grid%ny) > 0), &
             'no contact in the boundary elements')
         call check(error, out%grid%nx == 40, '32 elements across the contact x 1.25 = 40')
-        call check(error, abs(out%res%fn - hz%fn)/hz%fn < 2e-3_dp, 'fn within 2e-3 of Hertz')
+        call check(error, abs(out%result%normal%fn - hz%fn)/hz%fn < 2e-3_dp, 'fn within 2e-3 of Hertz')
     end subroutine test_auto_area
 
     !> margin = 0: the area is exactly the Hertz ellipse's box, contact reaches its boundary,
@@ -581,8 +588,8 @@ contains
         call solve_text(hertz_scene//'&solver target = 1.0e-3 /'//nl, full, error)
         if (allocated(error)) return
         call check(error, ana%analytic .and. ana%model == 'hertz_analytic' .and. size(ana%levels) == 0, 'no grid')
-        call check(error, full%res%fn, ana%hertz%fn, 'fn: analytic vs full', rel=2e-3_dp)
-        call check(error, full%res%pmax, ana%hertz%p0, 'pmax: analytic vs full', rel=2e-3_dp)
+        call check(error, full%result%normal%fn, ana%hertz%fn, 'fn: analytic vs full', rel=2e-3_dp)
+        call check(error, full%result%normal%pmax, ana%hertz%p0, 'pmax: analytic vs full', rel=2e-3_dp)
         dir = run_in_tmp("&case name = 'ana', problem = 'hertz' /"//nl//hertz_scene, code)
         json = read_all(dir//'/ana.json')
         call check(error, code == 0 .and. index(json, '"model": "hertz_analytic"') > 0, 'JSON model')
@@ -592,7 +599,7 @@ contains
     end subroutine test_reduction_hertz
 
     !> problem = 'hertz' with a tangential force on a sphere: Cattaneo–Mindlin stick radius
-    !! 0.5 mm and shift 0.008172 mm (SPEC §4); the numerical shift for the same force agrees
+    !! 0.5 mm and shift 0.008172 mm (doc/conventions.md); the numerical shift for the same force agrees
     !! within 2.5 % at 64² (the discrete problem converges 0.2 % away, Mindlin's approximation).
     subroutine test_reduction_cattaneo(error)
         type(error_type), allocatable, intent(out) :: error
@@ -609,7 +616,7 @@ contains
         call solve_text("&case problem = 'normal+tangential' /"//nl//scene// &
             '&grid nx = 64, ny = 64, xmin = -1.2857, xmax = 1.2857, ymin = -1.2857, ymax = 1.2857 /'//nl, full, error)
         if (allocated(error)) return
-        call check(error, -full%tres%xi, ana%cattaneo%shift, 'numerical shift vs Cattaneo-Mindlin', rel=2.5e-2_dp)
+        call check(error, -full%result%tangential%xi, ana%cattaneo%shift, 'numerical shift vs Cattaneo-Mindlin', rel=2.5e-2_dp)
     end subroutine test_reduction_cattaneo
 
     !> A cylinder (line contact) becomes the 2D strip: n×1 grid, pmax and half-width within 1 %
@@ -624,8 +631,8 @@ contains
         call plane_strain_hertz(100.0_dp, 1000.0_dp, 82000.0_dp/0.72_dp, b, p0)
         call check(error, out%model == 'strip2d' .and. out%grid%ny == 1, 'strip model, n x 1')
         call check(error, has_line(out%reductions, 'line contact'), 'reduction reported')
-        call check(error, out%res%pmax, p0, 'pmax vs plane-strain Hertz', rel=1e-2_dp)
-        width = count(out%res%pn(:, 1) > 0)*out%grid%dx
+        call check(error, out%result%normal%pmax, p0, 'pmax vs plane-strain Hertz', rel=1e-2_dp)
+        width = count(out%result%normal%pn(:, 1) > 0)*out%grid%dx
         call check(error, width, 2*b, 'contact width vs 2b', rel=0.05_dp)
         call check(error, .not. out%touches_boundary, 'strip not clipped in x')
     end subroutine test_reduction_strip
@@ -644,8 +651,9 @@ contains
         if (allocated(error)) return
         call check(error, .not. red%tangential .and. has_line(red%reductions, 'no tangential'), 'no tangential solve')
         call check(error, full%tangential, 'full model solves the tangential problem')
-        call check(error, abs(full%tres%fx) + abs(full%tres%fy) <= 1e-8_dp*0.3_dp*full%res%fn, 'full: zero forces')
-        call check(error, red%res%fn, full%res%fn, 'same fn', rel=1e-6_dp)
+        call check(error, abs(full%result%tangential%fx) + abs(full%result%tangential%fy) <= &
+            1e-8_dp*0.3_dp*full%result%normal%fn, 'full: zero forces')
+        call check(error, red%result%normal%fn, full%result%normal%fn, 'same fn', rel=1e-6_dp)
         call solve_text(replace_mu(zero), red, error)
         if (allocated(error)) return
         call check(error, .not. red%tangential .and. has_line(red%reductions, 'mu = 0'), 'mu = 0: frictionless')
@@ -670,8 +678,8 @@ contains
             full, error)
         if (allocated(error)) return
         call check(error, has_line(red%reductions, 'K = 0'), 'K = 0 reduction reported')
-        call check(error, red%tres%fx, full%tres%fx, 'Fx decoupled = coupled pipeline', rel=1e-6_dp)
-        call check(error, red%res%fn, full%res%fn, 'fn decoupled = coupled pipeline', rel=1e-8_dp)
+        call check(error, red%result%tangential%fx, full%result%tangential%fx, 'Fx decoupled = coupled pipeline', rel=1e-6_dp)
+        call check(error, red%result%normal%fn, full%result%normal%fn, 'fn decoupled = coupled pipeline', rel=1e-8_dp)
     end subroutine test_reduction_k0
 
     !> Every key in the user guide's key tables (doc/user_guide.md, section "Namelist

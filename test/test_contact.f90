@@ -17,7 +17,8 @@ contains
             new_unittest('facade_equals_operator_api_and_reuses', test_facade), &
             new_unittest('normal_stage_failed_no_tangential_stage', test_not_run), &
             new_unittest('transient_shift_zero_increment_keeps_state', test_transient), &
-            new_unittest('fmg_with_coupling_rejected', test_fmg_coupled) ]
+            new_unittest('fmg_with_coupling_rejected', test_fmg_coupled), &
+            new_unittest('facade_case_with_accuracy_target', test_facade_case) ]
     end subroutine collect_contact
 
     subroutine hertz_scene(mat, grid, n)
@@ -189,5 +190,31 @@ contains
         call check(error, mat%k /= 0 .and. stat /= 0 .and. index(msg, 'K /= 0') > 0, 'rejected: '//trim(msg))
         call check(error, ops%builds_normal == 0 .and. ops%builds_tangential == 0, 'nothing built')
     end subroutine test_fmg_coupled
+
+    !> The automatic layer from the facade, without any namelist: Hertz Test I with an
+    !! automatic area and a 1e−2 target on fn meets the target, and fn agrees with the
+    !! analytic Hertz force to the target (the discrete error is O(h²), the estimate
+    !! conservative: 1e−2 leaves a wide margin).
+    subroutine test_facade_case(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_case) :: c
+        type(fc_contact_operators) :: ops
+        type(fc_auto_outcome) :: out
+        type(fc_hertz_solution) :: hz
+        integer :: stat
+        character(len=msg_len) :: msg
+        c%material%g1 = 82000; c%material%g2 = 82000; c%material%nu1 = 0.28_dp; c%material%nu2 = 0.28_dp
+        c%kind = 'quadratic'; c%rx = 300; c%ry = 163
+        c%grid_auto = .true.
+        c%normal%approach = 0.1091_dp
+        c%target = 1e-2_dp
+        call solve_case_auto(c, ops, out, stat, msg)
+        call check(error, stat == 0, 'solve: '//trim(msg))
+        if (allocated(error)) return
+        call check(error, out%target_met .and. out%grid_auto .and. size(out%levels) >= 2, 'target met on an automatic area')
+        hz = hertz_from_approach(0.5_dp/300, 0.5_dp/163, out%material%g/(1 - out%material%nu), 0.1091_dp)
+        call check(error, out%result%normal%fn, hz%fn, 'fn vs analytic Hertz', rel=1e-2_dp)
+        call ops%destroy()
+    end subroutine test_facade_case
 
 end module test_contact

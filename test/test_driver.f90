@@ -1,4 +1,4 @@
-!> Tests of the batch driver (SPEC §5): good files with inheritance, and every kind of bad
+!> Tests of the batch driver (doc/namelist.md): good files with inheritance, and every kind of bad
 !! input giving a non-zero exit code, a message naming group and key, and no outputs.
 !! The driver runs in-process on small grids; files go to a unique directory under /tmp.
 module test_driver
@@ -63,6 +63,8 @@ contains
             new_unittest('fmg_omega_not_positive', test_fmg_bad_omega), &
             new_unittest('fmg_bad_smoother', test_fmg_bad_smoother), &
             new_unittest('fmg_coarsest_too_large', test_fmg_coarsest), &
+            new_unittest('punch_below_one_element_names_geometry', test_punch_too_small), &
+            new_unittest('line_contact_automatic_area_refused', test_line_auto_area), &
             new_unittest('fmg_dissimilar_rejected', test_fmg_dissimilar), &
             new_unittest('fmg_tangential_k0', test_fmg_tangential), &
             new_unittest('strip_mp1_three_solvers', test_strip_mp1), &
@@ -378,7 +380,7 @@ contains
 
     ! ---------------------------------------------------------------- tangential ----
 
-    !> Cattaneo (SPEC §4) on 30×25, Table 4.1 case 3 shifts, named `name`.
+    !> Cattaneo (doc/conventions.md) on 30×25, Table 4.1 case 3 shifts, named `name`.
     function cattaneo_case(name) result(text)
         character(len=*), intent(in) :: name
         character(len=:), allocatable :: text
@@ -646,7 +648,7 @@ contains
         close (u)
     end subroutine test_bad_command_line
 
-    ! ---------------------------------------------------------------- multigrid (issue 4) ----
+    ! ---------------------------------------------------------------- multigrid ----
 
     !> Hertz Test I on 32² (the base case's area at 32²) with tolerance 1e-8.
     function hertz32(name) result(text)
@@ -735,6 +737,25 @@ contains
             "&solver normal = 'fmg' /"//nl, [character(len=16) :: '&grid', 'nx = 250', 'ny = 250', &
             '&solver normal', 'fmg'])
     end subroutine test_fmg_coarsest
+
+    !> A punch narrower than an element touches nowhere: the library's FC_ERR_GEOMETRY, which
+    !! the driver reports under &geometry with the kind (context chosen by the code).
+    subroutine test_punch_too_small(error)
+        type(error_type), allocatable, intent(out) :: error
+        call expect_bad(error, replace(base_case('bad'), "kind = 'quadratic', rx = 300.0, ry = 163.0", &
+            "kind = 'punch_rough', diameter = 0.5, sigma = 0.0"), &
+            [character(len=16) :: '&geometry', "'punch_rough'", 'no element'])
+    end subroutine test_punch_too_small
+
+    !> ry = 0 (a line contact, reduced to a strip) with an automatic area: the length is
+    !! unknown, refused by the &grid validator before any solve.
+    subroutine test_line_auto_area(error)
+        type(error_type), allocatable, intent(out) :: error
+        call expect_bad(error, "&case name = 'bad' /"//nl// &
+            '&material g1 = 82000.0, g2 = 82000.0 /'//nl// &
+            "&geometry kind = 'quadratic', rx = 300.0, ry = 0.0 /"//nl// &
+            '&normal approach = 0.01 /'//nl, [character(len=16) :: '&geometry', 'ry = 0', 'automatic grid'])
+    end subroutine test_line_auto_area
 
     !> K ≠ 0 needs the Panagiotopoulos loop on the BCCG path: FMG is rejected.
     subroutine test_fmg_dissimilar(error)

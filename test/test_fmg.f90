@@ -6,6 +6,7 @@ module test_fmg
     use fc_influence
     use fc_norm
     use fc_fmg
+    use fc_fmg_diagnostics, only: smoother_eigenvalues
     use fc_hertz
     use fc_testing
     implicit none

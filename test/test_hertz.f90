@@ -37,7 +37,7 @@ contains
         call check(error, e, 1.015993545025224_dp, 'E(0.99)', rel=1e-13_dp)
     end subroutine test_elliptic
 
-    !> Test I (SPEC §4): a = 6.0020, b = 3.9992, p0 = 1631.2, F = 82004 (rounded as given).
+    !> Test I (thesis §2.5.1): a = 6.0020, b = 3.9992, p0 = 1631.2, F = 82004 (rounded as given).
     subroutine test_reference(error)
         type(error_type), allocatable, intent(out) :: error
         type(fc_hertz_solution) :: s
@@ -50,7 +50,7 @@ contains
         call check(error, s%pressure(6.1_dp, 0.0_dp), 0.0_dp, 'p outside ellipse', abs=0.0_dp)
     end subroutine test_reference
 
-    !> Cattaneo sphere (SPEC §4): R = 50, G = 200, ν = 0.42, Fn = 9.1954 → a = 1, δ = 0.02, p0 = 4.3905.
+    !> Cattaneo sphere (thesis §4.4): R = 50, G = 200, ν = 0.42, Fn = 9.1954 → a = 1, δ = 0.02, p0 = 4.3905.
     subroutine test_sphere(error)
         type(error_type), allocatable, intent(out) :: error
         type(fc_hertz_solution) :: s
@@ -96,7 +96,7 @@ contains
         call check(error, maxval(abs(z - z2)) > 0.01_dp, 'another seed gives another surface')
     end subroutine test_rough
 
-    !> Element centres at xmin + (i−½)dx (SPEC §5) and the quadratic profile.
+    !> Element centres at xmin + (i−½)dx (doc/conventions.md) and the quadratic profile.
     subroutine test_grid(error)
         type(error_type), allocatable, intent(out) :: error
         type(fc_grid) :: grid

@@ -1,8 +1,9 @@
-!> Suite `influence`: influence coefficients and BTTB products (SPEC §2).
+!> Suite `influence`: influence coefficients and BTTB products (doc/conventions.md).
 module test_influence
     use fc_kinds, only: dp, pi
     use fc_geometry, only: fc_grid, make_grid
     use fc_influence
+    use fc_lapack, only: dpotrf, dsyev
     use fc_testing
     implicit none
     private
@@ -31,7 +32,7 @@ contains
         call combine_material(mat, stat, msg)
     end subroutine steel
 
-    !> Kalker's combination (SPEC §2): identical bodies, rigid body, dissimilar K sign.
+    !> Kalker's combination (doc/conventions.md): identical bodies, rigid body, dissimilar K sign.
     subroutine test_material(error)
         type(error_type), allocatable, intent(out) :: error
         type(fc_material) :: m
@@ -108,23 +109,6 @@ contains
     !! smallest eigenvalue from dsyev is positive) on small grids.
     subroutine test_azz_spd(error)
         type(error_type), allocatable, intent(out) :: error
-        interface
-            subroutine dpotrf(uplo, n, a, lda, info)
-                import :: dp
-                character, intent(in) :: uplo
-                integer, intent(in) :: n, lda
-                real(dp), intent(inout) :: a(lda, *)
-                integer, intent(out) :: info
-            end subroutine dpotrf
-            subroutine dsyev(jobz, uplo, n, a, lda, w, work, lwork, info)
-                import :: dp
-                character, intent(in) :: jobz, uplo
-                integer, intent(in) :: n, lda, lwork
-                real(dp), intent(inout) :: a(lda, *)
-                real(dp), intent(out) :: w(*), work(*)
-                integer, intent(out) :: info
-            end subroutine dsyev
-        end interface
         type(fc_material) :: mat
         type(fc_grid) :: grid
         type(fc_bttb) :: op
@@ -240,7 +224,7 @@ contains
 
     !> Periodic A^zz: a sinusoidal pressure p = cos(2πx/L) on a long periodic strip of the
     !! surface gives the plane-strain response u = 2(1−ν)/G · L/(2π) · p (Johnson §13.2,
-    !! with the combined G of SPEC §2).  Piecewise-constant elements and a finite image sum
+    !! with the combined G of doc/conventions.md).  Piecewise-constant elements and a finite image sum
     !! make this approximate: tolerance 2 % at 64 elements per wavelength.
     subroutine test_periodic_sinusoid(error)
         type(error_type), allocatable, intent(out) :: error

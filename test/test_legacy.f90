@@ -1,4 +1,4 @@
-!> Suite `legacy`: the flat handle-based API (fc_legacy, SPEC §6, issue 5).
+!> Suite `legacy`: the flat handle-based API (fc_legacy, doc/legacy_api.md).
 module test_legacy
     use, intrinsic :: iso_c_binding, only: c_null_char
     use fc_kinds
@@ -40,7 +40,7 @@ contains
             new_unittest('errors_and_handles', test_errors) ]
     end subroutine collect_legacy
 
-    !> Handle with the Cattaneo scene of SPEC §4 (no tangential loading yet).
+    !> Handle with the Cattaneo scene of doc/conventions.md (no tangential loading yet).
     subroutine cattaneo_handle(h, nx, ny, tol)
         integer, intent(out) :: h
         integer, intent(in) :: nx, ny
@@ -88,7 +88,7 @@ contains
         msg = buf(1:max(0, k - 1))
     end function last_message
 
-    !> Hertz Test I (32², approach 0.1091): flat API = solve_normal to 1e−10, and the SPEC
+    !> Hertz Test I (32², approach 0.1091): flat API = solve_normal to 1e−10, and the
     !! self-check values F = 82049.40, 332 contact cells, pmax = 1628.29; then force mode.
     subroutine test_hertz(error)
         type(error_type), allocatable, intent(out) :: error
@@ -140,7 +140,7 @@ contains
     end subroutine test_hertz
 
     !> Cattaneo cases 1–7 on 30×25 (tol 1e−10): flat API without warm start = BCCG +
-    !! solve_tangential to 1e−10 relative (tractions, slip, forces, moment); SPEC self-check
+    !! solve_tangential to 1e−10 relative (tractions, slip, forces, moment); self-check
     !! of case 1 (364 cells, Mz = −2.67854e−4).
     subroutine test_cattaneo(error)
         type(error_type), allocatable, intent(out) :: error

@@ -1,4 +1,4 @@
-!> Suite `normal`: NORM and BCCG on Hertz Test I and the rough punch (SPEC §4).
+!> Suite `normal`: NORM and BCCG on Hertz Test I and the rough punch (doc/conventions.md).
 module test_normal
     use fc_kinds
     use fc_geometry
@@ -26,7 +26,8 @@ contains
             new_unittest('direct_oracle_complementarity', test_oracle), &
             new_unittest('strip2d_line_contact', test_strip), &
             new_unittest('errors_reported', test_errors), &
-            new_unittest('not_converged_reported', test_not_converged) ]
+            new_unittest('not_converged_reported', test_not_converged), &
+            new_unittest('norm_readings', test_norm_readings) ]
     end subroutine collect_normal
 
     subroutine test1_setup(n, nop, h0, grid)
@@ -63,7 +64,7 @@ contains
         rms_error = sqrt(rms_error/grid%n())
     end function rms_error
 
-    !> SPEC §2 self-check (dense solve): 32², approach 0.1091 → F = 82049.40, 332 contact
+    !> Self-check of doc/conventions.md (dense solve): 32², approach 0.1091 → F = 82049.40, 332 contact
     !! cells, pmax = 1628.29.  Both solvers at tol 1e−8; tolerance 0.01 on F and pmax
     !! (the quoted digits).
     subroutine test_selfcheck(error)
@@ -180,6 +181,44 @@ contains
         call nop%destroy()
     end subroutine test_agree
 
+    !> NORM's research readings (thesis Table 2.8, bench/norm_table28.f90): the readings that
+    !! converge reach the same solution as ours on Hertz Test I 32²; 'restart' with 4 CG steps
+    !! per active-set step does not converge where ours does (each step starts from p = 0); an unknown reading
+    !! is an error.
+    subroutine test_norm_readings(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_normal_operator) :: nop
+        type(fc_normal_settings) :: set
+        type(fc_normal_result) :: r0, r1
+        type(fc_grid) :: grid
+        real(dp), allocatable :: h0(:, :)
+        integer :: stat, k
+        character(len=200) :: msg
+        character(len=16), parameter :: readings(3) = [character(len=16) :: 'add_if_no_drop', 'add_on_zero', &
+            'recompute_u']
+        call test1_setup(32, nop, h0, grid)
+        set%solver = 'norm'; set%tol = 1e-8_dp
+        call solve_normal(nop, h0, set, r0, stat, msg, approach=test1_approach)
+        call check(error, r0%status == FC_CONVERGED, 'ours converged')
+        do k = 1, size(readings)
+            set%norm_reading = readings(k)
+            call solve_normal(nop, h0, set, r1, stat, msg, approach=test1_approach)
+            call check(error, stat == 0 .and. r1%status == FC_CONVERGED, trim(readings(k))//' converged')
+            call check(error, rel_diff(pack(r1%pn, .true.), pack(r0%pn, .true.)), 0.0_dp, trim(readings(k))//' = ours', &
+                abs=1e-6_dp)
+        end do
+        set%norm_reading = ''; set%inner_maxit = 4; set%maxit = 60; set%tol = 1e-6_dp
+        call solve_normal(nop, h0, set, r1, stat, msg, approach=test1_approach)
+        call check(error, stat == 0 .and. r1%status == FC_CONVERGED, 'ours with 4 CG steps converges')
+        set%norm_reading = 'restart'
+        call solve_normal(nop, h0, set, r1, stat, msg, approach=test1_approach)
+        call check(error, stat == 0 .and. r1%status /= FC_CONVERGED, 'restart with 4 CG steps does not converge')
+        set%norm_reading = 'bogus'
+        call solve_normal(nop, h0, set, r1, stat, msg, approach=test1_approach)
+        call check(error, stat /= 0 .and. index(msg, 'norm_reading') > 0, 'unknown reading rejected: '//trim(msg))
+        call nop%destroy()
+    end subroutine test_norm_readings
+
     !> Prescribed total force 82004 N (the Hertz force of approach 0.1091): both solvers hit
     !! the force to 1e−10 relative and find the approach within 0.5 % of Hertz's 0.1091.
     subroutine test_force(error)
@@ -207,7 +246,7 @@ contains
         call nop%destroy()
     end subroutine test_force
 
-    !> Rough punch (thesis §2.5.2, SPEC §4) at 64²: contact fraction of the punch area grows
+    !> Rough punch (thesis §2.5.2) at 64²: contact fraction of the punch area grows
     !! with the approach and lies in a sane band around the thesis' 5.0 / 12.0 / 28.2 %
     !! (our random surface differs from theirs: bands 1–12 %, 5–25 %, 15–45 %); p ≥ 0,
     !! gap ≥ −1e−6·σ, complementarity Σ p·|gap| ≤ 1e−5·Σ p·σ; NORM and BCCG agree.
@@ -287,7 +326,7 @@ contains
         call nop%destroy()
     end subroutine test_oracle
 
-    !> 2D strip (n×1 grid, SPEC §4): a cylinder R = 100 on a strip 100 mm long under
+    !> 2D strip (n×1 grid, thesis §3.2.5): a cylinder R = 100 on a strip 100 mm long under
     !! P' = 1000 N/mm approximates plane-strain Hertz line contact, b² = 4RP'/(πE*),
     !! p0 = 2P'/(πb).  At 128×1: pmax within 1 %, RMS pressure error ≤ 1 % of p0 (the strip
     !! ends are 50 b away); NORM and BCCG agree to 1e−5.

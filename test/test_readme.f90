@@ -53,7 +53,7 @@ contains
     print '(a,f0.1,a,i0,a,i0,2a)', 'Fn = ', res%normal%fn, ' N, contact elements: ', res%normal%ncon, &
         ', iterations: ', res%normal%iterations, ', status: ', status_name(res%status)
         fn = res%normal%fn; ncon = res%normal%ncon; iterations = res%normal%iterations; status = res%status
-    call prob%destroy()
+    call prob%destroy()                                       ! release the FFT plans
     end subroutine readme_example
 
     !> Every statement line of the README's ```fortran block (other than program/end

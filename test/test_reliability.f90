@@ -19,6 +19,8 @@ module test_reliability
         solve_normal, contact_on_edge
     use fc_legacy
     use fc_driver, only: run_driver
+    use fc_input, only: namelist_keys
+    use fc_input_check, only: value_kind
     implicit none
     private
     public :: collect_reliability
@@ -35,7 +37,8 @@ contains
                  new_unittest('maxit_zero_rejected', maxit_zero_rejected), &
                  new_unittest('stagnation_guards', stagnation_guards), &
                  new_unittest('contact_on_edge_all_edges', contact_on_edge_all_edges), &
-                 new_unittest('bccg_iteration_bound_hertz', bccg_iteration_bound_hertz)]
+                 new_unittest('bccg_iteration_bound_hertz', bccg_iteration_bound_hertz), &
+                 new_unittest('every_key_has_a_value_type', every_key_has_a_value_type)]
     end subroutine collect_reliability
 
     !> The four coupling blocks far from the loaded element against the point-load solutions,
@@ -302,6 +305,21 @@ contains
             call nop%destroy()
         end do
     end subroutine bccg_iteration_bound_hertz
+
+    !> Every key the reader accepts has a value type in the lexical check (a key added to
+    !! the reader without one would skip the check that names bad values).
+    subroutine every_key_has_a_value_type(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=65), allocatable :: keys(:)
+        integer :: k, p
+        keys = namelist_keys()
+        call check(error, size(keys) > 30, 'namelist_keys() returned too few keys')
+        do k = 1, size(keys)
+            p = index(keys(k), ' ')
+            call check(error, len(value_kind(trim(keys(k)(p + 1:)))) > 0, &
+                'key without a value type in fc_input_check: '//trim(keys(k)))
+        end do
+    end subroutine every_key_has_a_value_type
 
     ! ---- helpers ---------------------------------------------------------------------------
 

@@ -1,5 +1,5 @@
 !> Suite `stability`: the package REPORTS each failure (status code with a message, or
-!! stat /= 0 with errmsg) instead of handing it back as a converged result (SPEC §3, issue 6).
+!! stat /= 0 with errmsg) instead of handing it back as a converged result.
 !! A handful of representative scenarios of `fastcontact-stability` on small grids.
 module test_stability
     use fc_kinds, only: dp, FC_CONVERGED, FC_NOT_CONVERGED, FC_DIVERGED

@@ -1,4 +1,4 @@
-!> Suite `tangential`: TangCG(K) and ConvexGS on the Cattaneo cases (thesis ch. 4, SPEC §4).
+!> Suite `tangential`: TangCG(K) and ConvexGS on the Cattaneo cases (thesis ch. 4).
 module test_tangential
     use fc_kinds
     use fc_geometry
@@ -40,7 +40,7 @@ contains
             new_unittest('errors_reported', test_errors) ]
     end subroutine collect_tangential
 
-    !> Cattaneo set-up (SPEC §4): sphere R = 50 on a plane, G = 200, ν = 0.42, Fn = 9.1954,
+    !> Cattaneo set-up (doc/conventions.md): sphere R = 50 on a plane, G = 200, ν = 0.42, Fn = 9.1954,
     !! area [−1.2857, 1.2857]²; pressure from BCCG at tol 1e−8.
     subroutine cattaneo_setup(nx, ny, grid, mat, pn, top)
         integer, intent(in) :: nx, ny
@@ -64,7 +64,7 @@ contains
         call build_tangential_operator(top, mat, grid)
     end subroutine cattaneo_setup
 
-    !> SPEC §2 self-check: case 1 on 30×25 → 364 contact cells, Mz = −2.67854e−4, Fx = Fy = 0
+    !> Self-check of doc/conventions.md: case 1 on 30×25 → 364 contact cells, Mz = −2.67854e−4, Fx = Fy = 0
     !! (tolerance: the 6 quoted digits; forces 1e−9 of μFn).
     subroutine test_selfcheck(error)
         type(error_type), allocatable, intent(out) :: error
@@ -256,7 +256,7 @@ contains
         call top%destroy()
     end subroutine test_full_slip
 
-    !> Cattaneo–Mindlin with Fx = 0.875·μ·Fn (SPEC §4): stick radius 0.5 within one cell,
+    !> Cattaneo–Mindlin with Fx = 0.875·μ·Fn (thesis §4.4): stick radius 0.5 within one cell,
     !! |ξ| within 1 % of 0.008172 on 120×120, RMS error of |p| against μp0/a·[√(a²−r²) −
     !! √(c²−r²)] decreasing with refinement (40² → 80² → 120²).
     subroutine test_cattaneo_force(error)

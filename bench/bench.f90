@@ -1,4 +1,4 @@
-!> fastcontact-bench: accuracy and cost of the normal solvers on Hertz Test I (SPEC §4, §7).
+!> fastcontact-bench: accuracy and cost of the normal solvers on Hertz Test I (thesis §2.5.1).
 !!
 !! For each grid n×n (64² … 1024²) and each solver (BCCG, NORM) the program builds the
 !! influence operator, solves the normal problem with the prescribed approach and compares

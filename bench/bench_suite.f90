@@ -1,5 +1,5 @@
 !> fastcontact-bench-suite: accuracy against cost of every solver on the reference cases of
-!! SPEC §4 over a range of grids (issue 6).  Writes ONE CSV, one row per (case, solver, grid):
+!! doc/conventions.md "Reference cases" over a range of grids.  Writes ONE CSV, one row per (case, solver, grid):
 !!
 !!   case,solver,options,nx,ny,unknowns,error,error_vs,fn_error_rel,area_error_rel,ncon,
 !!   iterations,matvecs,work_units,residual,status,setup_seconds,solve_seconds,total_seconds,
@@ -18,7 +18,7 @@
 !! * `cattaneo_case1..7` (thesis Table 4.1): `error` = ‖p_t − R p_t,ref‖₂/‖R p_t,ref‖₂ over both
 !!   traction components, p_t,ref from TangCG(3) (tol 1e−9) on the finest grid, the normal
 !!   pressure from BCCG (Fn = 9.1954, tol 1e−10) on each grid.  `tangcg_<nx>x<ny>_blockavg`.
-!! * `cattaneo_mindlin` (SPEC §4, §5.4.2: Fx = 0.875 μ Fn prescribed): `error` = RMS over all
+!! * `cattaneo_mindlin` (thesis §5.4.2: Fx = 0.875 μ Fn prescribed): `error` = RMS over all
 !!   elements of |p_t| − the Cattaneo–Mindlin traction [N/mm²], `cattaneo_mindlin_analytic`.
 !! * `mp1` (thesis §3.2.5; when fc_mg2d is present): `error` = relative block-averaged
 !!   difference to the finest-grid MG FFT+RSM solution, `mg_fftrsm_<n>_blockavg`.
@@ -505,7 +505,7 @@ contains
         character(len=8), parameter :: label(3) = ['tangcg  ', 'tangcg  ', 'convexgs']
         logical, parameter :: pre(3) = [.true., .false., .true.]
         mat = material(200.0_dp, 200.0_dp, 0.42_dp)
-        ! a = 1, p0 = 4.3905 (SPEC §4); Fn = 9.1954, μ = 0.4, Q = 0.875 μ Fn: stick radius 0.5
+        ! a = 1, p0 = 4.3905 (doc/conventions.md); Fn = 9.1954, μ = 0.4, Q = 0.875 μ Fn: stick radius 0.5
         cm = cattaneo_mindlin(1.0_dp, 4.3905_dp, 9.1954_dp, 0.4_dp, 0.875_dp*0.4_dp*9.1954_dp, mat%g, mat%nu)
         if (quick) then
             gx = [30, 60]; gy = [25, 50]

@@ -1,5 +1,5 @@
 !> Benchmark of the flat API (fc_legacy): per-call time of repeated Cattaneo calls
-!! (normal force + tangential shift, SPEC §4 case 4 shifts) on 30×25 and 60×50, with
+!! (normal force + tangential shift, thesis Table 4.1 case 4 shifts) on 30×25 and 60×50, with
 !!   rebuild  — fc_set_reuse(h, 0, 0): kernels and FFT plans rebuilt, cold start, every call
 !!   reuse    — operators kept, cold start
 !!   reuse+ws — operators kept and the previous solution as warm start (the default)

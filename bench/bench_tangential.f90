@@ -1,5 +1,5 @@
 !> fastcontact-bench-tangential: cost of TangCG(3) (with and without preconditioner) and
-!! ConvexGS on the seven Cattaneo cases of thesis Table 4.1 (SPEC §4, issue 3).
+!! ConvexGS on the seven Cattaneo cases of thesis Table 4.1 (thesis §4.4).
 !!
 !! For every grid (30×25, 60×50, 120×100, 240×200) the normal problem (Fn = 9.1954, BCCG,
 !! tol 1e−8) is solved once, then each case with each tangential solver (tol 1e−5, eq. 4.49).

@@ -1,4 +1,4 @@
-!> fastcontact-bench-auto: what the automatic layer (issue 7) saves, and what it costs.
+!> fastcontact-bench-auto: what the automatic layer (accuracy target, automatic area, model reduction) saves, and what it costs.
 !!
 !! For each model reduction the reduced and the full model are solved on the same scene; the
 !! program prints the answers, their relative difference and the wall-clock cost ratio
@@ -77,9 +77,9 @@ contains
         ! ---- 1. problem = 'hertz' vs the full model to 1e-3 (auto area)
         call solve_text("&case problem = 'hertz' /"//nl//hertz_scene, red, tr)
         call solve_text(hertz_scene//'&solver target = 1.0e-3 /'//nl, full, tf)
-        call row('hertz_analytic', 'analytic', red, 'fn', red%hertz%fn, full%res%fn, tr, tf)
-        call row('hertz_analytic', 'full_target_1e-3', full, 'fn', full%res%fn, red%hertz%fn, tf, tf)
-        call row('hertz_analytic', 'full_target_1e-3', full, 'pmax', full%res%pmax, red%hertz%p0, tf, tf)
+        call row('hertz_analytic', 'analytic', red, 'fn', red%hertz%fn, full%result%normal%fn, tr, tf)
+        call row('hertz_analytic', 'full_target_1e-3', full, 'fn', full%result%normal%fn, red%hertz%fn, tf, tf)
+        call row('hertz_analytic', 'full_target_1e-3', full, 'pmax', full%result%normal%pmax, red%hertz%p0, tf, tf)
 
         ! ---- 2. line contact: cylinder as a strip vs a 3D grid of the same cylinder
         call solve_text('&material g1 = 82000.0, g2 = 82000.0 /'//nl// &
@@ -88,23 +88,23 @@ contains
             "&geometry kind = 'cylinder', rx = 100.0, length = 20.0 /"//nl//'&normal fn = 2.0e4 /'//nl// &
             "&solver model = 'full' /"//nl, full, tf)
         call plane_strain_hertz(100.0_dp, 1000.0_dp, 82000.0_dp/0.72_dp, b, p0)
-        call row('line_contact', 'strip2d', red, 'pmax', red%res%pmax, p0, tr, tf)
+        call row('line_contact', 'strip2d', red, 'pmax', red%result%normal%pmax, p0, tr, tf)
         call row('line_contact', 'full_3d_finite_cylinder', full, 'pmax_centre_line', &
-            maxval(full%res%pn(:, (full%grid%ny + 1)/2)), p0, tf, tf)
-        call row('line_contact', 'full_3d_finite_cylinder', full, 'pmax_ends', full%res%pmax, p0, tf, tf)
+            maxval(full%result%normal%pn(:, (full%grid%ny + 1)/2)), p0, tf, tf)
+        call row('line_contact', 'full_3d_finite_cylinder', full, 'pmax_ends', full%result%normal%pmax, p0, tf, tf)
 
         ! ---- 3. no tangential loading (zero shifts, K = 0): normal only vs normal + tangential
         call solve_text(cattaneo_scene//'&tangential mu = 0.4, xi = 0.0, eta = 0.0, phi = 0.0 /'//nl, red, tr)
         call solve_text(cattaneo_scene//'&tangential mu = 0.4, xi = 0.0, eta = 0.0, phi = 0.0 /'//nl// &
             "&solver model = 'full' /"//nl, full, tf)
-        call row('no_tangential_loading', 'normal_only', red, 'fn', red%res%fn, full%res%fn, tr, tf)
-        call row('no_tangential_loading', 'full', full, 'fx', full%tres%fx, 0.0_dp, tf, tf)
+        call row('no_tangential_loading', 'normal_only', red, 'fn', red%result%normal%fn, full%result%normal%fn, tr, tf)
+        call row('no_tangential_loading', 'full', full, 'fx', full%result%tangential%fx, 0.0_dp, tf, tf)
 
         ! ---- 4. K = 0: decoupled (one normal + one tangential solve) vs the coupled pipeline
         call solve_text(cattaneo_scene//'&tangential mu = 0.4, xi = -0.0081724 /'//nl, red, tr)
         call solve_text(cattaneo_scene//'&tangential mu = 0.4, xi = -0.0081724 /'//nl//"&solver model = 'full' /"//nl, &
             full, tf)
-        call row('k0_decoupled', 'decoupled', red, 'fx', red%tres%fx, full%tres%fx, tr, tf)
+        call row('k0_decoupled', 'decoupled', red, 'fx', red%result%tangential%fx, full%result%tangential%fx, tr, tf)
 
         ! ---- 5. accuracy target vs the final grid alone and a fixed 256² grid
         call solve_text(hertz_scene//'&grid nx = 16, ny = 16, xmin = -10.0, xmax = 10.0, ymin = -6.0, ymax = 6.0 /'//nl// &
@@ -117,11 +117,11 @@ contains
         end do
         call solve_text(hertz_scene//'&grid nx = 64, ny = 64, xmin = -10.0, xmax = 10.0, ymin = -6.0, ymax = 6.0 /'//nl, &
             full, tf)
-        call row('accuracy_target', 'target_5e-4_all_grids', red, 'fn', red%res%fn, hz%fn, tr, tf)
-        call row('accuracy_target', 'final_grid_alone', full, 'fn', full%res%fn, hz%fn, tf, tf)
+        call row('accuracy_target', 'target_5e-4_all_grids', red, 'fn', red%result%normal%fn, hz%fn, tr, tf)
+        call row('accuracy_target', 'final_grid_alone', full, 'fn', full%result%normal%fn, hz%fn, tf, tf)
         call solve_text(hertz_scene//'&grid nx = 256, ny = 256, xmin = -10.0, xmax = 10.0, ymin = -6.0, ymax = 6.0 /'// &
             nl, full, tf)
-        call row('accuracy_target', 'fixed_256', full, 'fn', full%res%fn, hz%fn, tf, tr)
+        call row('accuracy_target', 'fixed_256', full, 'fn', full%result%normal%fn, hz%fn, tf, tr)
 
         ! ---- 6. target sweep: the grid the algorithm chooses for each target (one full run per
         ! target: the solver tolerance, hence the noise floor of the estimate, follows the target)
@@ -257,7 +257,7 @@ contains
                 cycle
             end if
             write (cgrid, '(i0)') out%grid%nx
-            true_err = rel_err(out%res%fn, out%tres%fx, ref_fn, ref_fx, with_fx)
+            true_err = rel_err(out%result%normal%fn, out%result%tangential%fx, ref_fn, ref_fx, with_fx)
             ! the reference sequence holds the same grids (same start, refined by two)
             kc = 0
             do k = 1, n

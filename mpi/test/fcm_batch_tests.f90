@@ -1,0 +1,230 @@
+!> Tests of the MPI batch driver: the same outputs as the serial driver (JSON identical up
+!! to timing values, CSV byte for byte, report identical up to timing lines, same error
+!! messages and exit status), a failing case does not stop the others, the cases are
+!! actually spread over the ranks, a bad command line gives the serial exit status.
+module fcm_batch_tests
+    use mpi
+    use fc_driver, only: run_driver
+    use fcm_batch, only: run_mpi_batch
+    implicit none
+    private
+    public :: batch_tests
+
+    character(len=*), parameter :: dir = 'build/test-mpi-batch'
+    character(len=16), parameter :: names(9) = [character(len=16) :: 'hz_a', 'hz_b', 'hz_force', 'bad_modulus', &
+        'hz_maxit', 'cat_shift', 'cat_force', 'hz_after_bad', 'mp1']
+
+contains
+
+    subroutine batch_tests(only, npass, nfail)
+        character(len=*), intent(in) :: only
+        integer, intent(inout) :: npass, nfail
+        call run('batch_equals_serial_driver', test_equal)
+        call run('batch_bad_command_line', test_bad_args)
+    contains
+        subroutine run(name, test)
+            character(len=*), intent(in) :: name
+            interface
+                subroutine test(msg)
+                    character(len=:), allocatable, intent(out) :: msg
+                end subroutine test
+            end interface
+            character(len=:), allocatable :: msg
+            logical :: ok
+            integer :: rank, ierr
+            if (len_trim(only) > 0 .and. trim(only) /= name) return
+            call mpi_comm_rank(MPI_COMM_WORLD, rank, ierr)
+            call test(msg)
+            ok = .not. allocated(msg)
+            call mpi_allreduce(MPI_IN_PLACE, ok, 1, MPI_LOGICAL, MPI_LAND, MPI_COMM_WORLD, ierr)
+            if (ok) then
+                npass = npass + 1
+                if (rank == 0) write (*, '(a)') '  PASS  mpi/'//name
+            else
+                nfail = nfail + 1
+                if (allocated(msg)) write (*, '(a,i0,a)') '  FAIL  mpi/'//name//' (rank ', rank, '): '//msg
+            end if
+        end subroutine run
+    end subroutine batch_tests
+
+    subroutine write_cases(path)
+        character(len=*), intent(in) :: path
+        integer :: u
+        open (newunit=u, file=path, status='replace', action='write')
+        write (u, '(a)') "&case name = 'hz_a', title = 'Hertz, approach' /"
+        write (u, '(a)') "&material g1 = 82000.0, g2 = 82000.0, nu1 = 0.28, nu2 = 0.28 /"
+        write (u, '(a)') "&grid nx = 24, ny = 20, xmin = -1.2, xmax = 1.2, ymin = -1.0, ymax = 1.0 /"
+        write (u, '(a)') "&geometry kind = 'quadratic', rx = 40.0, ry = 30.0 /"
+        write (u, '(a)') "&normal approach = 0.004 /"
+        write (u, '(a)') "&case name = 'hz_b' /"
+        write (u, '(a)') "&normal approach = 0.006 /"
+        write (u, '(a)') "&case name = 'hz_force' /"
+        write (u, '(a)') "&normal fn = 300.0 /"
+        write (u, '(a)') "&case name = 'bad_modulus' /"
+        write (u, '(a)') "&material g1 = -5.0 /"
+        write (u, '(a)') "&case name = 'hz_maxit' /"
+        write (u, '(a)') "&solver maxit = 2 /"
+        write (u, '(a)') "&case name = 'cat_shift', problem = 'normal+tangential' /"
+        write (u, '(a)') "&solver maxit = 1000 /"
+        write (u, '(a)') "&tangential mu = 0.3, xi = 2.0e-4 /"
+        write (u, '(a)') "&case name = 'cat_force', problem = 'normal+tangential' /"
+        write (u, '(a)') "&tangential mu = 0.3, fx = 40.0 /"
+        write (u, '(a)') "&case name = 'hz_after_bad', problem = 'normal' /"
+        write (u, '(a)') "&grid nx = 30, ny = 24 /"
+        write (u, '(a)') "&case name = 'hz_a' /"
+        write (u, '(a)') "&case name = 'mp1', problem = 'strip_mp1' /"
+        write (u, '(a)') "&geometry kind = 'strip2d' /"
+        write (u, '(a)') "&grid nx = 64, ny = 1 /"
+        close (u)
+    end subroutine write_cases
+
+    !> Serial driver and MPI batch on the same file (9 names, 10 cases: one input error, one
+    !! duplicate name, one solver not converged, inheritance across all of them).
+    subroutine test_equal(msg)
+        character(len=:), allocatable, intent(out) :: msg
+        integer :: rank, nprocs, ierr, code_s, code_m, urs, ues, urm, uem, k, nused
+        integer, allocatable :: ranks(:)
+        character(len=:), allocatable :: a, b
+        character(len=64) :: args(3)
+        logical :: ea, eb
+        call mpi_comm_rank(MPI_COMM_WORLD, rank, ierr)
+        call mpi_comm_size(MPI_COMM_WORLD, nprocs, ierr)
+        if (rank == 0) then
+            call execute_command_line('rm -rf '//dir//' && mkdir -p '//dir)
+            call write_cases(dir//'/cases.nml')
+            open (newunit=urs, file=dir//'/serial.rep', status='replace')
+            open (newunit=ues, file=dir//'/serial.err', status='replace')
+            args(1) = dir//'/cases.nml'; args(2) = '--out'; args(3) = dir//'/serial'
+            call run_driver(args, code_s, urs, ues)
+            close (urs); close (ues)
+            open (newunit=urm, file=dir//'/mpi.rep', status='replace')
+            open (newunit=uem, file=dir//'/mpi.err', status='replace')
+        end if
+        call mpi_barrier(MPI_COMM_WORLD, ierr)
+        args(1) = dir//'/cases.nml'; args(2) = '--out'; args(3) = dir//'/mpi'
+        if (rank == 0) then
+            call run_mpi_batch(args, MPI_COMM_WORLD, code_m, urm, uem, ranks)
+            close (urm); close (uem)
+        else
+            call run_mpi_batch(args, MPI_COMM_WORLD, code_m)
+        end if
+        call mpi_bcast(code_s, 1, MPI_INTEGER, 0, MPI_COMM_WORLD, ierr)
+        if (code_m /= code_s) msg = 'exit status differs from the serial driver'
+        if (rank /= 0 .or. allocated(msg)) return
+        if (code_s /= 1) msg = 'serial exit status should be 1 (one input error)'
+        nused = 0
+        do k = 1, size(names)
+            inquire (file=dir//'/serial/'//trim(names(k))//'.json', exist=ea)
+            inquire (file=dir//'/mpi/'//trim(names(k))//'.json', exist=eb)
+            if (ea .neqv. eb) then
+                msg = trim(names(k))//'.json exists in one output only'; return
+            end if
+            if (trim(names(k)) == 'bad_modulus' .and. ea) then
+                msg = 'the failing case wrote a JSON'; return
+            end if
+            if (.not. ea) cycle
+            nused = nused + 1
+            a = timing_free(slurp_file(dir//'/serial/'//trim(names(k))//'.json'))
+            b = timing_free(slurp_file(dir//'/mpi/'//trim(names(k))//'.json'))
+            if (a /= b) then
+                msg = trim(names(k))//'.json differs (beyond timings)'; return
+            end if
+            inquire (file=dir//'/serial/'//trim(names(k))//'.csv', exist=ea)
+            inquire (file=dir//'/mpi/'//trim(names(k))//'.csv', exist=eb)
+            if (ea .neqv. eb) then
+                msg = trim(names(k))//'.csv exists in one output only'; return
+            end if
+            if (ea) then
+                if (slurp_file(dir//'/serial/'//trim(names(k))//'.csv') /= slurp_file(dir//'/mpi/'//trim(names(k))//'.csv')) then
+                    msg = trim(names(k))//'.csv differs'; return
+                end if
+            end if
+        end do
+        if (nused /= size(names) - 1) then
+            msg = 'expected 8 cases with outputs'; return
+        end if
+        if (report_free(slurp_file(dir//'/serial.rep')) /= report_free(slurp_file(dir//'/mpi.rep'))) then
+            msg = 'report differs (beyond timing lines)'; return
+        end if
+        if (slurp_file(dir//'/serial.err') /= slurp_file(dir//'/mpi.err')) then
+            msg = 'error messages differ'; return
+        end if
+        if (index(slurp_file(dir//'/mpi.err'), 'g1') == 0) msg = 'the input error is not reported'
+        if (nprocs > 1 .and. .not. allocated(msg)) then
+            if (all(ranks == 0) .or. all(ranks /= 0)) msg = 'all cases solved by one kind of rank: no distribution'
+        end if
+    end subroutine test_equal
+
+    !> A missing case file: exit status 1 on every rank, as the serial driver.
+    subroutine test_bad_args(msg)
+        character(len=:), allocatable, intent(out) :: msg
+        integer :: code, u, rank, ierr
+        character(len=64) :: args(1)
+        call mpi_comm_rank(MPI_COMM_WORLD, rank, ierr)
+        open (newunit=u, status='scratch')
+        args(1) = 'does/not/exist.nml'
+        call run_mpi_batch(args, MPI_COMM_WORLD, code, u, u)
+        close (u)
+        if (code /= 1) msg = 'missing case file must give exit status 1'
+    end subroutine test_bad_args
+
+    function slurp_file(path) result(text)
+        character(len=*), intent(in) :: path
+        character(len=:), allocatable :: text
+        integer :: u, sz, ios
+        open (newunit=u, file=path, access='stream', form='unformatted', action='read', iostat=ios)
+        if (ios /= 0) then
+            text = '<missing '//path//'>'; return
+        end if
+        inquire (unit=u, size=sz)
+        allocate (character(len=sz) :: text)
+        if (sz > 0) read (u) text
+        close (u)
+    end function slurp_file
+
+    !> JSON text with every number after a key ending in "seconds…" replaced by X.
+    function timing_free(text) result(t)
+        character(len=*), intent(in) :: text
+        character(len=:), allocatable :: t
+        integer :: i, j
+        t = ''
+        i = 1
+        do
+            j = index(text(i:), 'seconds')
+            if (j == 0) exit
+            j = i + j - 1 + 7
+            do while (j <= len(text))
+                if (text(j:j) == ':') exit
+                j = j + 1
+            end do
+            t = t//text(i:j)//'X'
+            i = j + 1
+            do while (i <= len(text))
+                if (scan(text(i:i), ',}') > 0 .or. text(i:i) == new_line('a')) exit
+                i = i + 1
+            end do
+        end do
+        t = t//text(i:)
+    end function timing_free
+
+    !> Report without the lines that carry timings.
+    function report_free(text) result(t)
+        character(len=*), intent(in) :: text
+        character(len=:), allocatable :: t
+        integer :: i, j
+        t = ''
+        i = 1
+        do while (i <= len(text))
+            j = index(text(i:), new_line('a'))
+            if (j == 0) then
+                j = len(text)
+            else
+                j = i + j - 1
+            end if
+            if (index(text(i:j), 'cpu time') == 0 .and. index(text(i:j), 'operator set-up') == 0 .and. &
+                index(text(i:j), ' s)') == 0) t = t//text(i:j)
+            i = j + 1
+        end do
+    end function report_free
+
+end module fcm_batch_tests

@@ -1,0 +1,25 @@
+#!/bin/bash
+# Example Slurm job for fastcontact on a cluster (doc/parallel.md).  Adapt partition,
+# account, modules and paths to your site.  Two uses, pick one at the bottom:
+#   A. MPI batch: the cases of a namelist file spread over all ranks (one core each);
+#   B. distributed solve of one very large rough-surface cell (FFTW-MPI slabs).
+#SBATCH --job-name=fastcontact
+#SBATCH --nodes=2
+#SBATCH --ntasks-per-node=32
+#SBATCH --cpus-per-task=1
+#SBATCH --mem-per-cpu=3G
+#SBATCH --time=01:00:00
+#SBATCH --output=fastcontact-%j.out
+set -euo pipefail
+
+# module load gcc openmpi fftw     # site specific: Open MPI and FFTW built with the same MPI
+export OMP_NUM_THREADS=${SLURM_CPUS_PER_TASK:-1}   # threads per rank (hybrid: raise cpus-per-task)
+FC_MPI=${FC_MPI:-$HOME/.local/bin/fastcontact-mpi}
+FC_BENCH=${FC_BENCH:-$HOME/.local/bin/fastcontact-mpi-bench}
+
+# A. a creep-force map or parameter sweep: one namelist file, one output directory
+srun "$FC_MPI" sweep.nml --out "results-$SLURM_JOB_ID"
+
+# B. one periodic rough-surface cell of 16384^2 elements, prescribed mean pressure
+#    (memory model: ~15 MB + 130 B x 16384^2 / ranks per rank, i.e. ~0.55 GB/rank on 64 ranks)
+# srun "$FC_BENCH" --n 16384 --case periodic --csv "cell-$SLURM_JOB_ID.csv"

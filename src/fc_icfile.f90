@@ -1,0 +1,503 @@
+!> Influence-coefficient sets: kernels A^ab(offset) read from files (FE or other sources),
+!! their validation, the combination of two bodies and the fastcontact file format.
+!!
+!! A set holds, for every offset (ix, iy) with |ix| ≤ mx, |iy| ≤ my, the 3×3 coefficients
+!! a(ix, iy, i, j): displacement component i (1 = x, 2 = y, 3 = z) at a cell centre due to a
+!! unit traction component j on a cell of size dx×dy centred at offset (−ix·dx, −iy·dy)
+!! from it [mm per N/mm²].  Signs follow the library (doc/ic_file_format.md): z is the
+!! normal into body 1, a positive pressure pushes the bodies apart.
+!!
+!! * content 'body': one body's coefficients (what one FE run gives); two bodies combine as
+!!   the analytic path does: A = A1 + A2 for zz, xx, xy, yx, yy and A = A1 − A2 for the
+!!   coupling blocks xz, zx, yz, zy (body 2's frame is body 1's mirrored in z).  A body
+!!   that is an elastic half-space (G2, ν2) has exactly the analytic one-body kernel.
+!! * content 'combined': displacement differences, ready for the solvers.
+!!
+!! Validation (before any solver sees a set): the blocks the solvers treat as symmetric
+!! (zz, xx, yy, and xy = yx) must be even in the offset, and the FFT symbols of A^zz and of
+!! the 2×2 tangential block must be positive definite (A SPD); otherwise a clear error.
+module fc_icfile
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+    use fc_kinds, only: dp, i8, msg_len
+    use fc_geometry, only: fc_grid
+    use fc_influence, only: fc_material, combine_material, ic_kernel_extended, rigid_modulus, &
+        IC_ZZ, IC_XX, IC_YY, IC_XY, IC_XZ, IC_ZX, IC_YZ, IC_ZY
+    use fc_fftw
+    use, intrinsic :: iso_c_binding, only: c_char, c_null_char
+    implicit none
+    private
+
+    integer, parameter, public :: ic_format_version = 1  !! version written by [[write_ic_file]]
+    integer, parameter, public :: ic_max_offset = 4096   !! largest mx, my accepted from a file
+
+    !> A set of influence coefficients on a uniform grid (see the module header).
+    type, public :: fc_ic_set
+        integer :: mx = 0, my = 0                    !! largest offsets stored
+        real(dp) :: dx = 0, dy = 0                   !! cell size [mm]
+        character(len=16) :: content = 'body'        !! 'body' or 'combined'
+        character(len=16) :: source = ''             !! 'fem', 'analytic', 'contact', ...
+        real(dp) :: g = 0, nu = 0                    !! material of the body (content 'body') [N/mm², –]
+        character(len=16) :: load = 'constant'       !! traction shape of the source cell
+        character(len=512) :: model = ''            !! model description (FE parameters, ...)
+        character(len=16) :: hash = ''               !! cache key of the model parameters
+        real(dp), allocatable :: a(:, :, :, :)       !! a(−mx:mx, −my:my, 3, 3) [mm/(N/mm²)]
+    end type fc_ic_set
+
+    character(len=2), parameter :: comp_name(3) = ['x ', 'y ', 'z ']
+
+    public :: ic_set_allocate, ic_block_index, validate_ic_set, combine_ic_sets, analytic_body_set
+    public :: ic_set_kernel, write_ic_file, read_ic_file, hash_text, is_fastcontact_ic_file
+    public :: rename_file, temp_name
+
+contains
+
+    !> Allocate a zeroed set.
+    subroutine ic_set_allocate(set, mx, my, dx, dy)
+        type(fc_ic_set), intent(inout) :: set
+        integer, intent(in) :: mx, my
+        real(dp), intent(in) :: dx, dy
+        if (allocated(set%a)) deallocate (set%a)
+        set%mx = mx; set%my = my; set%dx = dx; set%dy = dy
+        allocate (set%a(-mx:mx, -my:my, 3, 3), source=0.0_dp)
+    end subroutine ic_set_allocate
+
+    !> Component indices (i, j) of a library block IC_ZZ, IC_XX, ... (displacement i due to load j).
+    pure subroutine ic_block_index(block, i, j)
+        integer, intent(in) :: block
+        integer, intent(out) :: i, j
+        select case (block)
+        case (IC_ZZ); i = 3; j = 3
+        case (IC_XX); i = 1; j = 1
+        case (IC_YY); i = 2; j = 2
+        case (IC_XY); i = 1; j = 2
+        case (IC_XZ); i = 1; j = 3
+        case (IC_ZX); i = 3; j = 1
+        case (IC_YZ); i = 2; j = 3
+        case (IC_ZY); i = 3; j = 2
+        case default; i = 0; j = 0
+        end select
+    end subroutine ic_block_index
+
+    !> One body's analytic half-space set (G, ν): the combined kernel of that body against a
+    !! rigid one, so that two half-space bodies sum to the library's analytic kernel.
+    subroutine analytic_body_set(g, nu, dx, dy, mx, my, set, stat, errmsg)
+        real(dp), intent(in) :: g, nu, dx, dy
+        integer, intent(in) :: mx, my
+        type(fc_ic_set), intent(inout) :: set
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        type(fc_material) :: mat
+        type(fc_grid) :: grid
+        call ic_set_allocate(set, mx, my, dx, dy)
+        set%content = 'body'; set%source = 'analytic'; set%g = g; set%nu = nu; set%load = 'constant'
+        set%model = 'elastic half-space (Boussinesq-Cerruti)'
+        stat = 0; errmsg = ''
+        if (g >= rigid_modulus) return   ! rigid body: no displacement
+        mat%g1 = g; mat%nu1 = nu; mat%g2 = rigid_modulus; mat%nu2 = 0
+        call combine_material(mat, stat, errmsg)
+        if (stat /= 0) return
+        grid%nx = mx + 1; grid%ny = my + 1; grid%dx = dx; grid%dy = dy
+        call put(IC_ZZ); call put(IC_XX); call put(IC_YY); call put(IC_XY)
+        call put(IC_XZ); call put(IC_ZX); call put(IC_YZ); call put(IC_ZY)
+        set%a(:, :, 2, 1) = set%a(:, :, 1, 2)
+    contains
+        subroutine put(block)
+            integer, intent(in) :: block
+            real(dp), allocatable :: k(:, :)
+            integer :: i, j
+            call ic_kernel_extended(block, mat, grid, mx, my, k)
+            call ic_block_index(block, i, j)
+            set%a(:, :, i, j) = k
+        end subroutine put
+    end subroutine analytic_body_set
+
+    !> Combined (displacement-difference) set of body 1 and body 2, both content 'body' on
+    !! the same cells; offsets are those common to both.
+    subroutine combine_ic_sets(b1, b2, out, stat, errmsg)
+        type(fc_ic_set), intent(in) :: b1, b2
+        type(fc_ic_set), intent(inout) :: out
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        integer :: mx, my, i, j
+        real(dp) :: s
+        stat = 1
+        if (b1%content /= 'body' .or. b2%content /= 'body') then
+            errmsg = "influence coefficients: only sets of content 'body' can be combined"; return
+        end if
+        if (.not. same_size(b1%dx, b2%dx) .or. .not. same_size(b1%dy, b2%dy)) then
+            write (errmsg, '(a,2es14.6,a,2es14.6)') 'influence coefficients: cell sizes differ between the bodies: ', &
+                b1%dx, b1%dy, ' vs ', b2%dx, b2%dy
+            return
+        end if
+        mx = min(b1%mx, b2%mx); my = min(b1%my, b2%my)
+        call ic_set_allocate(out, mx, my, b1%dx, b1%dy)
+        do j = 1, 3
+            do i = 1, 3
+                s = 1
+                if ((i == 3) .neqv. (j == 3)) s = -1   ! coupling blocks: body 2 is mirrored in z
+                out%a(:, :, i, j) = b1%a(-mx:mx, -my:my, i, j) + s*b2%a(-mx:mx, -my:my, i, j)
+            end do
+        end do
+        out%content = 'combined'
+        out%source = trim(b1%source)//'+'//trim(b2%source)
+        out%load = b1%load
+        out%model = 'body 1: '//trim(b1%model)//'; body 2: '//trim(b2%model)
+        out%hash = ''
+        out%g = 0; out%nu = 0
+        stat = 0; errmsg = ''
+    end subroutine combine_ic_sets
+
+    pure logical function same_size(a, b)
+        real(dp), intent(in) :: a, b
+        same_size = abs(a - b) <= 1.0e-9_dp*max(abs(a), abs(b))
+    end function same_size
+
+    !> Check a set: finite values, even symmetric blocks with xy = yx, positive FFT symbols
+    !! of A^zz and of the tangential 2×2 block.  `label` names the file in messages.
+    subroutine validate_ic_set(set, label, stat, errmsg)
+        type(fc_ic_set), intent(in) :: set
+        character(len=*), intent(in) :: label
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        integer :: i, j, ix, iy
+        real(dp) :: scale, tol
+        real(dp), allocatable :: szz(:, :), sxx(:, :), syy(:, :), sxy(:, :), lam(:, :)
+        integer :: loc(2)
+        stat = 1
+        if (.not. allocated(set%a)) then
+            errmsg = trim(label)//': no coefficients'; return
+        end if
+        if (.not. all(ieee_is_finite(set%a))) then
+            errmsg = trim(label)//': coefficients contain NaN or Inf'; return
+        end if
+        do j = 1, 3
+            do i = 1, 3
+                if (i /= j .and. (i == 3 .or. j == 3)) cycle   ! coupling blocks: odd, not checked
+                scale = maxval(abs(set%a(:, :, i, j)))
+                tol = 1.0e-9_dp*max(scale, tiny(1.0_dp))
+                do iy = -set%my, set%my
+                    do ix = -set%mx, set%mx
+                        if (abs(set%a(ix, iy, i, j) - set%a(-ix, -iy, i, j)) > tol) then
+                            write (errmsg, '(5a,i0,a,i0,a,es12.4,a,i0,a,i0,a,es12.4,a)') trim(label), &
+                                ': block ', trim(comp_name(i)), trim(comp_name(j)), ' is not symmetric: A(', ix, ',', iy, &
+                                ') = ', set%a(ix, iy, i, j), ' but A(', -ix, ',', -iy, ') = ', set%a(-ix, -iy, i, j), &
+                                ' (the solvers need A(d) = A(-d))'
+                            return
+                        end if
+                    end do
+                end do
+            end do
+        end do
+        scale = max(maxval(abs(set%a(:, :, 1, 2))), maxval(abs(set%a(:, :, 2, 1))), tiny(1.0_dp))
+        if (maxval(abs(set%a(:, :, 1, 2) - set%a(:, :, 2, 1))) > 1.0e-9_dp*scale) then
+            loc = maxloc(abs(set%a(:, :, 1, 2) - set%a(:, :, 2, 1))) - [set%mx + 1, set%my + 1]
+            write (errmsg, '(2a,i0,a,i0,a,es12.4,a,es12.4,a)') trim(label), ': blocks xy and yx differ at offset (', &
+                loc(1), ',', loc(2), '): ', set%a(loc(1), loc(2), 1, 2), ' vs ', set%a(loc(1), loc(2), 2, 1), &
+                ' (the tangential matrix must be symmetric)'
+            return
+        end if
+        call kernel_symbol(set%a(:, :, 3, 3), set%mx, set%my, szz)
+        if (.not. (minval(szz) > 0)) then
+            loc = minloc(szz)
+            write (errmsg, '(2a,es12.4,a,es12.4,a,i0,a,i0,a)') trim(label), &
+                ': block zz is not positive definite: its FFT symbol has minimum ', minval(szz), ' (maximum ', &
+                maxval(szz), ') at frequency (', loc(1) - 1, ',', loc(2) - 1, ')'
+            return
+        end if
+        call kernel_symbol(set%a(:, :, 1, 1), set%mx, set%my, sxx)
+        call kernel_symbol(set%a(:, :, 2, 2), set%mx, set%my, syy)
+        call kernel_symbol(set%a(:, :, 1, 2), set%mx, set%my, sxy)
+        ! smallest eigenvalue of [[sxx, sxy], [sxy, syy]] per frequency
+        lam = (sxx + syy)/2 - sqrt(((sxx - syy)/2)**2 + sxy**2)
+        if (.not. (minval(lam) > 0)) then
+            loc = minloc(lam)
+            write (errmsg, '(2a,es12.4,a,es12.4,a,i0,a,i0,a)') trim(label), &
+                ': the tangential block [xx xy; yx yy] is not positive definite: smallest eigenvalue of its FFT symbol ', &
+                minval(lam), ' (largest ', maxval(sxx + syy), ') at frequency (', loc(1) - 1, ',', loc(2) - 1, ')'
+            return
+        end if
+        stat = 0; errmsg = ''
+    end subroutine validate_ic_set
+
+    !> Real FFT symbol of an even kernel k(−mx:mx, −my:my) embedded in the circulant of size
+    !! 2mx × 2my (offsets −mx+1…mx; the wrap-around slot holds the coefficient at mx).
+    subroutine kernel_symbol(k, mx, my, sym)
+        integer, intent(in) :: mx, my
+        real(dp), intent(in) :: k(-mx:, -my:)
+        real(dp), allocatable, intent(out) :: sym(:, :)
+        real(dp), allocatable :: r(:, :)
+        complex(dp), allocatable :: c(:, :)
+        type(c_ptr) :: plan
+        integer :: nx, ny, i, j, di, dj
+        nx = max(2*mx, 1); ny = max(2*my, 1)
+        allocate (r(nx, ny), c(nx/2 + 1, ny))
+        do j = 0, ny - 1
+            dj = j; if (j > ny/2) dj = j - ny
+            do i = 0, nx - 1
+                di = i; if (i > nx/2) di = i - nx
+                r(i + 1, j + 1) = k(di, dj)
+            end do
+        end do
+        plan = fftw_plan_dft_r2c_2d(int(ny, c_int), int(nx, c_int), r, c, FFTW_ESTIMATE)
+        call fftw_execute_dft_r2c(plan, r, c)
+        call fftw_destroy_plan(plan)
+        sym = real(c, dp)
+    end subroutine kernel_symbol
+
+    !> Kernel of one library block for a grid of nx×ny cells: kernel(−nx:nx, −ny:ny) (the
+    !! offsets ±nx, ±ny serve only the preconditioner's wrap-around slot; when the set stops
+    !! at nx−1 they repeat the last stored coefficient).
+    subroutine ic_set_kernel(set, block, grid, kernel, stat, errmsg)
+        type(fc_ic_set), intent(in) :: set
+        integer, intent(in) :: block
+        type(fc_grid), intent(in) :: grid
+        real(dp), allocatable, intent(out) :: kernel(:, :)
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        integer :: i, j, ix, iy, ci, cj
+        stat = 1
+        if (.not. same_size(set%dx, grid%dx) .or. .not. same_size(set%dy, grid%dy)) then
+            write (errmsg, '(a,2es14.6,a,2es14.6,a)') 'influence coefficients are for cells dx, dy = ', set%dx, set%dy, &
+                ' mm, the grid has ', grid%dx, grid%dy, ' mm'
+            return
+        end if
+        if (set%mx < grid%nx - 1 .or. set%my < grid%ny - 1) then
+            write (errmsg, '(a,i0,a,i0,a,i0,a,i0,a)') 'influence coefficients reach offsets ', set%mx, ' x ', set%my, &
+                ', the grid of ', grid%nx, ' x ', grid%ny, ' cells needs at least nx-1, ny-1'
+            return
+        end if
+        call ic_block_index(block, i, j)
+        allocate (kernel(-grid%nx:grid%nx, -grid%ny:grid%ny))
+        do iy = -grid%ny, grid%ny
+            cj = max(-set%my, min(set%my, iy))
+            do ix = -grid%nx, grid%nx
+                ci = max(-set%mx, min(set%mx, ix))
+                kernel(ix, iy) = set%a(ci, cj, i, j)
+            end do
+        end do
+        stat = 0; errmsg = ''
+    end subroutine ic_set_kernel
+
+    !> 64-bit FNV-1a hash of `text` as 16 hexadecimal digits (cache key).
+    function hash_text(text) result(h)
+        character(len=*), intent(in) :: text
+        character(len=16) :: h
+        integer(i8) :: v
+        integer :: i
+        integer(i8), parameter :: prime = 1099511628211_i8
+        v = -3750763034362895579_i8   ! FNV offset basis 0xcbf29ce484222325 as a signed integer
+        do i = 1, len(text)
+            v = ieor(v, int(iachar(text(i:i)), i8))
+            v = v*prime                ! wraps modulo 2^64 (two's complement)
+        end do
+        write (h, '(z16.16)') v
+    end function hash_text
+
+    !> Write a set in the fastcontact format (doc/ic_file_format.md) to `path`, atomically:
+    !! a temporary file in the same directory renamed over `path` when complete.
+    subroutine write_ic_file(path, set, stat, errmsg)
+        character(len=*), intent(in) :: path
+        type(fc_ic_set), intent(in) :: set
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        character(len=:), allocatable :: tmp
+        integer :: u, ios, ix, iy
+        character(len=msg_len) :: iomsg
+        tmp = temp_name(path)
+        open (newunit=u, file=tmp, status='replace', action='write', iostat=ios, iomsg=iomsg)
+        if (ios /= 0) then
+            stat = 1; errmsg = 'cannot write '//tmp//': '//trim(iomsg); return
+        end if
+        write (u, '(a)') '# fastcontact influence coefficients (doc/ic_file_format.md)'
+        write (u, '(a)') 'format = fastcontact-ic'
+        write (u, '(a,i0)') 'version = ', ic_format_version
+        write (u, '(a)') 'content = '//trim(set%content)
+        write (u, '(a)') 'source = '//trim(set%source)
+        write (u, '(a,es25.17e3)') 'g = ', set%g
+        write (u, '(a,es25.17e3)') 'nu = ', set%nu
+        write (u, '(a,es25.17e3)') 'dx = ', set%dx
+        write (u, '(a,es25.17e3)') 'dy = ', set%dy
+        write (u, '(a,i0)') 'mx = ', set%mx
+        write (u, '(a,i0)') 'my = ', set%my
+        write (u, '(a)') 'load = '//trim(set%load)
+        write (u, '(a)') 'model = '//trim(set%model)
+        write (u, '(a)') 'hash = '//trim(set%hash)
+        write (u, '(a)') 'units = mm per N/mm2 (displacement at a cell centre per unit traction on the source cell)'
+        write (u, '(a)') 'columns = ix iy zz xx yy xy yx xz zx yz zy'
+        write (u, '(a)') 'data'
+        do iy = -set%my, set%my
+            do ix = -set%mx, set%mx
+                write (u, '(i0,1x,i0,9(1x,es25.17e3))', iostat=ios, iomsg=iomsg) ix, iy, set%a(ix, iy, 3, 3), &
+                    set%a(ix, iy, 1, 1), set%a(ix, iy, 2, 2), set%a(ix, iy, 1, 2), set%a(ix, iy, 2, 1), &
+                    set%a(ix, iy, 1, 3), set%a(ix, iy, 3, 1), set%a(ix, iy, 2, 3), set%a(ix, iy, 3, 2)
+                if (ios /= 0) exit
+            end do
+            if (ios /= 0) exit
+        end do
+        if (ios == 0) close (u, iostat=ios, iomsg=iomsg)
+        if (ios /= 0) then
+            close (u, status='delete', iostat=ix)
+            stat = 1; errmsg = 'cannot write '//tmp//': '//trim(iomsg); return
+        end if
+        call rename_file(tmp, path, stat, errmsg)
+    end subroutine write_ic_file
+
+    !> Temporary name next to `path` (same directory, so that the rename is atomic).
+    function temp_name(path) result(tmp)
+        character(len=*), intent(in) :: path
+        character(len=:), allocatable :: tmp
+        character(len=24) :: pid
+        interface
+            integer(c_int) function c_getpid() bind(c, name='getpid')
+                import :: c_int
+            end function c_getpid
+        end interface
+        write (pid, '(i0)') c_getpid()
+        tmp = trim(path)//'.tmp'//trim(pid)
+    end function temp_name
+
+    !> rename(2): replace `to` by `from` atomically.
+    subroutine rename_file(from, to, stat, errmsg)
+        character(len=*), intent(in) :: from, to
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        interface
+            integer(c_int) function c_rename(a, b) bind(c, name='rename')
+                import :: c_int, c_char
+                character(kind=c_char), intent(in) :: a(*), b(*)
+            end function c_rename
+        end interface
+        stat = 0; errmsg = ''
+        if (c_rename(trim(from)//c_null_char, trim(to)//c_null_char) /= 0) then
+            stat = 1; errmsg = 'cannot rename '//trim(from)//' to '//trim(to)
+        end if
+    end subroutine rename_file
+
+
+    !> True when `path` starts like a fastcontact influence-coefficient file.
+    logical function is_fastcontact_ic_file(path)
+        character(len=*), intent(in) :: path
+        integer :: u, ios, n
+        character(len=256) :: line
+        is_fastcontact_ic_file = .false.
+        open (newunit=u, file=path, status='old', action='read', iostat=ios)
+        if (ios /= 0) return
+        do n = 1, 5
+            read (u, '(a)', iostat=ios) line
+            if (ios /= 0) exit
+            if (index(line, 'format') == 1 .and. index(line, 'fastcontact-ic') > 0) then
+                is_fastcontact_ic_file = .true.; exit
+            end if
+        end do
+        close (u)
+    end function is_fastcontact_ic_file
+
+    !> Read a fastcontact influence-coefficient file (any version ≤ ic_format_version) and
+    !! validate it ([[validate_ic_set]]).
+    subroutine read_ic_file(path, set, stat, errmsg)
+        character(len=*), intent(in) :: path
+        type(fc_ic_set), intent(inout) :: set
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        integer :: u, ios, line, version, mx, my, ix, iy, jx, jy, p
+        real(dp) :: v(9), dx, dy
+        character(len=4096) :: buf
+        character(len=64) :: key
+        character(len=:), allocatable :: val
+        character(len=msg_len) :: iomsg
+        logical :: have_format
+        stat = 1
+        open (newunit=u, file=path, status='old', action='read', iostat=ios, iomsg=iomsg)
+        if (ios /= 0) then
+            errmsg = 'cannot open influence-coefficient file '//trim(path)//': '//trim(iomsg); return
+        end if
+        version = -1; mx = -1; my = -1; dx = 0; dy = 0; have_format = .false.
+        set%content = ''; set%source = ''; set%g = 0; set%nu = 0; set%load = 'constant'; set%model = ''; set%hash = ''
+        line = 0
+        do
+            read (u, '(a)', iostat=ios) buf
+            if (ios /= 0) then
+                errmsg = trim(path)//': header ends before the line "data"'; close (u); return
+            end if
+            line = line + 1
+            if (buf(1:1) == '#' .or. len_trim(buf) == 0) cycle
+            if (trim(adjustl(buf)) == 'data') exit
+            p = index(buf, '=')
+            if (p == 0) then
+                write (errmsg, '(2a,i0,a)') trim(path), ': line ', line, ': expected "key = value"'; close (u); return
+            end if
+            key = adjustl(buf(:p - 1)); val = trim(adjustl(buf(p + 1:)))
+            ios = 0
+            select case (trim(key))
+            case ('format'); have_format = val == 'fastcontact-ic'
+            case ('version'); read (val, *, iostat=ios) version
+            case ('content'); set%content = val
+            case ('source'); set%source = val
+            case ('g'); read (val, *, iostat=ios) set%g
+            case ('nu'); read (val, *, iostat=ios) set%nu
+            case ('dx'); read (val, *, iostat=ios) dx
+            case ('dy'); read (val, *, iostat=ios) dy
+            case ('mx'); read (val, *, iostat=ios) mx
+            case ('my'); read (val, *, iostat=ios) my
+            case ('load'); set%load = val
+            case ('model'); set%model = val
+            case ('hash'); set%hash = val
+            case ('units', 'columns')
+            case default   ! unknown keys of later minor additions are ignored
+            end select
+            if (ios /= 0) then
+                write (errmsg, '(2a,i0,4a)') trim(path), ': line ', line, ': bad value for ', trim(key), ': ', val
+                close (u); return
+            end if
+        end do
+        if (.not. have_format) then
+            errmsg = trim(path)//': not a fastcontact influence-coefficient file (no "format = fastcontact-ic")'
+            close (u); return
+        end if
+        if (version < 1 .or. version > ic_format_version) then
+            write (errmsg, '(2a,i0,a,i0)') trim(path), ': version = ', version, ' is not supported; this build reads 1 to ', &
+                ic_format_version
+            close (u); return
+        end if
+        if (set%content /= 'body' .and. set%content /= 'combined') then
+            errmsg = trim(path)//": content = '"//trim(set%content)//"' must be 'body' or 'combined'"; close (u); return
+        end if
+        if (mx < 0 .or. my < 0 .or. mx > ic_max_offset .or. my > ic_max_offset) then
+            write (errmsg, '(2a,i0,a,i0,a,i0)') trim(path), ': mx = ', mx, ', my = ', my, ' must lie in [0, ', ic_max_offset
+            errmsg = trim(errmsg)//']'
+            close (u); return
+        end if
+        if (.not. (dx > 0 .and. dy > 0)) then
+            write (errmsg, '(2a,es12.4,a,es12.4,a)') trim(path), ': dx = ', dx, ', dy = ', dy, ' must be > 0'
+            close (u); return
+        end if
+        if (set%content == 'body' .and. .not. (set%g > 0 .and. set%nu >= 0 .and. set%nu < 0.5_dp)) then
+            write (errmsg, '(2a,es12.4,a,g0.6,a)') trim(path), ': g = ', set%g, ', nu = ', set%nu, &
+                ' must satisfy g > 0, 0 <= nu < 0.5 for content body'
+            close (u); return
+        end if
+        call ic_set_allocate(set, mx, my, dx, dy)
+        do iy = -my, my
+            do ix = -mx, mx
+                line = line + 1
+                read (u, *, iostat=ios, iomsg=iomsg) jx, jy, v
+                if (ios /= 0) then
+                    write (errmsg, '(2a,i0,a,i0,a,i0,2a)') trim(path), ': line ', line, ': cannot read offset (', ix, ',', &
+                        iy, '): ', trim(iomsg)
+                    close (u); return
+                end if
+                if (jx /= ix .or. jy /= iy) then
+                    write (errmsg, '(2a,i0,a,i0,a,i0,a,i0,a,i0,a)') trim(path), ': line ', line, ': offset (', jx, ',', jy, &
+                        ') where (', ix, ',', iy, ') was expected'
+                    close (u); return
+                end if
+                set%a(ix, iy, 3, 3) = v(1); set%a(ix, iy, 1, 1) = v(2); set%a(ix, iy, 2, 2) = v(3)
+                set%a(ix, iy, 1, 2) = v(4); set%a(ix, iy, 2, 1) = v(5); set%a(ix, iy, 1, 3) = v(6)
+                set%a(ix, iy, 3, 1) = v(7); set%a(ix, iy, 2, 3) = v(8); set%a(ix, iy, 3, 2) = v(9)
+            end do
+        end do
+        close (u)
+        call validate_ic_set(set, path, stat, errmsg)
+    end subroutine read_ic_file
+
+end module fc_icfile

@@ -1,0 +1,90 @@
+!> The influence coefficients a case uses: read one file (fastcontact or CONTACT format),
+!! combine a body's coefficients with body 2 (a second file or the analytic half-space),
+!! check them against the body's material — one call for the driver and the flat API.
+module fc_icfile_load
+    use fc_kinds, only: dp, msg_len
+    use fc_icfile
+    use fc_icfile_contact, only: read_contact_file
+    implicit none
+    private
+
+    public :: load_influence_source, read_any_ic_file
+
+contains
+
+    !> Read `path` in either format (fastcontact files start with `format = fastcontact-ic`).
+    subroutine read_any_ic_file(path, set, stat, errmsg)
+        character(len=*), intent(in) :: path
+        type(fc_ic_set), intent(inout) :: set
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        logical :: exists
+        inquire (file=path, exist=exists)
+        if (.not. exists) then
+            stat = 1; errmsg = "influence-coefficient file '"//trim(path)//"' does not exist"; return
+        end if
+        if (is_fastcontact_ic_file(path)) then
+            call read_ic_file(path, set, stat, errmsg)
+        else
+            call read_contact_file(path, set, stat, errmsg)
+        end if
+    end subroutine read_any_ic_file
+
+    !> Combined coefficients for a contact of body 1 (`path`) with body 2: `path2` when given,
+    !! else the elastic half-space (g2, nu2) (g2 ≥ 1e29: rigid).  A file of content 'body'
+    !! must have been computed for (g1, nu1); a 'combined' file (CONTACT's format, or ours)
+    !! already holds both bodies, and `path2` must then be empty.
+    subroutine load_influence_source(path, path2, g1, nu1, g2, nu2, set, stat, errmsg)
+        character(len=*), intent(in) :: path, path2
+        real(dp), intent(in) :: g1, nu1, g2, nu2
+        type(fc_ic_set), intent(inout) :: set
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        type(fc_ic_set) :: b1, b2
+        call read_any_ic_file(path, b1, stat, errmsg)
+        if (stat /= 0) return
+        if (b1%content == 'combined') then
+            if (len_trim(path2) > 0) then
+                stat = 1
+                errmsg = "'"//trim(path)//"' holds combined coefficients of both bodies; ic_file2 = '"//trim(path2)// &
+                    "' must not be given"
+                return
+            end if
+            set = b1
+            return
+        end if
+        call check_material(b1, path, g1, nu1, 'g1', 'nu1', stat, errmsg)
+        if (stat /= 0) return
+        if (len_trim(path2) > 0) then
+            call read_any_ic_file(path2, b2, stat, errmsg)
+            if (stat /= 0) return
+            if (b2%content /= 'body') then
+                stat = 1; errmsg = "ic_file2 = '"//trim(path2)//"' must hold one body's coefficients (content body)"
+                return
+            end if
+            call check_material(b2, path2, g2, nu2, 'g2', 'nu2', stat, errmsg)
+            if (stat /= 0) return
+        else
+            call analytic_body_set(g2, nu2, b1%dx, b1%dy, b1%mx, b1%my, b2, stat, errmsg)
+            if (stat /= 0) return
+        end if
+        call combine_ic_sets(b1, b2, set, stat, errmsg)
+        if (stat /= 0) return
+        call validate_ic_set(set, 'combined coefficients of '//trim(path), stat, errmsg)
+    end subroutine load_influence_source
+
+    subroutine check_material(b, path, g, nu, gkey, nukey, stat, errmsg)
+        type(fc_ic_set), intent(in) :: b
+        character(len=*), intent(in) :: path, gkey, nukey
+        real(dp), intent(in) :: g, nu
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        stat = 0; errmsg = ''
+        if (abs(b%g - g) > 1.0e-9_dp*abs(g) .or. abs(b%nu - nu) > 1.0e-9_dp) then
+            stat = 1
+            write (errmsg, '(5a,es12.5,3a,g0.6,a,es12.5,a,g0.6)') "'", trim(path), "' was computed for another body: ", &
+                gkey, ' = ', g, ', ', nukey, ' = ', nu, ' but the file has g = ', b%g, ', nu = ', b%nu
+        end if
+    end subroutine check_material
+
+end module fc_icfile_load

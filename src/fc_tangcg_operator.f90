@@ -1,0 +1,170 @@
+!> The tangential influence operator of one grid and material: the blocks A^xx, A^xy = A^yx,
+!! A^yy and, for dissimilar bodies (K ≠ 0), the coupling blocks A^xz, A^yz, A^zx, A^zy
+!! (signs in doc/conventions.md), with the combined 2×2 product used by the tangential
+!! solvers ([[fc_tangcg]]) and the coupling displacements used by the Panagiotopoulos
+!! iteration ([[fc_contact]]).  Storage and lifetime: doc/operators.md.
+module fc_tangcg_operator
+    use fc_kinds
+    use fc_geometry, only: fc_grid
+    use fc_influence
+    use fc_icfile, only: fc_ic_set, ic_set_kernel
+    use, intrinsic :: iso_c_binding, only: c_loc, c_associated
+    implicit none
+    private
+
+    !> Tangential influence blocks on one grid (and the coupling blocks when K ≠ 0).  All
+    !! blocks share a_xx's FFT plans and buffers (one set per grid); even blocks store real
+    !! symbols, the odd coupling blocks their imaginary parts.  Plans are released by
+    !! `destroy` or when the operator is dropped; a copy is independent of the original.
+    type, public :: fc_tangential_operator
+        type(fc_grid) :: grid
+        type(fc_material) :: material
+        type(fc_bttb) :: a_xx, a_xy, a_yy   !! tangential blocks (A^yx = A^xy)
+        type(fc_bttb) :: a_xz, a_yz         !! u_t from pn (built only when K ≠ 0)
+        type(fc_bttb) :: a_zx, a_zy         !! u_z from p_t (built only when K ≠ 0)
+        complex(dp), allocatable :: spec_x(:, :), spec_y(:, :), work(:, :)
+        integer :: nproducts = 0            !! combined 2×2 block products
+        real(dp) :: setup_seconds = 0
+    contains
+        procedure :: apply => tangential_apply
+        procedure :: destroy => tangential_destroy
+        procedure :: coupled => tangential_coupled
+        procedure :: matches => tangential_matches
+        procedure, private :: tangential_assign
+        generic :: assignment(=) => tangential_assign
+    end type fc_tangential_operator
+
+    public :: build_tangential_operator, coupling_displacements
+
+contains
+
+    !> Build the tangential blocks (and coupling blocks if K ≠ 0) for `grid`.
+    subroutine build_tangential_operator(top, material, grid, ic)
+        type(fc_tangential_operator), intent(inout) :: top
+        type(fc_material), intent(in) :: material
+        type(fc_grid), intent(in) :: grid
+        type(fc_ic_set), intent(in), optional :: ic   !! coefficients instead of the half-space ones
+        integer :: t0, t1, rate
+        call system_clock(t0, rate)
+        call top%destroy()
+        top%grid = grid
+        top%material = material
+        call build_block(top%a_xx, IC_XX)
+        call build_block(top%a_xy, IC_XY, top%a_xx)
+        call build_block(top%a_yy, IC_YY, top%a_xx)
+        if (material%k /= 0) then
+            call build_block(top%a_xz, IC_XZ, top%a_xx)
+            call build_block(top%a_yz, IC_YZ, top%a_xx)
+            call build_block(top%a_zx, IC_ZX, top%a_xx)
+            call build_block(top%a_zy, IC_ZY, top%a_xx)
+        end if
+        allocate (top%spec_x(top%a_xx%mx/2 + 1, top%a_xx%my))
+        allocate (top%spec_y, top%work, mold=top%spec_x)
+        top%nproducts = 0
+        call system_clock(t1)
+        top%setup_seconds = real(t1 - t0, dp)/rate
+    contains
+        !> One block from the half-space formulas or from `ic`, sharing the plans of `plans_from`.
+        subroutine build_block(op, block, plans_from)
+            type(fc_bttb), intent(inout) :: op
+            integer, intent(in) :: block
+            type(fc_bttb), intent(in), optional :: plans_from
+            real(dp), allocatable :: k(:, :)
+            integer :: stat
+            character(len=msg_len) :: msg
+            if (present(ic)) then
+                call ic_set_kernel(ic, block, grid, k, stat, msg)
+                call build_bttb_from_kernel(op, k(-(grid%nx - 1):grid%nx - 1, -(grid%ny - 1):grid%ny - 1), grid%nx, grid%ny, &
+                    plans_from)
+            else
+                call build_bttb(op, block, material, grid, plans_from=plans_from)
+            end if
+        end subroutine build_block
+    end subroutine build_tangential_operator
+
+    subroutine tangential_destroy(self)
+        class(fc_tangential_operator), intent(inout) :: self
+        call self%a_xx%destroy(); call self%a_xy%destroy(); call self%a_yy%destroy()
+        call self%a_xz%destroy(); call self%a_yz%destroy()
+        call self%a_zx%destroy(); call self%a_zy%destroy()
+        if (allocated(self%spec_x)) deallocate (self%spec_x, self%spec_y, self%work)
+    end subroutine tangential_destroy
+
+    !> Whether the built blocks serve `grid` and `material`: same element count and size
+    !! (relative 1e−12) and the same G, ν and K (K decides the coupling blocks).
+    pure logical function tangential_matches(self, grid, material) result(ok)
+        class(fc_tangential_operator), intent(in) :: self
+        type(fc_grid), intent(in) :: grid
+        type(fc_material), intent(in) :: material
+        ok = self%a_xx%built() .and. self%grid%nx == grid%nx .and. self%grid%ny == grid%ny .and. &
+            abs(self%grid%dx - grid%dx) <= 1e-12_dp*grid%dx .and. abs(self%grid%dy - grid%dy) <= 1e-12_dp*grid%dy &
+            .and. self%material%g == material%g .and. self%material%nu == material%nu .and. self%material%k == material%k
+    end function tangential_matches
+    !> `lhs = rhs`: deep copy; the copy's blocks share their own new plan set.
+    !! (Explicit rather than component-wise: gfortran 12 finalizes a shallow temporary in
+    !! the intrinsic assignment of a type with finalizable components.)
+    subroutine tangential_assign(lhs, rhs)
+        class(fc_tangential_operator), intent(inout) :: lhs
+        type(fc_tangential_operator), intent(in) :: rhs
+        if (same_object(lhs, rhs)) return
+        call lhs%destroy()
+        lhs%grid = rhs%grid
+        lhs%material = rhs%material
+        lhs%nproducts = rhs%nproducts
+        lhs%setup_seconds = rhs%setup_seconds
+        call copy_bttb(lhs%a_xx, rhs%a_xx)
+        call copy_bttb(lhs%a_xy, rhs%a_xy, plans_from=lhs%a_xx)
+        call copy_bttb(lhs%a_yy, rhs%a_yy, plans_from=lhs%a_xx)
+        call copy_bttb(lhs%a_xz, rhs%a_xz, plans_from=lhs%a_xx)
+        call copy_bttb(lhs%a_yz, rhs%a_yz, plans_from=lhs%a_xx)
+        call copy_bttb(lhs%a_zx, rhs%a_zx, plans_from=lhs%a_xx)
+        call copy_bttb(lhs%a_zy, rhs%a_zy, plans_from=lhs%a_xx)
+        if (allocated(rhs%spec_x)) allocate (lhs%spec_x, lhs%spec_y, lhs%work, mold=rhs%spec_x)
+    contains
+        logical function same_object(a, b)
+            class(fc_tangential_operator), intent(in), target :: a
+            type(fc_tangential_operator), intent(in), target :: b
+            same_object = c_associated(c_loc(a%setup_seconds), c_loc(b%setup_seconds))
+        end function same_object
+    end subroutine tangential_assign
+
+    !> True when the normal and tangential problems are coupled (K ≠ 0).
+    pure logical function tangential_coupled(self)
+        class(fc_tangential_operator), intent(in) :: self
+        tangential_coupled = self%a_xz%built()
+    end function tangential_coupled
+
+    !> (ux, uy) = [A^xx A^xy; A^xy A^yy]·(px, py): two forward and two inverse FFTs.
+    subroutine tangential_apply(self, px, py, ux, uy)
+        class(fc_tangential_operator), intent(inout) :: self
+        real(dp), intent(in) :: px(:, :), py(:, :)
+        real(dp), intent(out) :: ux(:, :), uy(:, :)
+        call self%a_xx%forward(px, self%spec_x)
+        call self%a_xx%forward(py, self%spec_y)
+        call spectrum_pair_product(self%a_xx, self%spec_x, self%a_xy, self%spec_y, self%work)
+        call self%a_xx%backward(self%work, ux)
+        call spectrum_pair_product(self%a_xy, self%spec_x, self%a_yy, self%spec_y, self%work)
+        call self%a_xx%backward(self%work, uy)
+        self%nproducts = self%nproducts + 1
+    end subroutine tangential_apply
+
+    !> Coupling displacements for K ≠ 0: tangential (A^xz pn, A^yz pn) and normal
+    !! A^zx px + A^zy py.  Zero when the bodies are quasi-identical.
+    subroutine coupling_displacements(top, pn, px, py, ux_from_pn, uy_from_pn, uz_from_pt)
+        type(fc_tangential_operator), intent(inout) :: top
+        real(dp), intent(in) :: pn(:, :), px(:, :), py(:, :)
+        real(dp), intent(out) :: ux_from_pn(:, :), uy_from_pn(:, :), uz_from_pt(:, :)
+        real(dp), allocatable :: tmp(:, :)
+        if (.not. top%coupled()) then
+            ux_from_pn = 0; uy_from_pn = 0; uz_from_pt = 0
+            return
+        end if
+        allocate (tmp, mold=pn)
+        call top%a_xz%apply(pn, ux_from_pn)
+        call top%a_yz%apply(pn, uy_from_pn)
+        call top%a_zx%apply(px, uz_from_pt)
+        call top%a_zy%apply(py, tmp)
+        uz_from_pt = uz_from_pt + tmp
+    end subroutine coupling_displacements
+
+end module fc_tangcg_operator

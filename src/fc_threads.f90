@@ -1,0 +1,101 @@
+!> Threads: the OpenMP thread count and FFTW's threaded planner.
+!!
+!! The count is a positive `threads` when one is given (`&solver threads`, the flat API,
+!! [[set_thread_count]]), else `OMP_NUM_THREADS` when it is set, else 1 ([[fc_default_threads]]):
+!! without either a run is serial, as before threads existed (OpenMP's own default, one
+!! thread per core, would also apply to machines shared with other jobs).
+!! FFTW plans made after [[set_thread_count]] split each transform over that many threads
+!! (FFTW's threaded library, `fftw3_omp`); plans made before keep their count, so the
+!! driver sets the count before it builds the operators of a case.  The planner is made
+!! thread-safe once (`fftw_make_planner_thread_safe`), so handles of the flat API may be
+!! built from different threads.  Built without OpenMP, every routine here reports one
+!! thread and does nothing else.
+!!
+!! What runs in parallel: FFT products (FFTW), the influence-coefficient loops, the
+!! periodic kernel, the rows and columns of the distributed products (doc/parallel.md).
+module fc_threads
+    use, intrinsic :: iso_c_binding, only: c_int
+    !$ use omp_lib, only: omp_get_max_threads, omp_set_num_threads, omp_get_num_procs
+    implicit none
+    private
+
+    integer, parameter, public :: max_threads_allowed = 1024  !! bound on a requested count
+
+    interface
+        integer(c_int) function fftw_init_threads() bind(C, name='fftw_init_threads')
+            import :: c_int
+        end function fftw_init_threads
+        subroutine fftw_plan_with_nthreads(n) bind(C, name='fftw_plan_with_nthreads')
+            import :: c_int
+            integer(c_int), value :: n
+        end subroutine fftw_plan_with_nthreads
+        subroutine fftw_make_planner_thread_safe() bind(C, name='fftw_make_planner_thread_safe')
+        end subroutine fftw_make_planner_thread_safe
+    end interface
+
+    logical, save :: fftw_threads_ready = .false.   ! set once, before any threaded plan
+
+    public :: set_thread_count, fc_thread_count, fc_openmp_enabled, check_thread_count, fc_default_threads
+
+contains
+
+    !> True when the library was compiled with OpenMP.
+    pure logical function fc_openmp_enabled()
+        fc_openmp_enabled = .false.
+        !$ fc_openmp_enabled = .true.
+    end function fc_openmp_enabled
+
+    !> Threads used from now on (OpenMP regions and FFTW plans made after the call).
+    integer function fc_thread_count()
+        fc_thread_count = 1
+        !$ fc_thread_count = omp_get_max_threads()
+    end function fc_thread_count
+
+    !> Threads when none is requested: OMP_NUM_THREADS if set to a count in 1 … 1024 (the
+    !! first entry of a list), else 1.
+    integer function fc_default_threads() result(n)
+        character(len=64) :: v
+        integer :: length, st, ios, k
+        n = 1
+        call get_environment_variable('OMP_NUM_THREADS', v, length, st)
+        if (st /= 0 .or. length == 0) return
+        k = scan(v, ',')
+        if (k > 0) v = v(1:k - 1)
+        read (v, *, iostat=ios) k
+        if (ios == 0 .and. k >= 1 .and. k <= max_threads_allowed) n = k
+    end function fc_default_threads
+
+    !> Validate a requested count: 0 (keep OMP_NUM_THREADS / the default) or 1 … 1024.
+    subroutine check_thread_count(n, stat, errmsg)
+        integer, intent(in) :: n
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        stat = 0; errmsg = ''
+        if (n < 0 .or. n > max_threads_allowed) then
+            stat = 1
+            write (errmsg, '(a,i0,a,i0,a)') 'solver: threads = ', n, ' must lie in [0, ', max_threads_allowed, &
+                '] (0: OMP_NUM_THREADS)'
+        end if
+    end subroutine check_thread_count
+
+    !> Use `n` threads (n ≤ 0: [[fc_default_threads]]) for OpenMP regions and for FFTW plans
+    !! made from now on.  Call it outside parallel regions.
+    subroutine set_thread_count(n)
+        integer, intent(in) :: n
+        integer(c_int) :: ok
+        integer :: m
+        m = n
+        if (m <= 0) m = fc_default_threads()
+        !$ call omp_set_num_threads(min(m, max_threads_allowed))
+        !$omp critical (fc_threads_init)
+        !$ if (.not. fftw_threads_ready) then
+        !$     ok = fftw_init_threads()
+        !$     call fftw_make_planner_thread_safe()
+        !$     fftw_threads_ready = ok /= 0
+        !$ end if
+        !$omp end critical (fc_threads_init)
+        !$ if (fftw_threads_ready) call fftw_plan_with_nthreads(int(omp_get_max_threads(), c_int))
+        ok = 0
+    end subroutine set_thread_count
+
+end module fc_threads

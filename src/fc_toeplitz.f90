@@ -1,0 +1,544 @@
+!> Block Toeplitz matrices with Toeplitz blocks (BTTB) and their fast products by FFT.
+!!
+!! An [[fc_bttb]] is y = A x on an nx×ny grid where A's entries depend only on the offset
+!! (ix−jx, iy−jy): the coefficients `kernel(dix, diy)`.  Products are circulant
+!! convolutions on a doubled grid (mx = 2nx, my = 2ny; the grid itself when periodic),
+!! one forward and one inverse real FFT per product (thesis §2.2.4, §3.3.1); the direct
+!! O(n²) sum is kept as the test oracle.  This module knows nothing of elasticity: the
+!! coefficients come from [[fc_influence]].
+!!
+!! Storage and lifetime:
+!! * the symbol (the transform of the circulant) is stored as real numbers when the
+!!   circulant is even, c(−i,−j) = c(i,j) (symbol real: A^zz, A^xx, A^yy, A^xy and the
+!!   Toeplitz inverses), or odd, c(−i,−j) = −c(i,j) (symbol imaginary: the coupling blocks
+!!   A^xz, A^zx, A^yz, A^zy); only other kernels keep a complex symbol;
+!! * FFTW plans and the work buffers live in a reference-counted plan set.  Blocks of one
+!!   operator on one grid share ONE set (`plans_from` on the build routines); the set is
+!!   freed with the last block using it, by [[fc_bttb]]'s `destroy` or its final binding;
+!! * copies are deep: assigning an [[fc_bttb]] gives the copy its own plans and buffers
+!!   (defined assignment), so a copy stays valid after the original is destroyed and two
+!!   copies never write into each other's buffers.  A copied operator made of several
+!!   blocks therefore owns one plan set per block; build in place to share.
+!! Blocks sharing a plan set must not be applied concurrently (one set of buffers).
+module fc_toeplitz
+    use fc_kinds, only: dp
+    use, intrinsic :: iso_c_binding, only: c_loc
+    use fc_fftw
+    implicit none
+    private
+
+    !> How the symbol is stored.
+    integer, parameter, public :: SYMBOL_GENERAL = 0  !! complex symbol
+    integer, parameter, public :: SYMBOL_EVEN = 1     !! real symbol (even circulant)
+    integer, parameter, public :: SYMBOL_ODD = 2      !! imaginary symbol, its imaginary part stored
+
+    !> FFTW plans and work buffers for products of one size (nx×ny grid in an mx×my
+    !! circulant), shared by reference count among the blocks of an operator.
+    type :: fc_fft_plans
+        integer :: nx = 0, ny = 0, mx = 0, my = 0
+        real(dp), allocatable :: rbuf(:, :)
+        complex(dp), allocatable :: cbuf(:, :)
+        type(c_ptr) :: plan_fwd = c_null_ptr, plan_bwd = c_null_ptr
+        ! Products skip the zero padding: r2c along x on the ny data columns only, then c2c
+        ! along y; inverse in the opposite order, c2r only for the ny columns kept.
+        type(c_ptr) :: plan_x_fwd = c_null_ptr, plan_y_fwd = c_null_ptr
+        type(c_ptr) :: plan_y_bwd = c_null_ptr, plan_x_bwd = c_null_ptr
+        logical :: split = .false.         !! use the padding-aware passes
+        integer :: refs = 0                !! blocks using this set
+    end type fc_fft_plans
+
+    !> BTTB operator: y = A x for one influence block (or preconditioner) on one grid.
+    type, public :: fc_bttb
+        integer :: nx = 0, ny = 0          !! grid size
+        integer :: mx = 0, my = 0          !! circulant (embedding) size
+        logical :: periodic = .false.      !! periodic convolution on the grid itself
+        real(dp), allocatable :: kernel(:, :)    !! coefficients A(dix, diy), dix ∈ [−(nx−1), nx−1] [mm/(N/mm²)]
+        integer :: parity = SYMBOL_GENERAL       !! SYMBOL_EVEN, SYMBOL_ODD or SYMBOL_GENERAL
+        real(dp), allocatable :: rsymbol(:, :)   !! even: symbol; odd: its imaginary part (scaled by 1/(mx·my))
+        complex(dp), allocatable :: csymbol(:, :) !! general kernels: r2c transform of the circulant / (mx·my)
+        type(fc_fft_plans), pointer :: fft => null()  !! plans and buffers (possibly shared)
+        integer :: nproducts = 0           !! number of products applied (work counter)
+    contains
+        procedure :: apply => bttb_apply
+        procedure :: apply_direct => bttb_apply_direct
+        procedure :: forward => bttb_forward
+        procedure :: backward => bttb_backward
+        procedure :: multiply => bttb_multiply
+        procedure :: destroy => bttb_destroy
+        procedure :: built => bttb_built
+        procedure :: shares_plans => bttb_shares_plans
+        procedure :: storage_bytes => bttb_storage_bytes
+        procedure, private :: bttb_assign
+        generic :: assignment(=) => bttb_assign
+        final :: bttb_final
+    end type fc_bttb
+
+    public :: build_bttb_from_kernel, build_bttb_periodic, inverse_toeplitz_from_kernel, fft_symbol_of_kernel
+    public :: copy_bttb, spectrum_pair_product
+
+contains
+
+    ! ---- construction -----------------------------------------------------------------------
+
+    !> Build a (non-periodic) BTTB operator from explicit coefficients
+    !! kernel(−(nx−1):nx−1, −(ny−1):ny−1); used for influence blocks and preconditioners.
+    !! With `plans_from` (a built operator of the same grid) the FFT plans and buffers are
+    !! shared with it instead of created.
+    subroutine build_bttb_from_kernel(op, kernel, nx, ny, plans_from)
+        type(fc_bttb), intent(inout) :: op
+        integer, intent(in) :: nx, ny
+        real(dp), intent(in) :: kernel(-(nx - 1):, -(ny - 1):)
+        type(fc_bttb), intent(in), optional :: plans_from
+        integer :: mx, my
+        mx = 2*nx; if (nx == 1) mx = 1
+        my = 2*ny; if (ny == 1) my = 1
+        call setup_plans(op, nx, ny, mx, my, plans_from)
+        call load_kernel(op, kernel)
+        call finish_symbol(op)
+    end subroutine build_bttb_from_kernel
+
+    !> Build a periodic operator on the grid itself from the wrapped coefficients
+    !! kernel(0:nx−1, 0:ny−1) (offsets taken modulo the grid).
+    subroutine build_bttb_periodic(op, kernel, plans_from)
+        type(fc_bttb), intent(inout) :: op
+        real(dp), intent(in) :: kernel(0:, 0:)
+        type(fc_bttb), intent(in), optional :: plans_from
+        integer :: nx, ny
+        nx = size(kernel, 1); ny = size(kernel, 2)
+        call setup_plans(op, nx, ny, nx, ny, plans_from)
+        op%periodic = .true.
+        allocate (op%kernel(0:nx - 1, 0:ny - 1), source=kernel)
+        op%fft%rbuf = kernel
+        call finish_symbol(op)
+    end subroutine build_bttb_periodic
+
+    !> Toeplitz approximation M ≈ A⁻¹ from A's coefficients kext(−nx:nx, −ny:ny) (thesis
+    !! §3.3.1, extended to 2D).  The coefficients for offsets −nx+1…nx (and likewise in y)
+    !! fill a 2nx×2ny circulant — the wrap-around slot holds the true coefficient at offset
+    !! nx, which keeps the circulant positive definite — whose symbol is inverted
+    !! pointwise; the central (2nx−1)×(2ny−1) coefficients of the inverse form M's kernel.
+    !! M on the grid is a principal block of that positive definite circulant, hence
+    !! symmetric positive definite; symbol values are floored at 1e−8 of the maximum.
+    subroutine inverse_toeplitz_from_kernel(kext, nx, ny, prec, min_symbol, plans_from)
+        integer, intent(in) :: nx, ny
+        real(dp), intent(in) :: kext(-nx:, -ny:)
+        type(fc_bttb), intent(inout) :: prec
+        real(dp), intent(out), optional :: min_symbol  !! smallest symbol value / largest (diagnostic)
+        type(fc_bttb), intent(in), optional :: plans_from
+        real(dp), allocatable :: mker(:, :)
+        real(dp) :: smax
+        integer :: mx, my, i, j, di, dj
+        mx = 2*nx; if (nx == 1) mx = 1
+        my = 2*ny; if (ny == 1) my = 1
+        call setup_plans(prec, nx, ny, mx, my, plans_from)
+        associate (w => prec%fft)
+            do j = 0, my - 1
+                dj = j; if (j > my/2) dj = j - my
+                do i = 0, mx - 1
+                    di = i; if (i > mx/2) di = i - mx
+                    w%rbuf(i + 1, j + 1) = kext(di, dj)
+                end do
+            end do
+            call fftw_execute_dft_r2c(w%plan_fwd, w%rbuf, w%cbuf)
+            smax = maxval(real(w%cbuf, dp))
+            if (present(min_symbol)) min_symbol = minval(real(w%cbuf, dp))/smax
+            w%cbuf = 1/cmplx(max(real(w%cbuf, dp), 1.0e-8_dp*smax), 0.0_dp, dp)/real(mx*my, dp)
+            call fftw_execute_dft_c2r(w%plan_bwd, w%cbuf, w%rbuf)
+            allocate (mker(-(nx - 1):nx - 1, -(ny - 1):ny - 1))
+            do j = -(ny - 1), ny - 1
+                do i = -(nx - 1), nx - 1
+                    mker(i, j) = w%rbuf(modulo(i, mx) + 1, modulo(j, my) + 1)
+                end do
+            end do
+        end associate
+        call load_kernel(prec, mker)
+        call finish_symbol(prec)
+    end subroutine inverse_toeplitz_from_kernel
+
+    !> Release `op` and give it plans: shared with `plans_from` when that operator is built
+    !! for the same sizes, else a new set.
+    subroutine setup_plans(op, nx, ny, mx, my, plans_from)
+        type(fc_bttb), intent(inout) :: op
+        integer, intent(in) :: nx, ny, mx, my
+        type(fc_bttb), intent(in), optional :: plans_from
+        call op%destroy()
+        op%nx = nx; op%ny = ny; op%mx = mx; op%my = my
+        op%periodic = .false.
+        if (present(plans_from)) then
+            if (associated(plans_from%fft)) then
+                if (plans_from%fft%nx == nx .and. plans_from%fft%ny == ny .and. plans_from%fft%mx == mx &
+                    .and. plans_from%fft%my == my) then
+                    op%fft => plans_from%fft
+                    op%fft%refs = op%fft%refs + 1
+                    return
+                end if
+            end if
+        end if
+        allocate (op%fft)
+        call plans_create(op%fft, nx, ny, mx, my)
+    end subroutine setup_plans
+
+    !> Create FFTW plans (FFTW_ESTIMATE: no measurement, deterministic) on new buffers.
+    subroutine plans_create(w, nx, ny, mx, my)
+        type(fc_fft_plans), intent(inout) :: w
+        integer, intent(in) :: nx, ny, mx, my
+        integer :: mxh
+        w%nx = nx; w%ny = ny; w%mx = mx; w%my = my
+        allocate (w%rbuf(mx, my), w%cbuf(mx/2 + 1, my))
+        ! FFTW's row-major dimensions are the reverse of Fortran's: (my, mx).
+        w%plan_fwd = fftw_plan_dft_r2c_2d(int(my, c_int), int(mx, c_int), w%rbuf, w%cbuf, FFTW_ESTIMATE)
+        w%plan_bwd = fftw_plan_dft_c2r_2d(int(my, c_int), int(mx, c_int), w%cbuf, w%rbuf, FFTW_ESTIMATE)
+        w%split = my > ny
+        if (w%split) then
+            mxh = mx/2 + 1
+            w%plan_x_fwd = fftw_plan_many_dft_r2c(1_c_int, [int(mx, c_int)], int(ny, c_int), w%rbuf, [int(mx, c_int)], &
+                1_c_int, int(mx, c_int), w%cbuf, [int(mxh, c_int)], 1_c_int, int(mxh, c_int), FFTW_ESTIMATE)
+            w%plan_y_fwd = fftw_plan_many_dft(1_c_int, [int(my, c_int)], int(mxh, c_int), w%cbuf, [int(my, c_int)], &
+                int(mxh, c_int), 1_c_int, w%cbuf, [int(my, c_int)], int(mxh, c_int), 1_c_int, FFTW_FORWARD, FFTW_ESTIMATE)
+            w%plan_y_bwd = fftw_plan_many_dft(1_c_int, [int(my, c_int)], int(mxh, c_int), w%cbuf, [int(my, c_int)], &
+                int(mxh, c_int), 1_c_int, w%cbuf, [int(my, c_int)], int(mxh, c_int), 1_c_int, FFTW_BACKWARD, FFTW_ESTIMATE)
+            w%plan_x_bwd = fftw_plan_many_dft_c2r(1_c_int, [int(mx, c_int)], int(ny, c_int), w%cbuf, [int(mxh, c_int)], &
+                1_c_int, int(mxh, c_int), w%rbuf, [int(mx, c_int)], 1_c_int, int(mx, c_int), FFTW_ESTIMATE)
+        end if
+        w%refs = 1
+    end subroutine plans_create
+
+    !> Destroy the plans and free the buffers.
+    subroutine plans_free(w)
+        type(fc_fft_plans), intent(inout) :: w
+        if (c_associated(w%plan_fwd)) call fftw_destroy_plan(w%plan_fwd)
+        if (c_associated(w%plan_bwd)) call fftw_destroy_plan(w%plan_bwd)
+        if (c_associated(w%plan_x_fwd)) call fftw_destroy_plan(w%plan_x_fwd)
+        if (c_associated(w%plan_y_fwd)) call fftw_destroy_plan(w%plan_y_fwd)
+        if (c_associated(w%plan_y_bwd)) call fftw_destroy_plan(w%plan_y_bwd)
+        if (c_associated(w%plan_x_bwd)) call fftw_destroy_plan(w%plan_x_bwd)
+        w%plan_fwd = c_null_ptr; w%plan_bwd = c_null_ptr
+        w%plan_x_fwd = c_null_ptr; w%plan_y_fwd = c_null_ptr
+        w%plan_y_bwd = c_null_ptr; w%plan_x_bwd = c_null_ptr
+        if (allocated(w%rbuf)) deallocate (w%rbuf)
+        if (allocated(w%cbuf)) deallocate (w%cbuf)
+        w%refs = 0
+    end subroutine plans_free
+
+    !> Store the coefficients and place them in the circulant (the plan set's real buffer).
+    subroutine load_kernel(op, kernel)
+        type(fc_bttb), intent(inout) :: op
+        real(dp), intent(in) :: kernel(-(op%nx - 1):, -(op%ny - 1):)
+        integer :: i, j
+        allocate (op%kernel(-(op%nx - 1):op%nx - 1, -(op%ny - 1):op%ny - 1), source=kernel)
+        op%fft%rbuf = 0
+        do j = -(op%ny - 1), op%ny - 1
+            do i = -(op%nx - 1), op%nx - 1
+                op%fft%rbuf(modulo(i, op%mx) + 1, modulo(j, op%my) + 1) = kernel(i, j)
+            end do
+        end do
+    end subroutine load_kernel
+
+    !> Transform the circulant in the real buffer into the scaled symbol, stored as real
+    !! numbers when the circulant is even or odd.
+    subroutine finish_symbol(op)
+        type(fc_bttb), intent(inout) :: op
+        real(dp) :: scale
+        op%parity = circulant_parity(op%fft%rbuf)
+        call fftw_execute_dft_r2c(op%fft%plan_fwd, op%fft%rbuf, op%fft%cbuf)
+        scale = real(op%mx*op%my, dp)
+        select case (op%parity)
+        case (SYMBOL_EVEN)
+            allocate (op%rsymbol, source=real(op%fft%cbuf, dp)/scale)
+        case (SYMBOL_ODD)
+            allocate (op%rsymbol, source=aimag(op%fft%cbuf)/scale)
+        case default
+            allocate (op%csymbol, source=op%fft%cbuf/scale)
+        end select
+        op%nproducts = 0
+    end subroutine finish_symbol
+
+    !> SYMBOL_EVEN when c(−i,−j) = c(i,j) (indices modulo the circulant), SYMBOL_ODD when
+    !! c(−i,−j) = −c(i,j), both to 1e−13 of max|c| (rounding of the coefficient sums);
+    !! else SYMBOL_GENERAL.  The symbol of an even (odd) real circulant is real (imaginary).
+    pure integer function circulant_parity(c) result(parity)
+        real(dp), intent(in) :: c(:, :)
+        integer :: mx, my, i, j, ir, jr
+        real(dp) :: tol, even_dev, odd_dev
+        mx = size(c, 1); my = size(c, 2)
+        tol = 1.0e-13_dp*maxval(abs(c))
+        even_dev = 0; odd_dev = 0
+        do j = 1, my
+            jr = modulo(1 - j, my) + 1
+            do i = 1, mx
+                ir = modulo(1 - i, mx) + 1
+                even_dev = max(even_dev, abs(c(i, j) - c(ir, jr)))
+                odd_dev = max(odd_dev, abs(c(i, j) + c(ir, jr)))
+            end do
+        end do
+        if (even_dev <= tol) then
+            parity = SYMBOL_EVEN
+        else if (odd_dev <= tol) then
+            parity = SYMBOL_ODD
+        else
+            parity = SYMBOL_GENERAL
+        end if
+    end function circulant_parity
+
+    !> Symbol (unscaled r2c transform of the circulant) as complex numbers; used by
+    !! preconditioner construction (thesis §3.3.1).
+    subroutine fft_symbol_of_kernel(op, symbol)
+        type(fc_bttb), intent(in) :: op
+        complex(dp), allocatable, intent(out) :: symbol(:, :)
+        real(dp) :: scale
+        scale = real(op%mx*op%my, dp)
+        select case (op%parity)
+        case (SYMBOL_EVEN)
+            allocate (symbol, source=cmplx(op%rsymbol*scale, 0.0_dp, dp))
+        case (SYMBOL_ODD)
+            allocate (symbol, source=cmplx(0.0_dp, op%rsymbol*scale, dp))
+        case default
+            allocate (symbol, source=op%csymbol*scale)
+        end select
+    end subroutine fft_symbol_of_kernel
+
+    ! ---- copies and lifetime ----------------------------------------------------------------
+
+    !> Deep copy: `dst` gets the coefficients and symbol of `src` and its own plans and
+    !! buffers, or shares those of `plans_from` (a built operator of the same sizes).
+    subroutine copy_bttb(dst, src, plans_from)
+        type(fc_bttb), intent(inout) :: dst
+        type(fc_bttb), intent(in) :: src
+        type(fc_bttb), intent(in), optional :: plans_from
+        if (.not. associated(src%fft)) then
+            call dst%destroy()
+        else
+            call setup_plans(dst, src%nx, src%ny, src%mx, src%my, plans_from)
+        end if
+        dst%nx = src%nx; dst%ny = src%ny; dst%mx = src%mx; dst%my = src%my
+        dst%periodic = src%periodic
+        dst%parity = src%parity
+        dst%nproducts = src%nproducts
+        if (allocated(src%kernel)) allocate (dst%kernel, source=src%kernel)
+        if (allocated(src%rsymbol)) allocate (dst%rsymbol, source=src%rsymbol)
+        if (allocated(src%csymbol)) allocate (dst%csymbol, source=src%csymbol)
+    end subroutine copy_bttb
+
+    !> `lhs = rhs`: deep copy with the copy's own plans and buffers.
+    subroutine bttb_assign(lhs, rhs)
+        class(fc_bttb), intent(inout) :: lhs
+        type(fc_bttb), intent(in) :: rhs
+        if (same_storage(lhs, rhs)) return   ! `a = a` (destroying lhs first would destroy rhs)
+        select type (lhs)
+        type is (fc_bttb)
+            call copy_bttb(lhs, rhs)
+        end select
+    end subroutine bttb_assign
+
+    !> True when a and b are the same object (their coefficient arrays coincide).
+    logical function same_storage(a, b)
+        class(fc_bttb), intent(in), target :: a
+        type(fc_bttb), intent(in), target :: b
+        same_storage = .false.
+        if (allocated(a%kernel) .and. allocated(b%kernel)) same_storage = c_associated(c_loc(a%kernel), c_loc(b%kernel))
+    end function same_storage
+
+    !> Release plans (when no other block uses them) and buffers.
+    subroutine bttb_destroy(self)
+        class(fc_bttb), intent(inout) :: self
+        if (associated(self%fft)) then
+            self%fft%refs = self%fft%refs - 1
+            if (self%fft%refs <= 0) then
+                call plans_free(self%fft)
+                deallocate (self%fft)
+            end if
+            nullify (self%fft)
+        end if
+        if (allocated(self%kernel)) deallocate (self%kernel)
+        if (allocated(self%rsymbol)) deallocate (self%rsymbol)
+        if (allocated(self%csymbol)) deallocate (self%csymbol)
+        self%nx = 0; self%ny = 0; self%mx = 0; self%my = 0
+        self%parity = SYMBOL_GENERAL
+    end subroutine bttb_destroy
+
+    !> Final binding: an operator that goes out of scope or is deallocated releases its
+    !! plans and buffers.
+    impure elemental subroutine bttb_final(self)
+        type(fc_bttb), intent(inout) :: self
+        call bttb_destroy(self)
+    end subroutine bttb_final
+
+    !> True once the operator has been built.
+    pure logical function bttb_built(self)
+        class(fc_bttb), intent(in) :: self
+        bttb_built = allocated(self%rsymbol) .or. allocated(self%csymbol)
+    end function bttb_built
+
+    !> True when `self` and `other` use the same plan set.
+    logical function bttb_shares_plans(self, other)
+        class(fc_bttb), intent(in) :: self
+        type(fc_bttb), intent(in) :: other
+        bttb_shares_plans = .false.
+        if (associated(self%fft) .and. associated(other%fft)) bttb_shares_plans = associated(self%fft, other%fft)
+    end function bttb_shares_plans
+
+    !> Bytes held by this operator's coefficients and symbol, plus its plan set's buffers
+    !! divided among the blocks sharing it.
+    real(dp) function bttb_storage_bytes(self) result(bytes)
+        class(fc_bttb), intent(in) :: self
+        bytes = 0
+        if (allocated(self%kernel)) bytes = bytes + 8.0_dp*size(self%kernel)
+        if (allocated(self%rsymbol)) bytes = bytes + 8.0_dp*size(self%rsymbol)
+        if (allocated(self%csymbol)) bytes = bytes + 16.0_dp*size(self%csymbol)
+        if (associated(self%fft)) then
+            if (self%fft%refs > 0) bytes = bytes + (8.0_dp*size(self%fft%rbuf) + 16.0_dp*size(self%fft%cbuf))/self%fft%refs
+        end if
+    end function bttb_storage_bytes
+
+    ! ---- products ---------------------------------------------------------------------------
+
+    !> y = A x by FFT (O(n log n)).  x, y are nx×ny arrays.
+    subroutine bttb_apply(self, x, y)
+        class(fc_bttb), intent(inout) :: self
+        real(dp), intent(in) :: x(:, :)
+        real(dp), intent(out) :: y(:, :)
+        call transform_forward(self%fft, x)
+        call multiply_in_place(self, self%fft%cbuf)
+        call transform_backward(self%fft, y)
+        self%nproducts = self%nproducts + 1
+    end subroutine bttb_apply
+
+    !> Spectrum of x (zero-padded to the circulant size): the first half of a product,
+    !! so that several blocks can share one forward transform.
+    subroutine bttb_forward(self, x, spectrum)
+        class(fc_bttb), intent(inout) :: self
+        real(dp), intent(in) :: x(:, :)
+        complex(dp), intent(out) :: spectrum(:, :)
+        call transform_forward(self%fft, x)
+        spectrum = self%fft%cbuf
+    end subroutine bttb_forward
+
+    !> y = IFFT(spectrum) restricted to the grid (spectrum already multiplied by symbols).
+    subroutine bttb_backward(self, spectrum, y)
+        class(fc_bttb), intent(inout) :: self
+        complex(dp), intent(in) :: spectrum(:, :)
+        real(dp), intent(out) :: y(:, :)
+        self%fft%cbuf = spectrum
+        call transform_backward(self%fft, y)
+        self%nproducts = self%nproducts + 1
+    end subroutine bttb_backward
+
+    !> out = spectrum · symbol (`add`: out = out + spectrum · symbol).
+    subroutine bttb_multiply(self, spectrum, out, add)
+        class(fc_bttb), intent(in) :: self
+        complex(dp), intent(in) :: spectrum(:, :)
+        complex(dp), intent(inout) :: out(:, :)
+        logical, intent(in), optional :: add
+        logical :: acc
+        acc = .false.
+        if (present(add)) acc = add
+        select case (self%parity)
+        case (SYMBOL_EVEN)
+            if (acc) then
+                out = out + spectrum*self%rsymbol
+            else
+                out = spectrum*self%rsymbol
+            end if
+        case (SYMBOL_ODD)    ! (a + ib)·(i s) = −b s + i a s
+            if (acc) then
+                out = out + cmplx(-aimag(spectrum)*self%rsymbol, real(spectrum, dp)*self%rsymbol, dp)
+            else
+                out = cmplx(-aimag(spectrum)*self%rsymbol, real(spectrum, dp)*self%rsymbol, dp)
+            end if
+        case default
+            if (acc) then
+                out = out + spectrum*self%csymbol
+            else
+                out = spectrum*self%csymbol
+            end if
+        end select
+    end subroutine bttb_multiply
+
+    !> c ← c · symbol.
+    subroutine multiply_in_place(self, c)
+        type(fc_bttb), intent(in) :: self
+        complex(dp), intent(inout) :: c(:, :)
+        select case (self%parity)
+        case (SYMBOL_EVEN)
+            c = c*self%rsymbol
+        case (SYMBOL_ODD)
+            c = cmplx(-aimag(c)*self%rsymbol, real(c, dp)*self%rsymbol, dp)
+        case default
+            c = c*self%csymbol
+        end select
+    end subroutine multiply_in_place
+
+    !> out = sa·A + sb·B for two blocks of one grid (one pass when both symbols are real).
+    subroutine spectrum_pair_product(a, sa, b, sb, out)
+        type(fc_bttb), intent(in) :: a, b
+        complex(dp), intent(in) :: sa(:, :), sb(:, :)
+        complex(dp), intent(out) :: out(:, :)
+        if (a%parity == SYMBOL_EVEN .and. b%parity == SYMBOL_EVEN) then
+            out = sa*a%rsymbol + sb*b%rsymbol
+        else
+            call a%multiply(sa, out)
+            call b%multiply(sb, out, add=.true.)
+        end if
+    end subroutine spectrum_pair_product
+
+    !> cbuf ← FFT of x zero-padded to mx×my.
+    subroutine transform_forward(w, x)
+        type(fc_fft_plans), intent(inout) :: w
+        real(dp), intent(in) :: x(:, :)
+        integer :: nx, ny
+        nx = w%nx; ny = w%ny
+        if (w%split) then
+            w%rbuf(1:nx, 1:ny) = x
+            w%rbuf(nx + 1:, 1:ny) = 0
+            call fftw_execute_dft_r2c(w%plan_x_fwd, w%rbuf, w%cbuf)
+            w%cbuf(:, ny + 1:) = 0
+            call fftw_execute_dft(w%plan_y_fwd, w%cbuf, w%cbuf)
+        else
+            if (w%mx == nx) then
+                w%rbuf = x
+            else
+                w%rbuf(1:nx, :) = x
+                w%rbuf(nx + 1:, :) = 0
+            end if
+            call fftw_execute_dft_r2c(w%plan_fwd, w%rbuf, w%cbuf)
+        end if
+    end subroutine transform_forward
+
+    !> y ← inverse FFT of cbuf, restricted to the grid (cbuf is destroyed).
+    subroutine transform_backward(w, y)
+        type(fc_fft_plans), intent(inout) :: w
+        real(dp), intent(out) :: y(:, :)
+        if (w%split) then
+            call fftw_execute_dft(w%plan_y_bwd, w%cbuf, w%cbuf)
+            call fftw_execute_dft_c2r(w%plan_x_bwd, w%cbuf, w%rbuf)
+        else
+            call fftw_execute_dft_c2r(w%plan_bwd, w%cbuf, w%rbuf)
+        end if
+        y = w%rbuf(1:w%nx, 1:w%ny)
+    end subroutine transform_backward
+
+    !> y = A x by the direct O(n²) sum over the stored coefficients: the test oracle.
+    subroutine bttb_apply_direct(self, x, y)
+        class(fc_bttb), intent(in) :: self
+        real(dp), intent(in) :: x(:, :)
+        real(dp), intent(out) :: y(:, :)
+        integer :: i, j, k, l, di, dj
+        real(dp) :: s
+        do j = 1, self%ny
+            do i = 1, self%nx
+                s = 0
+                do l = 1, self%ny
+                    dj = j - l
+                    if (self%periodic) dj = modulo(dj, self%ny)
+                    do k = 1, self%nx
+                        di = i - k
+                        if (self%periodic) di = modulo(di, self%nx)
+                        s = s + self%kernel(di, dj)*x(k, l)
+                    end do
+                end do
+                y(i, j) = s
+            end do
+        end do
+    end subroutine bttb_apply_direct
+
+end module fc_toeplitz

@@ -1,0 +1,206 @@
+!> Suite `operators`: LAPACK error reporting (fc_lapack) and the lifetime of the FFT
+!! operators (fc_influence, fc_norm, fc_tangcg): copies, destruction, shared transforms.
+module test_operators
+    use fc_kinds, only: dp
+    use fc_lapack, only: solve_spd, eigenvalues_general
+    use fc_geometry, only: fc_grid, make_grid, quadratic_gap
+    use fc_influence
+    use fc_norm, only: fc_normal_operator, build_normal_operator
+    use fc_tangcg, only: fc_tangential_operator, build_tangential_operator, coupling_displacements
+    use fc_testing
+    implicit none
+    private
+    public :: collect_operators
+
+contains
+
+    subroutine collect_operators(tests)
+        type(unittest_type), allocatable, intent(out) :: tests(:)
+        tests = [ &
+            new_unittest('lapack_spd_solve', test_spd_solve), &
+            new_unittest('lapack_not_spd_reported', test_not_spd), &
+            new_unittest('lapack_eigenvalues', test_eigenvalues), &
+            new_unittest('copy_survives_original', test_copy_survives_original), &
+            new_unittest('blocks_share_one_plan_set', test_shared_plans), &
+            new_unittest('real_symbols_even_odd', test_real_symbols), &
+            new_unittest('final_binding_releases_plans', test_final_binding) ]
+    end subroutine collect_operators
+
+    !> A 3×3 SPD system with a known solution.
+    subroutine test_spd_solve(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(dp) :: a(3, 3), b(3, 1), x(3)
+        integer :: stat
+        character(len=200) :: msg
+        a = reshape([4.0_dp, 1.0_dp, 0.0_dp, 1.0_dp, 3.0_dp, 1.0_dp, 0.0_dp, 1.0_dp, 2.0_dp], [3, 3])
+        x = [1.0_dp, -2.0_dp, 3.0_dp]
+        b(:, 1) = matmul(a, x)
+        call solve_spd(a, b, stat, msg)
+        call check(error, stat == 0, 'solve_spd stat = 0: '//trim(msg))
+        call check(error, maxval(abs(b(:, 1) - x)), 0.0_dp, 'solution', abs=1e-14_dp)
+    end subroutine test_spd_solve
+
+    !> An indefinite matrix: dposv's info > 0 comes back as stat ≠ 0 naming the minor.
+    subroutine test_not_spd(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(dp) :: a(2, 2), b(2, 1)
+        integer :: stat
+        character(len=200) :: msg
+        a = reshape([1.0_dp, 2.0_dp, 2.0_dp, 1.0_dp], [2, 2])   ! eigenvalues 3 and −1
+        b = 1
+        call solve_spd(a, b, stat, msg)
+        call check(error, stat /= 0, 'indefinite matrix must fail')
+        call check(error, index(msg, 'not positive definite') > 0 .and. index(msg, 'order 2') > 0, &
+            'message names the failing minor: '//trim(msg))
+        a = 1; b = 1
+        call solve_spd(a(:, 1:1), b, stat, msg)
+        call check(error, stat /= 0 .and. index(msg, 'do not match') > 0, 'shape mismatch: '//trim(msg))
+    end subroutine test_not_spd
+
+    !> Eigenvalues of a rotation-scaling matrix: 2 ± 3i, and a diagonal entry 5.
+    subroutine test_eigenvalues(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(dp) :: a(3, 3)
+        real(dp), allocatable :: wr(:), wi(:)
+        integer :: stat
+        character(len=200) :: msg
+        a = reshape([2.0_dp, -3.0_dp, 0.0_dp, 3.0_dp, 2.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 5.0_dp], [3, 3])
+        call eigenvalues_general(a, wr, wi, stat, msg)
+        call check(error, stat == 0, 'dgeev stat = 0: '//trim(msg))
+        call check(error, maxval(wr), 5.0_dp, 'largest real part', abs=1e-13_dp)
+        call check(error, maxval(wi), 3.0_dp, 'largest imaginary part', abs=1e-13_dp)
+        call check(error, minval(wi), -3.0_dp, 'smallest imaginary part', abs=1e-13_dp)
+    end subroutine test_eigenvalues
+
+    subroutine dissimilar(mat)
+        type(fc_material), intent(out) :: mat
+        integer :: stat
+        character(len=200) :: msg
+        mat%g1 = 200; mat%g2 = 1000; mat%nu1 = 0.42_dp; mat%nu2 = 0.3_dp   ! K ≠ 0: coupling blocks
+        call combine_material(mat, stat, msg)
+    end subroutine dissimilar
+
+    !> Copy the normal and the tangential operator, destroy the originals, use the copies:
+    !! FFT products of the copies equal the direct sums (own plans, valid buffers).
+    subroutine test_copy_survives_original(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_material) :: mat
+        type(fc_grid) :: grid
+        type(fc_normal_operator) :: nop, ncopy
+        type(fc_tangential_operator) :: top, tcopy
+        type(fc_bttb) :: blk
+        real(dp), allocatable :: x(:, :), y(:, :), yf(:, :), yd(:, :), ux(:, :), uy(:, :), uz(:, :), t(:, :)
+        integer :: stat
+        character(len=200) :: msg
+        call dissimilar(mat)
+        call make_grid(grid, 12, 9, -1.0_dp, 1.0_dp, -0.8_dp, 0.7_dp, stat, msg)
+        allocate (x(12, 9), y(12, 9), yf(12, 9), yd(12, 9), ux(12, 9), uy(12, 9), uz(12, 9), t(12, 9))
+        call random_number(x); call random_number(y)
+        call build_normal_operator(nop, mat, grid)
+        call build_tangential_operator(top, mat, grid)
+        ncopy = nop
+        tcopy = top
+        call check(error, .not. ncopy%a_zz%shares_plans(nop%a_zz), 'the copy has its own plans')
+        call nop%destroy(); call top%destroy()
+        call ncopy%a_zz%apply(x, yf); call ncopy%a_zz%apply_direct(x, yd)
+        call check(error, rel_diff(pack(yf, .true.), pack(yd, .true.)), 0.0_dp, 'copied A^zz', abs=1e-12_dp)
+        call ncopy%precond%apply(x, yf); call ncopy%precond%apply_direct(x, yd)
+        call check(error, rel_diff(pack(yf, .true.), pack(yd, .true.)), 0.0_dp, 'copied preconditioner', abs=1e-12_dp)
+        call tcopy%apply(x, y, ux, uy)
+        call tcopy%a_xx%apply_direct(x, yd); call tcopy%a_xy%apply_direct(y, t)
+        call check(error, rel_diff(pack(ux, .true.), pack(yd + t, .true.)), 0.0_dp, 'copied tangential ux', abs=1e-12_dp)
+        call coupling_displacements(tcopy, x, x, y, ux, uy, uz)
+        call tcopy%a_xz%apply_direct(x, yd)
+        call check(error, rel_diff(pack(ux, .true.), pack(yd, .true.)), 0.0_dp, 'copied coupling A^xz', abs=1e-12_dp)
+        ! self-assignment keeps the operator
+        blk = ncopy%a_zz
+        blk = blk
+        call blk%apply(x, yf); call ncopy%a_zz%apply_direct(x, yd)
+        call check(error, rel_diff(pack(yf, .true.), pack(yd, .true.)), 0.0_dp, 'after a = a', abs=1e-12_dp)
+        call ncopy%destroy(); call tcopy%destroy()
+    end subroutine test_copy_survives_original
+
+    !> One plan set per grid: A^zz and its preconditioner, and all seven tangential blocks.
+    subroutine test_shared_plans(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_material) :: mat
+        type(fc_grid) :: grid
+        type(fc_normal_operator) :: nop
+        type(fc_tangential_operator) :: top
+        integer :: stat
+        character(len=200) :: msg
+        call dissimilar(mat)
+        call make_grid(grid, 10, 8, -1.0_dp, 1.0_dp, -1.0_dp, 1.0_dp, stat, msg)
+        call build_normal_operator(nop, mat, grid)
+        call check(error, nop%precond%shares_plans(nop%a_zz), 'preconditioner shares A^zz plans')
+        call build_tangential_operator(top, mat, grid)
+        call check(error, top%a_xy%shares_plans(top%a_xx) .and. top%a_yy%shares_plans(top%a_xx) .and. &
+            top%a_xz%shares_plans(top%a_xx) .and. top%a_yz%shares_plans(top%a_xx) .and. &
+            top%a_zx%shares_plans(top%a_xx) .and. top%a_zy%shares_plans(top%a_xx), 'seven blocks, one plan set')
+        call check(error, top%a_xx%fft%refs == 7, 'plan set used by 7 blocks')
+        call top%a_xx%destroy()   ! the others keep the set alive
+        call check(error, top%a_xy%fft%refs == 6, 'set survives its first owner')
+        call nop%destroy(); call top%destroy()
+    end subroutine test_shared_plans
+
+    !> Even blocks store a real symbol, odd (coupling) blocks their imaginary part; the
+    !! products still match the direct sums (checked for all blocks in suite influence).
+    subroutine test_real_symbols(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_material) :: mat
+        type(fc_grid) :: grid
+        type(fc_bttb) :: op
+        complex(dp), allocatable :: sym(:, :)
+        integer :: stat, b
+        character(len=200) :: msg, label
+        call dissimilar(mat)
+        call make_grid(grid, 9, 7, -1.0_dp, 1.0_dp, -1.0_dp, 0.5_dp, stat, msg)
+        do b = IC_ZZ, IC_ZY
+            call build_bttb(op, b, mat, grid)
+            write (label, '(a,i0)') 'block ', b
+            call check(error, allocated(op%rsymbol) .and. .not. allocated(op%csymbol), trim(label)//' real storage')
+            if (b <= IC_XY) then
+                call check(error, op%parity == SYMBOL_EVEN, trim(label)//' even')
+            else
+                call check(error, op%parity == SYMBOL_ODD, trim(label)//' odd')
+            end if
+            call check(error, size(op%rsymbol) == (op%mx/2 + 1)*op%my, trim(label)//' half spectrum')
+        end do
+        call build_inverse_toeplitz(IC_ZZ, mat, grid, op)
+        call check(error, op%parity == SYMBOL_EVEN, 'Toeplitz inverse even')
+        call fft_symbol_of_kernel(op, sym)
+        call check(error, maxval(abs(aimag(sym))) == 0, 'inverse symbol real')
+        call op%destroy()
+    end subroutine test_real_symbols
+
+    !> A block that goes out of scope releases its share of the plan set (final binding).
+    subroutine test_final_binding(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_material) :: mat
+        type(fc_grid) :: grid
+        type(fc_bttb) :: owner
+        type(fc_bttb), allocatable :: extra(:)
+        integer :: stat
+        character(len=200) :: msg
+        call dissimilar(mat)
+        call make_grid(grid, 8, 6, -1.0_dp, 1.0_dp, -1.0_dp, 1.0_dp, stat, msg)
+        call build_bttb(owner, IC_ZZ, mat, grid)
+        call scoped_user(owner)
+        call check(error, owner%fft%refs == 1, 'block dropped at the end of its scope released the plans')
+        allocate (extra(3))
+        call build_bttb(extra(1), IC_XX, mat, grid, plans_from=owner)
+        call build_bttb(extra(2), IC_YY, mat, grid, plans_from=owner)
+        call check(error, owner%fft%refs == 3, 'two more users')
+        deallocate (extra)
+        call check(error, owner%fft%refs == 1, 'deallocated blocks released the plans')
+        call owner%destroy()
+    contains
+        subroutine scoped_user(o)
+            type(fc_bttb), intent(in) :: o
+            type(fc_bttb) :: local
+            call build_bttb(local, IC_XY, mat, grid, plans_from=o)
+            call check(error, o%fft%refs == 2, 'local block shares the plans')
+        end subroutine scoped_user
+    end subroutine test_final_binding
+
+end module test_operators

@@ -1,0 +1,370 @@
+!> Suite `parallel`: threads (results independent of the thread count), the periodic
+!! half-space (Johnson's wavy surface in full contact, circulant structure, grid checks) and
+!! the row-slab generation of rough surfaces used by distributed runs.  The distributed
+!! solver itself is tested in mpi/test (run under mpirun).
+module test_parallel
+    use fc_kinds, only: dp, pi, FC_CONVERGED
+    use fc_geometry, only: fc_grid, make_grid, fc_rough_params, quadratic_gap, wavy_gap, rough_heights, &
+        rough_heights_rows
+    use fc_influence, only: fc_material, combine_material
+    use fc_norm, only: fc_normal_operator, fc_normal_settings, fc_normal_result, build_normal_operator, solve_normal
+    use fc_periodic, only: build_periodic_normal_operator
+    use fc_threads, only: set_thread_count, fc_thread_count, check_thread_count, fc_openmp_enabled
+    use fc_driver, only: run_driver
+    use, intrinsic :: iso_c_binding, only: c_int, c_double
+    use fc_legacy, only: fc_init, fc_finalize, fc_set_material, fc_set_grid, fc_set_gap_quadratic, fc_set_gap_array, &
+        fc_set_normal_force, fc_calculate, fc_get_pmax, fc_set_periodic, fc_set_threads, fc_get_error_message, FCL_OK, &
+        FCL_ORDER, FCL_INVALID_VALUE
+    use fc_testing
+    implicit none
+    private
+    public :: collect_parallel
+
+contains
+
+    subroutine collect_parallel(tests)
+        type(unittest_type), allocatable, intent(out) :: tests(:)
+        tests = [ &
+            new_unittest('threads_same_result', test_threads_same), &
+            new_unittest('threads_count_bounds', test_thread_bounds), &
+            new_unittest('periodic_wavy_full_contact', test_wavy), &
+            new_unittest('periodic_operator_is_circulant', test_circulant), &
+            new_unittest('periodic_grid_checks', test_periodic_checks), &
+            new_unittest('rough_rows_equal_whole_surface', test_rough_rows), &
+            new_unittest('driver_periodic_wavy_partial_contact', test_driver_wavy), &
+            new_unittest('driver_periodic_input_errors', test_driver_periodic_errors), &
+            new_unittest('driver_threads_key', test_driver_threads), &
+            new_unittest('api_handles_from_threads', test_api_threads), &
+            new_unittest('api_periodic_wavy', test_api_periodic) ]
+    end subroutine collect_parallel
+
+    subroutine steel(mat)
+        type(fc_material), intent(out) :: mat
+        integer :: stat
+        character(len=200) :: m
+        mat%g1 = 82000; mat%g2 = 82000; mat%nu1 = 0.28_dp; mat%nu2 = 0.28_dp
+        call combine_material(mat, stat, m)
+    end subroutine steel
+
+    !> Hertz 64×48, force prescribed, solved with 1 and with 2 threads (threaded FFTW plans
+    !! and OpenMP loops): the same iterations and pressures to 1e−12 of pmax (sums in a
+    !! different order change the last bits only).
+    subroutine test_threads_same(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_material) :: mat
+        type(fc_grid) :: grid
+        type(fc_normal_operator) :: nop
+        type(fc_normal_settings) :: set
+        type(fc_normal_result) :: r1, r2
+        integer :: stat, nt0
+        character(len=256) :: em
+        nt0 = fc_thread_count()
+        call steel(mat)
+        call make_grid(grid, 64, 48, -2.0_dp, 2.0_dp, -1.5_dp, 1.5_dp, stat, em)
+        call set_thread_count(1)
+        call build_normal_operator(nop, mat, grid)
+        call solve_normal(nop, quadratic_gap(grid, 30.0_dp, 20.0_dp), set, r1, stat, em, fn=400.0_dp)
+        call set_thread_count(2)
+        call build_normal_operator(nop, mat, grid)
+        call solve_normal(nop, quadratic_gap(grid, 30.0_dp, 20.0_dp), set, r2, stat, em, fn=400.0_dp)
+        call set_thread_count(nt0)
+        call check(error, r1%status == FC_CONVERGED .and. r2%status == FC_CONVERGED, 'both runs converge')
+        call check(error, r1%iterations == r2%iterations, 'same iteration count')
+        call check(error, maxval(abs(r1%pn - r2%pn)), 0.0_dp, '1 vs 2 threads: pressure', abs=1e-12_dp*r1%pmax)
+        call check(error, r2%fn, r1%fn, '1 vs 2 threads: force', rel=1e-13_dp)
+        if (fc_openmp_enabled()) then
+            call set_thread_count(2)
+            call check(error, fc_thread_count() == 2, 'set_thread_count(2) gives 2 threads')
+            call set_thread_count(nt0)
+        end if
+    end subroutine test_threads_same
+
+    subroutine test_thread_bounds(error)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: stat
+        character(len=256) :: em
+        call check_thread_count(-1, stat, em)
+        call check(error, stat /= 0 .and. index(em, 'threads = -1') > 0, 'threads = -1 rejected naming the key: '//trim(em))
+        call check_thread_count(5000, stat, em)
+        call check(error, stat /= 0 .and. index(em, '1024') > 0, 'threads = 5000 rejected naming the limit: '//trim(em))
+        call check_thread_count(0, stat, em)
+        call check(error, stat == 0, 'threads = 0 (OMP_NUM_THREADS) accepted')
+    end subroutine test_thread_bounds
+
+    !> Wavy surface h0 = A(1 − cos 2πx/λ) on a periodic cell of one wavelength under mean
+    !! pressure p̄ = 1.5 p*, p* = π E* A/λ (E* = G/(1−ν) with Kalker's combined constants):
+    !! full contact, p = p̄ + p* cos 2πx/λ (Johnson, Contact Mechanics §13.2).  64 elements
+    !! per wavelength: the piecewise-constant elements change the amplitude by about
+    !! (π/64)²/6 ≈ 0.04 %, the image sum (2 rings + continuum tail) by < 0.1 %; tolerance 0.5 %
+    !! of p*.  Below p̄ = p* the contact must open.
+    subroutine test_wavy(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_material) :: mat
+        type(fc_grid) :: grid
+        type(fc_normal_operator) :: nop
+        type(fc_normal_settings) :: set
+        type(fc_normal_result) :: res
+        real(dp), allocatable :: h0(:, :), pex(:, :)
+        real(dp) :: lam, amp, pstar, pbar
+        integer :: stat, i
+        character(len=256) :: em
+        call steel(mat)
+        lam = 2.0_dp; amp = 2e-4_dp
+        call make_grid(grid, 64, 4, 0.0_dp, lam, 0.0_dp, 4*lam/64, stat, em)
+        h0 = wavy_gap(grid, amp, lam, 0.0_dp)
+        pstar = pi*mat%g/(1 - mat%nu)*amp/lam
+        pbar = 1.5_dp*pstar
+        call build_periodic_normal_operator(nop, mat, grid, stat, em)
+        call check(error, stat == 0, 'build: '//trim(em))
+        if (allocated(error)) return
+        set%tol = 1e-10_dp
+        call solve_normal(nop, h0, set, res, stat, em, fn=pbar*lam*grid%ymax)
+        call check(error, stat == 0 .and. res%status == FC_CONVERGED, 'solve: '//trim(em)//' '//trim(res%message))
+        if (allocated(error)) return
+        allocate (pex(64, 4))
+        do i = 1, 64
+            pex(i, :) = pbar + pstar*cos(2*pi*grid%x(i)/lam)
+        end do
+        call check(error, res%ncon == 64*4, 'full contact at 1.5 p*')
+        call check(error, maxval(abs(res%pn - pex)), 0.0_dp, 'pressure vs Johnson (units of p*)', abs=0.005_dp*pstar)
+        call solve_normal(nop, h0, set, res, stat, em, fn=0.9_dp*pstar*lam*grid%ymax)
+        call check(error, res%ncon < 64*4, 'partial contact at 0.9 p*')
+    end subroutine test_wavy
+
+    !> A cyclic shift of the load shifts the periodic response by the same amount, and the
+    !! response to a uniform load is zero (displacements up to a constant, mean removed).
+    subroutine test_circulant(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_material) :: mat
+        type(fc_grid) :: grid
+        type(fc_normal_operator) :: nop
+        real(dp) :: x(16, 12), y(16, 12), ys(16, 12)
+        integer :: stat, i, j
+        character(len=256) :: em
+        call steel(mat)
+        call make_grid(grid, 16, 12, 0.0_dp, 1.6_dp, 0.0_dp, 1.0_dp, stat, em)
+        call build_periodic_normal_operator(nop, mat, grid, stat, em)
+        do j = 1, 12
+            do i = 1, 16
+                x(i, j) = modulo(0.37_dp*i + 0.61_dp*j*j, 1.0_dp)
+            end do
+        end do
+        call nop%a_zz%apply(x, y)
+        call nop%a_zz%apply(cshift(cshift(x, 5, 1), -3, 2), ys)
+        call check(error, maxval(abs(ys - cshift(cshift(y, 5, 1), -3, 2))), 0.0_dp, 'shifted response', &
+            abs=1e-12_dp*maxval(abs(y)))
+        x = 1
+        call nop%a_zz%apply(x, y)
+        call check(error, maxval(abs(y)), 0.0_dp, 'uniform load: zero response', abs=1e-12_dp*maxval(abs(ys)))
+    end subroutine test_circulant
+
+    subroutine test_periodic_checks(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_material) :: mat
+        type(fc_grid) :: grid
+        type(fc_normal_operator) :: nop
+        integer :: stat
+        character(len=256) :: em
+        call steel(mat)
+        call make_grid(grid, 15, 12, 0.0_dp, 1.6_dp, 0.0_dp, 1.0_dp, stat, em)
+        call build_periodic_normal_operator(nop, mat, grid, stat, em)
+        call check(error, stat /= 0 .and. index(em, 'nx = 15') > 0, 'odd nx rejected naming it: '//trim(em))
+        call make_grid(grid, 16, 12, 0.0_dp, 1.6_dp, 0.0_dp, 1.0_dp, stat, em)
+        call build_periodic_normal_operator(nop, mat, grid, stat, em, images=51)
+        call check(error, stat /= 0 .and. index(em, 'images = 51') > 0, 'images above the bound rejected: '//trim(em))
+    end subroutine test_periodic_checks
+
+    !> Slabs of rows of the rough surface equal the whole-grid surface bit for bit.
+    subroutine test_rough_rows(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_grid) :: grid
+        type(fc_rough_params) :: par
+        real(dp) :: z(30, 22), za(30, 1:9), zb(30, 10:22)
+        integer :: stat
+        character(len=256) :: em
+        call make_grid(grid, 30, 22, -1.0_dp, 1.3_dp, -0.8_dp, 0.9_dp, stat, em)
+        par%seed = 123
+        call rough_heights(grid, par, z)
+        call rough_heights_rows(grid, par, 1, 9, za)
+        call rough_heights_rows(grid, par, 10, 22, zb)
+        call check(error, all(za == z(:, 1:9)) .and. all(zb == z(:, 10:22)), 'slabs equal the whole surface')
+    end subroutine test_rough_rows
+
+    !> Write `text` to build/test_parallel.nml and run the driver on it (report discarded);
+    !! errors go to build/test_parallel.err, returned in `errtext`.
+    subroutine drive(text, code, errtext)
+        character(len=*), intent(in) :: text
+        integer, intent(out) :: code
+        character(len=:), allocatable, intent(out) :: errtext
+        character(len=64) :: args(3)
+        character(len=512) :: line
+        integer :: u, ur, ue, ios
+        open (newunit=u, file='build/test_parallel.nml', status='replace', action='write')
+        write (u, '(a)') text
+        close (u)
+        args(1) = 'build/test_parallel.nml'; args(2) = '--out'; args(3) = 'build/test_parallel_out'
+        open (newunit=ur, status='scratch')
+        open (newunit=ue, file='build/test_parallel.err', status='replace')
+        call run_driver(args, code, ur, ue)
+        close (ur)
+        rewind (ue)
+        errtext = ''
+        do
+            read (ue, '(a)', iostat=ios) line
+            if (ios /= 0) exit
+            errtext = errtext//trim(line)//' '
+        end do
+        close (ue)
+    end subroutine drive
+
+    !> Value of a numeric JSON key of build/test_parallel_out/NAME.json (huge if absent).
+    real(dp) function json_value(name, key) result(v)
+        character(len=*), intent(in) :: name, key
+        character(len=4096) :: line
+        integer :: u, ios, k
+        v = huge(1.0_dp)
+        open (newunit=u, file='build/test_parallel_out/'//name//'.json', status='old', action='read', iostat=ios)
+        if (ios /= 0) return
+        do
+            read (u, '(a)', iostat=ios) line
+            if (ios /= 0) exit
+            k = index(line, '"'//key//'": ')
+            if (k == 1 + verify(line, ' ') - 1 .and. k > 0) then
+                read (line(k + len(key) + 4:), *, iostat=ios) v
+                exit
+            end if
+        end do
+        close (u)
+    end function json_value
+
+    !> The driver with `&grid periodic = .true.` on the wavy surface below full contact:
+    !! Johnson's partial-contact solution (§13.2) has sin²(πa/λ) = p̄/p* and
+    !! pmax = 2·sqrt(p̄·p*).  64 elements per wavelength: pmax within 1 %, contact width
+    !! 2a within one element per side.
+    subroutine test_driver_wavy(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: err
+        real(dp) :: pstar, pbar, a, lam, pmax, ncon
+        integer :: code
+        lam = 2.0_dp
+        pstar = pi*82000.0_dp/(1 - 0.28_dp)*2.0e-4_dp/lam
+        pbar = 4.0_dp/(lam*0.125_dp)
+        call drive("&case name = 'wavy_cell' / &material g1 = 82000.0, g2 = 82000.0, nu1 = 0.28, nu2 = 0.28 / "// &
+            "&grid nx = 64, ny = 4, xmin = 0.0, xmax = 2.0, ymin = 0.0, ymax = 0.125, periodic = .true. / "// &
+            "&geometry kind = 'wavy', amplitude = 2.0e-4, wavelength_x = 2.0 / &normal fn = 4.0 / "// &
+            "&solver tol = 1.0e-10 /", code, err)
+        call check(error, code == 0, 'driver exit status 0: '//err)
+        if (allocated(error)) return
+        pmax = json_value('wavy_cell', 'pmax')
+        ncon = json_value('wavy_cell', 'ncon')
+        a = lam/pi*asin(sqrt(pbar/pstar))
+        call check(error, pmax, 2*sqrt(pbar*pstar), 'pmax vs Johnson 2 sqrt(pbar p*)', rel=0.01_dp)
+        call check(error, abs(ncon/4 - 2*a/(lam/64)) <= 2, 'contact width 2a within one element per side')
+    end subroutine test_driver_wavy
+
+    subroutine test_driver_periodic_errors(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: err
+        character(len=*), parameter :: base = "&case name = 'cell' / &material g1 = 82000.0, g2 = 82000.0 / "// &
+            "&geometry kind = 'wavy', amplitude = 2.0e-4, wavelength_x = 2.0 / "
+        integer :: code
+        call drive(base//"&grid nx = 64, ny = 4, xmin = 0.0, xmax = 2.0, ymin = 0.0, ymax = 0.125, periodic = .true. /"// &
+            " &normal approach = 1.0e-4 /", code, err)
+        call check(error, code == 1 .and. index(err, 'periodic') > 0 .and. index(err, 'fn') > 0, &
+            'periodic with approach rejected: '//err)
+        call drive(base//"&grid nx = 63, ny = 4, xmin = 0.0, xmax = 2.0, ymin = 0.0, ymax = 0.125, periodic = .true. /"// &
+            " &normal fn = 4.0 /", code, err)
+        call check(error, code == 1 .and. index(err, 'nx = 63') > 0, 'odd nx rejected naming it: '//err)
+        call drive(base//"&grid nx = 64, ny = 4, xmin = 0.0, xmax = 2.0, ymin = 0.0, ymax = 0.125, periodic = .true. /"// &
+            " &normal fn = 4.0 / &case problem = 'normal+tangential' / &tangential mu = 0.3, xi = 1.0e-4 /", code, err)
+        call check(error, code == 1 .and. index(err, 'normal contact only') > 0, 'periodic tangential rejected: '//err)
+    end subroutine test_driver_periodic_errors
+
+    !> &solver threads: bounds checked; 2 threads give the 1-thread result to round-off.
+    subroutine test_driver_threads(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: err
+        character(len=*), parameter :: base = "&case name = 'hz' / &material g1 = 82000.0, g2 = 82000.0 / "// &
+            "&grid nx = 48, ny = 40, xmin = -2.0, xmax = 2.0, ymin = -1.5, ymax = 1.5 / "// &
+            "&geometry kind = 'quadratic', rx = 30.0, ry = 20.0 / &normal fn = 400.0 / "
+        integer :: code
+        real(dp) :: p1, p2
+        call drive(base//"&solver threads = -1 /", code, err)
+        call check(error, code == 1 .and. index(err, 'threads = -1') > 0, 'threads = -1 rejected: '//err)
+        call drive(base//"&solver threads = 1 /", code, err)
+        p1 = json_value('hz', 'pmax')
+        call drive(base//"&solver threads = 2 /", code, err)
+        p2 = json_value('hz', 'pmax')
+        call set_thread_count(0)
+        call check(error, code == 0, 'threads = 2 runs: '//err)
+        call check(error, p2, p1, 'pmax with 2 threads', rel=1e-12_dp)
+    end subroutine test_driver_threads
+
+    !> Four handles calculated at the same time from four OpenMP threads (creation, solve
+    !! and release in the threads) give the pressures of the same handles calculated one
+    !! after the other.
+    subroutine test_api_threads(error)
+        type(error_type), allocatable, intent(out) :: error
+        real(c_double) :: pseq(4), ppar(4)
+        integer :: k, ok_count
+        ok_count = 0
+        do k = 1, 4
+            call one_handle(k, pseq(k))
+        end do
+        !$omp parallel do num_threads(4) default(shared) reduction(+:ok_count)
+        do k = 1, 4
+            call one_handle(k, ppar(k))
+            if (ppar(k) > 0) ok_count = ok_count + 1
+        end do
+        !$omp end parallel do
+        call check(error, ok_count == 4, 'every concurrent calculation succeeded')
+        call check(error, maxval(abs(ppar - pseq)), 0.0_dp, 'concurrent = sequential pmax', abs=1e-12_dp*maxval(pseq))
+    contains
+        subroutine one_handle(k, pmax)
+            integer, intent(in) :: k
+            real(c_double), intent(out) :: pmax
+            integer(c_int) :: h, ierr
+            pmax = -1
+            call fc_init(h, ierr)
+            if (ierr /= FCL_OK) return
+            call fc_set_material(h, 82000.0_c_double, 82000.0_c_double, 0.28_c_double, 0.28_c_double, ierr)
+            call fc_set_grid(h, 40_c_int + 8*k, 36_c_int, -2.0_c_double, 2.0_c_double, -1.5_c_double, 1.5_c_double, ierr)
+            call fc_set_gap_quadratic(h, 30.0_c_double, 20.0_c_double, ierr)
+            call fc_set_normal_force(h, 100.0_c_double*k, ierr)
+            call fc_set_threads(h, 1_c_int, ierr)
+            call fc_calculate(h, ierr)
+            if (ierr == FCL_OK) call fc_get_pmax(h, pmax, ierr)
+            call fc_finalize(h, ierr)
+        end subroutine one_handle
+    end subroutine test_api_threads
+
+    !> The flat API's periodic cell: Johnson's partial contact pmax = 2 sqrt(p̄ p*) as in the
+    !! driver test; without a force it is refused; a bad flag is refused.
+    subroutine test_api_periodic(error)
+        type(error_type), allocatable, intent(out) :: error
+        integer(c_int) :: h, ierr
+        real(c_double) :: pmax, h0(64*4)
+        real(dp) :: pstar, pbar, lam
+        integer :: i
+        lam = 2.0_dp
+        pstar = pi*82000.0_dp/(1 - 0.28_dp)*2.0e-4_dp/lam
+        pbar = 4.0_dp/(lam*0.125_dp)
+        do i = 1, 64
+            h0(i:256:64) = 2.0e-4_dp*(1 - cos(2*pi*(i - 0.5_dp)*lam/64/lam))
+        end do
+        call fc_init(h, ierr)
+        call fc_set_material(h, 82000.0_c_double, 82000.0_c_double, 0.28_c_double, 0.28_c_double, ierr)
+        call fc_set_grid(h, 64_c_int, 4_c_int, 0.0_c_double, 2.0_c_double, 0.0_c_double, 0.125_c_double, ierr)
+        call fc_set_gap_array(h, 256_c_int, h0, ierr)
+        call fc_set_periodic(h, 2_c_int, ierr)
+        call check(error, ierr == FCL_INVALID_VALUE, 'periodic = 2 refused')
+        call fc_set_periodic(h, 1_c_int, ierr)
+        call fc_set_normal_force(h, 4.0_c_double, ierr)
+        call fc_calculate(h, ierr)
+        call check(error, ierr == FCL_OK, 'periodic calculation')
+        call fc_get_pmax(h, pmax, ierr)
+        call check(error, real(pmax, dp), 2*sqrt(pbar*pstar), 'API periodic pmax vs Johnson', rel=0.01_dp)
+        call fc_finalize(h, ierr)
+    end subroutine test_api_periodic
+
+end module test_parallel
