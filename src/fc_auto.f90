@@ -48,7 +48,9 @@ module fc_auto
     use fc_tangcg, only: fc_tangential_result, fc_tangential_loading
     use fc_contact, only: set_influence_coefficients, clear_influence_coefficients, &
         fc_contact_operators, fc_contact_loading, fc_contact_settings, fc_contact_result, &
-        solve_contact, FC_PROBLEM_TANGENTIAL
+        solve_contact, FC_PROBLEM_TANGENTIAL, FC_PROBLEM_ROLLING
+    use fc_rolling_batch, only: is_rolling_sequence, rolling_sequence
+    use fc_fastsim, only: fastsim, fc_fastsim_result, fastsim_error_bound
     use fc_hertz, only: fc_hertz_solution, fc_cattaneo_solution, hertz_from_approach, hertz_from_force, &
         cattaneo_mindlin
     use fc_fmg, only: fc_quadratic_surface, fc_punch_rough_surface, fc_wavy_surface
@@ -95,7 +97,14 @@ contains
         call combine_material(out%material, stat, errmsg)
         if (stat == 0) call use_ic_file(s, ops, stat, errmsg)
         if (stat /= 0) return
-        ! ---- analytic answer: no grid at all
+        ! ---- analytic answer (or FASTSIM on the Hertz ellipse): no grid at all
+        if (s%rolling%fastsim) then
+            call fastsim_answer(s, out, stat, errmsg)
+            return
+        end if
+        ! ---- the FASTSIM rung: steady rolling of a Hertzian scene whose accuracy target FASTSIM
+        !      meets by its measured error bound (doc/rolling.md)
+        if (fastsim_meets_target(s, out)) return
         if (s%analytic) then
             call analytic_answer(s, out, stat, errmsg)
             return
@@ -106,7 +115,8 @@ contains
             if (s%tangential%mu == 0) then
                 tang = .false.
                 call add(out%reductions, 'mu = 0: frictionless, no tangential solve (tractions are zero)')
-            else if (out%material%k == 0 .and. no_tangential_loading(s%tangential)) then
+            else if (out%material%k == 0 .and. no_tangential_loading(s%tangential) .and. &
+                     .not. is_rolling_sequence(s)) then
                 tang = .false.
                 call add(out%reductions, 'no tangential loading (zero shifts or forces, K = 0): no tangential solve '// &
                     '(tractions are zero)')
@@ -293,8 +303,9 @@ contains
         settings = sl%settings
         load%normal = sl%normal
         if (tang) then
-            load%problem = FC_PROBLEM_TANGENTIAL
+            load%problem = sl%problem        ! shift or steady rolling
             load%tangential = sl%tangential
+            load%mu_kinetic = sl%rolling%mu_kinetic
         end if
         ! warm starts from the previous grid: the normal stage (not FMG, which starts from its
         ! own nested iteration) of normal and decoupled problems, the tangential stage of
@@ -304,7 +315,9 @@ contains
         if (decoupled .and. allocated(px0) .and. allocated(py0)) then
             load%px_start = px0; load%py_start = py0
         end if
-        if (use_fmg) then
+        if (tang .and. is_rolling_sequence(sl)) then
+            call rolling_sequence(sl, ops, out%grid, mat, out%h0, load, settings, res, out%sequence, stat, errmsg)
+        else if (use_fmg) then
             call fmg_solve()
         else
             call solve_contact(ops, out%grid, mat, out%h0, load, settings, res, stat, errmsg)
@@ -544,6 +557,73 @@ contains
         end if
         out%estimate = 0
     end subroutine analytic_answer
+
+    !> With model = 'auto' and a target: steady rolling of a quadratic geometry with prescribed
+    !! creepages (K = 0, no sequence) is answered by FASTSIM when its error bound
+    !! [[fastsim_error_bound]]·μFn / max(|F|, 0.1·μFn) meets the target (|F| of FASTSIM);
+    !! otherwise a reduction note gives the bound and the full theory is solved.
+    logical function fastsim_meets_target(s, out) result(used)
+        type(fc_case), intent(in) :: s
+        type(fc_auto_outcome), intent(inout) :: out
+        type(fc_auto_outcome) :: fs
+        real(dp) :: bound, mufn
+        integer :: stat
+        character(len=256) :: msg
+        used = .false.
+        if (.not. (s%problem == FC_PROBLEM_ROLLING .and. s%reduce .and. s%target > 0)) return
+        if (s%kind /= 'quadratic' .or. .not. (s%rx > 0 .and. s%ry > 0) .or. s%tangential%force_prescribed) return
+        if (is_rolling_sequence(s) .or. out%material%k /= 0) return
+        fs%material = out%material
+        allocate (fs%reductions(0), fs%warnings(0), fs%levels(0))
+        call fastsim_answer(s, fs, stat, msg)
+        if (stat /= 0) return
+        mufn = s%tangential%mu*fs%hertz%fn
+        bound = fastsim_error_bound(fs%hertz%a/fs%hertz%b, s%tangential%xi, s%tangential%eta, s%tangential%phi)
+        if (bound < huge(1.0_dp)) bound = bound*mufn/max(hypot(fs%fx, fs%fy), 0.1_dp*mufn)
+        if (bound <= s%target) then
+            call add(fs%reductions, 'accuracy target '//fmt_real(s%target)//': FASTSIM meets it (error bound '// &
+                fmt_real(bound)//' from its measured error against the full theory)')
+            out = fs
+            out%target = s%target; out%estimate = bound; out%target_met = .true.
+            used = .true.
+        else if (bound < huge(1.0_dp)) then
+            call add(out%reductions, 'FASTSIM not used: error bound '//fmt_real(bound)//' > target '//fmt_real(s%target))
+        end if
+    end function fastsim_meets_target
+
+    !> model = 'fastsim': elliptic Hertz for the normal problem and Kalker's simplified theory
+    !! (FASTSIM, 200 × 200 strips) for the creep forces of steady rolling.
+    subroutine fastsim_answer(s, out, stat, errmsg)
+        type(fc_case), intent(in) :: s
+        type(fc_auto_outcome), intent(inout) :: out
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        type(fc_fastsim_result) :: fr
+        real(dp) :: estar
+        stat = 0; errmsg = ''
+        out%analytic = .true.
+        out%model = 'fastsim'
+        estar = out%material%g/(1 - out%material%nu)
+        if (s%normal%force_prescribed) then
+            out%hertz = hertz_from_force(0.5_dp/s%rx, 0.5_dp/s%ry, estar, s%normal%fn)
+        else
+            out%hertz = hertz_from_approach(0.5_dp/s%rx, 0.5_dp/s%ry, estar, s%normal%approach)
+        end if
+        if (.not. (out%hertz%fn > 0)) then
+            stat = FC_ERR_NO_CONTACT
+            errmsg = 'approach = '//fmt_real(s%normal%approach)//': must be > 0 (no contact)'; return
+        end if
+        call fastsim(out%hertz%a, out%hertz%b, out%hertz%fn, s%tangential%mu, out%material%g, out%material%nu, &
+                     s%tangential%xi, s%tangential%eta, s%tangential%phi, 200, 200, fr, stat, errmsg)
+        if (stat /= 0) then
+            stat = FC_ERR_VALUE; return
+        end if
+        out%fx = fr%fx; out%fy = fr%fy; out%mz = fr%mz
+        call add(out%reductions, "model = 'fastsim': elliptic Hertz and Kalker's simplified theory (FASTSIM), no grid")
+        if (out%material%k /= 0) call add(out%warnings, 'K = '//fmt_real(out%material%k)//' /= 0: FASTSIM and the '// &
+            'analytic Hertz solution neglect the normal-tangential coupling')
+        out%estimate = 0
+    end subroutine fastsim_answer
 
     ! ---------------------------------------------------------------- helpers ----
 

@@ -57,6 +57,8 @@ module fc_case_result
         logical :: has_cattaneo = .false.                  !! Cattaneo–Mindlin part present
         type(fc_cattaneo_solution) :: cattaneo             !! analytic Cattaneo–Mindlin
         real(dp) :: fx = 0, fy = 0                         !! analytic tangential forces [N]
+        real(dp) :: mz = 0                                 !! FASTSIM spin moment [N·mm]
+        real(dp), allocatable :: sequence(:, :)            !! rolling sweep / transient steps: one row each
     end type fc_auto_outcome
 
 end module fc_case_result

@@ -33,7 +33,9 @@ module fc_contact
     use fc_tangcg, only: fc_tangential_operator, fc_tangential_settings, fc_tangential_result, fc_tangential_loading, &
         build_tangential_operator, solve_tangential_loading, coupling_displacements, EL_EXTERIOR, EL_ADHESION, EL_SLIP
     use fc_fmg, only: fc_fmg_settings, fc_fmg_stats, fc_surface, solve_normal_fmg
-    use fc_contact_types, only: FC_PROBLEM_NORMAL, FC_PROBLEM_TANGENTIAL, fc_normal_loading, fc_contact_settings, &
+    use fc_rolling, only: fc_rolling_loading, solve_rolling_loading
+    use fc_contact_types, only: FC_PROBLEM_NORMAL, FC_PROBLEM_TANGENTIAL, FC_PROBLEM_ROLLING, fc_normal_loading, &
+        fc_contact_settings, &
         fc_contact_result
     use fc_icfile, only: fc_ic_set, ic_set_kernel
     use fc_periodic, only: build_periodic_normal_operator, check_periodic_grid, periodic_images_default
@@ -55,6 +57,7 @@ module fc_contact
         real(dp), allocatable :: px_start(:, :), py_start(:, :)  !! tangential warm start [N/mm²] (both or none)
         integer :: transient = FC_FROM_REST               !! how a [[fc_contact_state]] enters the step
         real(dp) :: dq = 0                                !! rolling step [mm] (FC_TRANSIENT_ROLLING)
+        real(dp) :: mu_kinetic = -1                       !! FC_PROBLEM_ROLLING: kinetic friction (< 0: = mu)
     end type fc_contact_loading
 
     !> Influence operators of one grid and material, reused while they match.
@@ -90,7 +93,8 @@ module fc_contact
         procedure :: reset => state_reset
     end type fc_contact_state
 
-    public :: FC_PROBLEM_NORMAL, FC_PROBLEM_TANGENTIAL, fc_normal_loading, fc_contact_settings, fc_contact_result
+    public :: FC_PROBLEM_NORMAL, FC_PROBLEM_TANGENTIAL, FC_PROBLEM_ROLLING, fc_normal_loading, fc_contact_settings, &
+        fc_contact_result
     public :: solve_contact, ensure_operators, solve_normal_tangential, shift_along_x, fc_tangential_loading
     public :: set_influence_coefficients, clear_influence_coefficients
 
@@ -198,6 +202,12 @@ contains
         end if
         tangential = load%problem /= FC_PROBLEM_NORMAL
         use_fmg = settings%normal%solver == 'fmg'
+        if (load%problem == FC_PROBLEM_ROLLING .and. load%transient /= FC_FROM_REST) then
+            stat = 1
+            errmsg = 'solve_contact: steady rolling has no transient mode (use FC_PROBLEM_TANGENTIAL with '// &
+                'FC_TRANSIENT_ROLLING for transient rolling)'
+            return
+        end if
         if (use_fmg .and. tangential .and. material%k /= 0) then
             stat = FC_ERR_UNSUPPORTED
             errmsg = 'solve_contact: FMG is not available for dissimilar materials (K /= 0): the coupling alternates '// &
@@ -479,11 +489,32 @@ contains
                         res%tangential, stat, errmsg, ux_prev=uxp, uy_prev=uyp, px_start=pxs, py_start=pys, &
                         offset_x=uxn, offset_y=uyn)
                 end if
+            case (FC_PROBLEM_ROLLING)
+                call rolling_stage(pn)
             case default
                 stat = FC_ERR_VALUE
                 write (errmsg, '(a,i0,a)') 'solve_contact: problem kind ', load%problem, ' has no tangential stage'
             end select
         end subroutine tangential_stage
+
+        !> Steady rolling (creepages or creep forces); a warm start from the state also
+        !! starts the creep-force loop from the previous creepages.
+        subroutine rolling_stage(pn)
+            real(dp), intent(in) :: pn(:, :)
+            type(fc_rolling_loading) :: rl
+            rl%mu = load%tangential%mu; rl%mu_kinetic = load%mu_kinetic
+            rl%xi = load%tangential%xi; rl%eta = load%tangential%eta; rl%phi = load%tangential%phi
+            rl%fx = load%tangential%fx; rl%fy = load%tangential%fy
+            rl%force_prescribed = load%tangential%force_prescribed
+            if (has_guess) then
+                call solve_rolling_loading(top, pn, rl, settings%rolling, res%tangential, stat, errmsg, &
+                    px_start=pxs, py_start=pys, offset_x=uxn, offset_y=uyn, xi_start=guess_base(1), &
+                    eta_start=guess_base(2))
+            else
+                call solve_rolling_loading(top, pn, rl, settings%rolling, res%tangential, stat, errmsg, &
+                    px_start=pxs, py_start=pys, offset_x=uxn, offset_y=uyn)
+            end if
+        end subroutine rolling_stage
 
         !> Warm start: elements that slipped in the previous state start on the new traction
         !! bound (slightly outside, so that TangCG starts them in slip) in their previous

@@ -7,12 +7,15 @@ module fc_contact_types
     use fc_norm, only: fc_normal_settings, fc_normal_result
     use fc_tangcg, only: fc_tangential_settings, fc_tangential_result
     use fc_fmg_levels, only: fc_fmg_settings
+    use fc_rolling_base, only: fc_rolling_settings
     implicit none
     private
 
     !> Problem kinds: what the tangential stage solves (one dispatch point in fc_contact's tangential stage).
     integer, parameter, public :: FC_PROBLEM_NORMAL = 1      !! normal contact only
     integer, parameter, public :: FC_PROBLEM_TANGENTIAL = 2  !! normal, then tangential (shifts or forces)
+    !> normal, then steady-state rolling in +x (`tangential%xi, eta, phi` are creepages [-, -, 1/mm])
+    integer, parameter, public :: FC_PROBLEM_ROLLING = 3
 
 
     !> Normal loading: prescribed approach δ or total force Fn, and an optional start pressure.
@@ -29,6 +32,7 @@ module fc_contact_types
         type(fc_normal_settings) :: normal          !! solver 'bccg', 'norm' or 'fmg'
         type(fc_tangential_settings) :: tangential  !! solver 'tangcg' or 'convexgs'
         type(fc_fmg_settings) :: fmg                !! used when normal%solver = 'fmg'
+        type(fc_rolling_settings) :: rolling        !! FC_PROBLEM_ROLLING: 'gmres', 'march' or 'steadygs'
     end type fc_contact_settings
 
 

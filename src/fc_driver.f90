@@ -24,7 +24,8 @@ module fc_driver
     use fc_influence, only: fc_material
     use fc_norm, only: fc_normal_result
     use fc_tangcg, only: fc_tangential_result, EL_EXTERIOR, EL_ADHESION
-    use fc_contact, only: fc_contact_operators
+    use fc_contact, only: fc_contact_operators, FC_PROBLEM_ROLLING
+    use fc_rolling_batch, only: write_sequence_csv, sweep_header, steps_header
     use fc_mg2d, only: fc_strip_problem, fc_mg2d_settings, fc_mg2d_result, strip_model_problem, solve_strip_mg, &
         solve_strip_fft_rsm
     use fc_hertz, only: hertz_from_approach, hertz_from_force
@@ -289,6 +290,19 @@ contains
             else
                 call remove_file(dir//'/'//trim(state%name)//'.csv')
             end if
+            if (allocated(s%outcome%sequence)) then
+                ! rolling: creep-force curve or transient steps, one row each
+                if (state%problem == 'transient_rolling') then
+                    call write_sequence_csv(dir//'/'//trim(state%name)//'_steps.csv', steps_header, s%outcome%sequence, &
+                                            stat, errmsg)
+                else
+                    call write_sequence_csv(dir//'/'//trim(state%name)//'_creep.csv', sweep_header, s%outcome%sequence, &
+                                            stat, errmsg)
+                end if
+                if (stat /= 0) then
+                    call case_error(); return
+                end if
+            end if
             call system_clock(t2)
             s%cpu_seconds = real(t2 - t0, dp)/rate
             call write_case_json(dir//'/'//trim(state%name)//'.json', s, stat, errmsg)
@@ -475,6 +489,13 @@ contains
         s%has_hertz = .true.; s%hertz = s%outcome%hertz
         s%fn = s%outcome%hertz%fn; s%approach = s%outcome%hertz%approach; s%pmax = s%outcome%hertz%p0
         s%residual = 0
+        if (s%outcome%model == 'fastsim') then
+            s%message = "elliptic Hertz and FASTSIM (Kalker's simplified theory)"
+            s%solver = 'hertz+fastsim'; s%tangential = .true.; s%tangential_run = .true.
+            s%solver_tangential = 'fastsim'; s%status_tangential = 'converged'
+            s%fx = s%outcome%fx; s%fy = s%outcome%fy; s%mz = s%outcome%mz; s%mu = state%mu
+            s%xi = state%xi; s%eta = state%eta; s%phi = state%phi
+        end if
         if (s%outcome%has_cattaneo) then
             s%fx = s%outcome%fx; s%fy = s%outcome%fy
             s%mu = state%mu
@@ -495,7 +516,8 @@ contains
         associate (res => s%outcome%result%normal, tres => s%outcome%result%tangential)
             s%tangential = .true.
             s%solver_tangential = kase%settings%tangential%solver
-            s%solver = trim(kase%settings%normal%solver)//'+'//trim(kase%settings%tangential%solver)
+            if (kase%problem == FC_PROBLEM_ROLLING) s%solver_tangential = kase%settings%rolling%solver
+            s%solver = trim(kase%settings%normal%solver)//'+'//trim(s%solver_tangential)
             s%mu = state%mu; s%tforce_prescribed = state%tforce_prescribed
             s%fx_prescribed = state%fx; s%fy_prescribed = state%fy
             s%panagiotopoulos_rounds = s%outcome%result%rounds

@@ -36,6 +36,15 @@
 !!   MP1–MP3 of thesis §3.2.5 (A^xx p = u on an nx×1 grid of [−4,4]×[−50,50] mm) with
 !!   `&geometry kind = 'strip2d'` and `&grid nx` (power of 2, ≥ 4); the model problem fixes
 !!   material, area and loading; tol defaults to 1e-8 (thesis) unless given.
+!! * `&case problem = 'rolling' | 'transient_rolling'` — body 1 rolls in +x (doc/rolling.md):
+!!   `&tangential xi, eta` are creepages [-] and phi the spin creepage [1/mm] (or fx, fy
+!!   prescribed, steady only); mu_kinetic (≤ mu, default mu) in slip; `&solver rolling =
+!!   'gmres'` ('march', 'steadygs': references).  'rolling' may sweep one loading value:
+!!   `&tangential sweep = 'xi' | 'eta' | 'phi' | 'fx' | 'fy', sweep_from, sweep_to,
+!!   sweep_n = 20` (2 … 1000 points, warm-started, one CSV row each in NAME_creep.csv).
+!!   'transient_rolling': dq (travelled distance per step, default dx) and nsteps (default:
+!!   four times the area length travelled, ≤ 100000); per step the shift is creepage·dq; one
+!!   CSV row per step in NAME_steps.csv.
 !! * `&output dir, table` — dir = 'out' (the command line `--out` wins), table = .true.
 !!
 !! Every value persists from case to case except `name`.  A case with an input error does
@@ -94,6 +103,13 @@ module fc_input
         real(dp) :: phi = 0                        !! spin shift [rad]
         real(dp) :: fx = 0, fy = 0                 !! prescribed tangential forces [N] (tforce_prescribed)
         logical :: tforce_prescribed = .false.     !! fx or fy given (else xi, eta)
+        real(dp) :: mu_kinetic = -1                !! rolling: kinetic friction (< 0: = mu)
+        real(dp) :: dq = 0                         !! transient rolling: distance per step [mm] (0: dx)
+        integer :: nsteps = 0                      !! transient rolling: steps (0: area length travelled 4 times)
+        character(len=8) :: sweep = ''             !! rolling: swept value 'xi', 'eta', 'phi', 'fx', 'fy' ('' none)
+        real(dp) :: sweep_from = 0, sweep_to = 0   !! rolling: range of the swept value
+        integer :: sweep_n = 20                    !! rolling: points of the sweep
+        character(len=16) :: rolling = 'gmres'     !! steady rolling solver: 'gmres', 'march', 'steadygs'
         ! &solver
         character(len=32) :: normal_solver = 'bccg'  !! normal solver: 'bccg', 'norm', 'fmg'
         character(len=32) :: tangential = 'tangcg' !! tangential solver: 'tangcg', 'convexgs'
@@ -261,7 +277,8 @@ contains
     !> Whether the case solves the tangential problem too.
     pure logical function is_tangential(s)
         type(fc_case_input), intent(in) :: s
-        is_tangential = s%problem == 'tangential' .or. s%problem == 'normal+tangential'
+        is_tangential = s%problem == 'tangential' .or. s%problem == 'normal+tangential' .or. &
+            s%problem == 'rolling' .or. s%problem == 'transient_rolling'
     end function is_tangential
 
     !> Value text of `key` in group `g` ('' if absent).
@@ -406,12 +423,18 @@ contains
         type(fc_case_input), intent(inout) :: s
         integer, intent(out) :: ios
         character(len=*), intent(out) :: iomsg
-        real(dp) :: mu, xi, eta, phi, fx, fy
-        namelist /tangential/ mu, xi, eta, phi, fx, fy
+        real(dp) :: mu, xi, eta, phi, fx, fy, mu_kinetic, dq, sweep_from, sweep_to
+        integer :: nsteps, sweep_n
+        character(len=8) :: sweep
+        namelist /tangential/ mu, xi, eta, phi, fx, fy, mu_kinetic, dq, nsteps, sweep, sweep_from, sweep_to, sweep_n
         mu = s%mu; xi = s%xi; eta = s%eta; phi = s%phi; fx = s%fx; fy = s%fy
+        mu_kinetic = s%mu_kinetic; dq = s%dq; nsteps = s%nsteps; sweep = s%sweep; sweep_from = s%sweep_from
+        sweep_to = s%sweep_to; sweep_n = s%sweep_n
         read (text, nml=tangential, iostat=ios, iomsg=iomsg)
         if (ios /= 0) return
         s%mu = mu; s%xi = xi; s%eta = eta; s%phi = phi; s%fx = fx; s%fy = fy
+        s%mu_kinetic = mu_kinetic; s%dq = dq; s%nsteps = nsteps; s%sweep = lower(sweep); s%sweep_from = sweep_from
+        s%sweep_to = sweep_to; s%sweep_n = sweep_n
     end subroutine read_tangential_group
 
     subroutine read_solver_group(text, s, ios, iomsg)
@@ -427,15 +450,15 @@ contains
         real(dp) :: tol, omega, beta, target
         integer :: maxit, inner_maxit, inner_k, max_levels, threads
         logical :: precondition, precondition_tangential, deflation, target_pmax
-        character(len=16) :: model
+        character(len=16) :: model, rolling
         namelist /solver/ normal, tangential, tol, maxit, inner_maxit, precondition, precondition_tangential, &
-            deflation, inner_k, cycle, omega, beta, target, target_pmax, max_levels, model, smoother, strip, threads
+            deflation, inner_k, cycle, omega, beta, target, target_pmax, max_levels, model, smoother, strip, rolling, threads
         normal = s%normal_solver; tangential = s%tangential; tol = s%tol; maxit = s%maxit
         inner_maxit = s%inner_maxit; precondition = s%precondition
         precondition_tangential = s%precondition_tangential
         deflation = s%deflation; inner_k = s%inner_k; cycle = s%cycle; omega = s%omega; beta = s%beta
         target = s%target; target_pmax = s%target_pmax; max_levels = s%max_levels; model = s%model
-        smoother = s%smoother; strip = s%strip; threads = s%threads
+        smoother = s%smoother; strip = s%strip; rolling = s%rolling; threads = s%threads
         read (text, nml=solver, iostat=ios, iomsg=iomsg)
         if (ios /= 0) return
         s%normal_solver = lower(normal); s%tangential = lower(tangential); s%tol = tol
@@ -443,7 +466,7 @@ contains
         s%precondition_tangential = precondition_tangential
         s%deflation = deflation; s%inner_k = inner_k; s%cycle = cycle; s%omega = omega; s%beta = beta
         s%target = target; s%target_pmax = target_pmax; s%max_levels = max_levels; s%model = lower(model)
-        s%smoother = lower(smoother); s%strip = lower(strip); s%threads = threads
+        s%smoother = lower(smoother); s%strip = lower(strip); s%rolling = lower(rolling); s%threads = threads
     end subroutine read_solver_group
 
     subroutine read_output_group(text, s, ios, iomsg)
@@ -471,10 +494,10 @@ contains
         case ('geometry')
             keys = 'kind rx ry diameter sigma gamma m_modes n_modes seed amplitude wavelength_x wavelength_y file length'
         case ('normal');     keys = 'approach fn'
-        case ('tangential'); keys = 'mu xi eta phi fx fy'
+        case ('tangential'); keys = 'mu xi eta phi fx fy mu_kinetic dq nsteps sweep sweep_from sweep_to sweep_n'
         case ('solver')
             keys = 'normal tangential tol maxit inner_maxit inner_k precondition precondition_tangential deflation '// &
-                'cycle omega beta smoother strip target target_pmax max_levels model threads'
+                'cycle omega beta smoother strip target target_pmax max_levels model rolling threads'
         case ('output');     keys = 'dir table'
         case default;        keys = ''
         end select

@@ -5,7 +5,7 @@
 module fc_input_scene
     use fc_kinds, only: dp, msg_len
     use fc_fmg_levels, only: fmg_cycle_from_name
-    use fc_contact_types, only: FC_PROBLEM_NORMAL, FC_PROBLEM_TANGENTIAL
+    use fc_contact_types, only: FC_PROBLEM_NORMAL, FC_PROBLEM_TANGENTIAL, FC_PROBLEM_ROLLING
     use fc_scene, only: fc_case
     use fc_input, only: fc_case_input, is_given, grid_is_auto, is_tangential, strip_model_index
     use fc_input_validate, only: effective_record
@@ -65,6 +65,16 @@ contains
         end associate
         c%target = s%target; c%target_pmax = s%target_pmax; c%max_levels = s%max_levels
         c%reduce = s%model == 'auto'
+        ! rolling: steady ('rolling', possibly swept) or transient steps of the shift pipeline
+        if (s%problem == 'rolling') c%problem = FC_PROBLEM_ROLLING
+        c%rolling%transient = s%problem == 'transient_rolling'
+        c%rolling%mu_kinetic = s%mu_kinetic
+        c%rolling%dq = s%dq; c%rolling%nsteps = s%nsteps
+        if (s%problem == 'rolling') c%rolling%sweep = s%sweep
+        c%rolling%sweep_from = s%sweep_from; c%rolling%sweep_to = s%sweep_to; c%rolling%sweep_n = s%sweep_n
+        c%rolling%fastsim = s%model == 'fastsim'
+        c%settings%rolling%solver = trim(s%rolling)
+        c%settings%rolling%tol = s%tol; c%settings%rolling%maxit = s%maxit
         c%threads = s%threads
     end function build_case
 

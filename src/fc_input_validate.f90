@@ -66,6 +66,7 @@ contains
                 if (len_trim(errmsg) == 0) call validate_normal(s, errmsg)
                 if (len_trim(errmsg) == 0) call validate_tangential(s, errmsg)
                 if (len_trim(errmsg) == 0) call validate_solver(s, errmsg)
+                if (len_trim(errmsg) == 0) call validate_rolling(s, errmsg)
                 if (len_trim(errmsg) == 0 .and. s%periodic) call validate_periodic(s, errmsg)
                 if (len_trim(errmsg) == 0) call validate_output(s, errmsg)
             end if
@@ -84,10 +85,11 @@ contains
             return
         end if
         select case (s%problem)
-        case ('normal', 'tangential', 'normal+tangential', 'hertz', 'strip_mp1', 'strip_mp2', 'strip_mp3')
+        case ('normal', 'tangential', 'normal+tangential', 'hertz', 'strip_mp1', 'strip_mp2', 'strip_mp3', 'rolling', &
+              'transient_rolling')
         case default
             errmsg = "&case problem = '"//trim(s%problem)//"': unknown problem; use 'normal', 'normal+tangential', "// &
-                "'tangential', 'hertz' or 'strip_mp1', 'strip_mp2', 'strip_mp3'"
+                "'tangential', 'rolling', 'transient_rolling', 'hertz' or 'strip_mp1', 'strip_mp2', 'strip_mp3'"
         end select
     end subroutine validate_case_group
 
@@ -236,8 +238,16 @@ contains
         end if
         select case (s%model)
         case ('auto', 'full')
+        case ('fastsim')
+            if (s%problem /= 'rolling' .or. s%kind /= 'quadratic' .or. .not. (s%rx > 0 .and. s%ry > 0) .or. &
+                s%tforce_prescribed .or. len_trim(s%sweep) > 0) then
+                errmsg = "&solver model = 'fastsim': needs problem = 'rolling' with &geometry kind = 'quadratic', "// &
+                    'rx > 0, ry > 0, creepages xi, eta, phi (no fx, fy) and no sweep'
+                return
+            end if
         case default
-            errmsg = "&solver model = '"//trim(s%model)//"': use 'auto' (reduce the model where possible) or 'full'"
+            errmsg = "&solver model = '"//trim(s%model)//"': use 'auto' (reduce the model where possible), 'full' "// &
+                "or 'fastsim' (steady rolling: Kalker's simplified theory)"
             return
         end select
         if (auto) then
@@ -389,6 +399,78 @@ contains
         errmsg = ''
         if (len_trim(s%dir) == 0) errmsg = "&output dir = '': must not be empty"
     end subroutine validate_output
+
+    !> Rolling keys (&tangential mu_kinetic, dq, nsteps, sweep*, &solver rolling): values
+    !! checked whenever given; sweeps only for 'rolling', dq/nsteps for 'transient_rolling'.
+    subroutine validate_rolling(s, errmsg)
+        type(fc_case_input), intent(in) :: s
+        character(len=*), intent(out) :: errmsg
+        logical :: steady, transient
+        errmsg = ''
+        steady = s%problem == 'rolling'
+        transient = s%problem == 'transient_rolling'
+        select case (s%rolling)
+        case ('gmres', 'march', 'steadygs')
+        case default
+            errmsg = "&solver rolling = '"//trim(s%rolling)//"': unknown solver; use 'gmres', 'march' or 'steadygs'"
+            return
+        end select
+        if (is_given(s, 'tangential', 'mu_kinetic')) then
+            if (.not. (s%mu_kinetic >= 0 .and. s%mu_kinetic <= s%mu)) then
+                errmsg = '&tangential mu_kinetic = '//fmt_real(s%mu_kinetic)//': must be in [0, mu = '//fmt_real(s%mu)// &
+                    '] (kinetic friction in slip)'
+                return
+            end if
+        end if
+        if (is_given(s, 'tangential', 'dq')) then
+            if (.not. (s%dq > 0 .and. s%dq < huge(1.0_dp))) then
+                errmsg = '&tangential dq = '//fmt_real(s%dq)//': must be > 0 (travelled distance per step, mm)'; return
+            end if
+        end if
+        if (s%nsteps < 0 .or. s%nsteps > 100000) then
+            errmsg = '&tangential nsteps = '//fmt_int(s%nsteps)//': must be in [0, 100000] (0: automatic)'; return
+        end if
+        if (transient .and. s%tforce_prescribed) then
+            errmsg = "&tangential fx, fy: problem = 'transient_rolling' takes creepages xi, eta, phi"; return
+        end if
+        if (transient .and. s%mu_kinetic >= 0 .and. s%mu_kinetic /= s%mu) then
+            errmsg = '&tangential mu_kinetic = '//fmt_real(s%mu_kinetic)//": problem = 'transient_rolling' has "// &
+                'one coefficient of friction (mu)'
+            return
+        end if
+        if (len_trim(s%sweep) == 0) return
+        select case (s%sweep)
+        case ('xi', 'eta', 'phi', 'fx', 'fy')
+        case default
+            errmsg = "&tangential sweep = '"//trim(s%sweep)//"': use 'xi', 'eta', 'phi', 'fx' or 'fy' (or '' for none)"
+            return
+        end select
+        if (.not. steady) then
+            errmsg = "&tangential sweep = '"//trim(s%sweep)//"': only for problem = 'rolling'"; return
+        end if
+        if (s%target > 0) then
+            errmsg = '&solver target = '//fmt_real(s%target)//": not available for a creep-force sweep (give a "// &
+                'fixed grid)'
+            return
+        end if
+        if (.not. (is_given(s, 'tangential', 'sweep_from') .and. is_given(s, 'tangential', 'sweep_to'))) then
+            errmsg = "&tangential sweep = '"//trim(s%sweep)//"': sweep_from and sweep_to are required"; return
+        end if
+        if (.not. (abs(s%sweep_from) < 1e6_dp .and. abs(s%sweep_to) < 1e6_dp)) then
+            errmsg = '&tangential sweep_from = '//fmt_real(s%sweep_from)//', sweep_to = '//fmt_real(s%sweep_to)// &
+                ': must be finite, |value| < 1e6'
+            return
+        end if
+        if (s%sweep_n < 2 .or. s%sweep_n > 1000) then
+            errmsg = '&tangential sweep_n = '//fmt_int(s%sweep_n)//': must be in [2, 1000]'; return
+        end if
+        if ((s%sweep == 'fx' .or. s%sweep == 'fy') .and. .not. s%tforce_prescribed) then
+            errmsg = "&tangential sweep = '"//trim(s%sweep)//"': needs prescribed forces (give fx or fy)"; return
+        end if
+        if ((s%sweep == 'xi' .or. s%sweep == 'eta') .and. s%tforce_prescribed) then
+            errmsg = "&tangential sweep = '"//trim(s%sweep)//"': needs creepages (give xi or eta, not fx, fy)"; return
+        end if
+    end subroutine validate_rolling
 
     !> &solver tol > 0 and maxit >= 1 (shared by every problem kind).
     subroutine validate_iteration_keys(s, errmsg)

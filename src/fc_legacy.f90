@@ -47,6 +47,7 @@ module fc_legacy
     public :: fc_init, fc_finalize, fc_set_material, fc_set_grid, fc_set_gap_array, fc_set_gap_quadratic
     public :: fc_set_normal_approach, fc_set_normal_force, fc_set_friction, fc_set_shifts, fc_set_forces
     public :: fc_set_solver, fc_set_transient, fc_set_rolling_step, fc_set_reuse, fc_calculate
+    public :: fc_set_rolling, fc_set_rolling_forces, fc_set_rolling_options
     public :: fc_get_forces, fc_get_approach, fc_get_pmax, fc_get_shifts, fc_get_contact_stats
     public :: fc_get_tractions, fc_get_slip, fc_get_gap, fc_get_status_array, fc_get_iterations
     public :: fc_get_rebuilds, fc_get_grid_size, fc_get_error_message, fc_get_nhandles
@@ -338,6 +339,70 @@ contains
         s%load%tangential%force_prescribed = .true.; s%load%problem = FC_PROBLEM_TANGENTIAL
     end subroutine fc_set_forces
 
+    !> Steady-state rolling of body 1 in +x with creepages ξ, η [-] and spin φ [1/mm]
+    !! (doc/rolling.md): every calculation is a steady state (transient mode must be 0; the
+    !! previous solution warm-starts the next one).  Creep forces from [[fc_get_forces]],
+    !! creepages used from [[fc_get_shifts]].  Switches the rolling problem on.
+    subroutine fc_set_rolling(handle, xi, eta, phi, ierr) bind(C, name='fc_set_rolling')
+        integer(c_int), intent(in) :: handle
+        real(c_double), intent(in) :: xi, eta   !! creepages [-]
+        real(c_double), intent(in) :: phi       !! spin creepage [1/mm]
+        integer(c_int), intent(out) :: ierr
+        type(legacy_state), pointer :: s
+        call lookup(handle, 'fc_set_rolling', s, ierr)
+        if (ierr /= FCL_OK) return
+        if (.not. (finite(xi) .and. finite(eta) .and. finite(phi))) then
+            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_rolling: xi = '//fmt_g6(xi)//', eta = '//fmt_g6(eta)//', phi = ' &
+                //fmt_g6(phi)//' must be finite'); return
+        end if
+        s%load%tangential%xi = xi; s%load%tangential%eta = eta; s%load%tangential%phi = phi
+        s%load%tangential%force_prescribed = .false.; s%load%problem = FC_PROBLEM_ROLLING
+    end subroutine fc_set_rolling
+
+    !> Steady-state rolling with prescribed creep forces (Fx, Fy) [N], |F| < μk·Fn, and spin
+    !! creepage φ [1/mm]; the creepages found are returned by [[fc_get_shifts]].
+    subroutine fc_set_rolling_forces(handle, fx, fy, phi, ierr) bind(C, name='fc_set_rolling_forces')
+        integer(c_int), intent(in) :: handle
+        real(c_double), intent(in) :: fx, fy    !! creep forces [N]
+        real(c_double), intent(in) :: phi       !! spin creepage [1/mm]
+        integer(c_int), intent(out) :: ierr
+        type(legacy_state), pointer :: s
+        call lookup(handle, 'fc_set_rolling_forces', s, ierr)
+        if (ierr /= FCL_OK) return
+        if (.not. (finite(fx) .and. finite(fy) .and. finite(phi))) then
+            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_rolling_forces: fx = '//fmt_g6(fx)//', fy = '//fmt_g6(fy)// &
+                ', phi = '//fmt_g6(phi)//' must be finite'); return
+        end if
+        s%load%tangential%fx = fx; s%load%tangential%fy = fy; s%load%tangential%phi = phi
+        s%load%tangential%force_prescribed = .true.; s%load%problem = FC_PROBLEM_ROLLING
+    end subroutine fc_set_rolling_forces
+
+    !> Steady rolling options: solver 0 or 1 = Newton–GMRES (default), 2 = transient march,
+    !! 3 = SteadyGS (references); kinetic friction mu_kinetic ≤ μ in slip (< 0: equal to μ).
+    subroutine fc_set_rolling_options(handle, solver, mu_kinetic, ierr) bind(C, name='fc_set_rolling_options')
+        integer(c_int), intent(in) :: handle
+        integer(c_int), intent(in) :: solver
+        real(c_double), intent(in) :: mu_kinetic
+        integer(c_int), intent(out) :: ierr
+        type(legacy_state), pointer :: s
+        call lookup(handle, 'fc_set_rolling_options', s, ierr)
+        if (ierr /= FCL_OK) return
+        if (solver < 0 .or. solver > 3) then
+            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_rolling_options: solver = '//fmt_int(solver)// &
+                ' is not 0/1 (GMRES), 2 (march) or 3 (SteadyGS)'); return
+        end if
+        if (.not. finite(mu_kinetic)) then
+            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_rolling_options: mu_kinetic = '//fmt_g6(mu_kinetic)// &
+                ' must be finite'); return
+        end if
+        select case (solver)
+        case (2); s%settings%rolling%solver = 'march'
+        case (3); s%settings%rolling%solver = 'steadygs'
+        case default; s%settings%rolling%solver = 'gmres'
+        end select
+        s%load%mu_kinetic = mu_kinetic
+    end subroutine fc_set_rolling_options
+
     !> Solver choice and tolerances.  normal_solver: 0 or 1 = BCCG, 2 = NORM; tangential_solver:
     !! 0 or 1 = TangCG, 2 = ConvexGS; tol > 0 (both problems); maxit ≥ 1; inner_k ≥ 1
     !! (TangCG); precondition 0/1 (BCCG and TangCG).
@@ -377,8 +442,8 @@ contains
         associate (ns => s%settings%normal, ts => s%settings%tangential)
             ns%solver = merge('norm    ', 'bccg    ', normal_solver == 2)
             ts%solver = merge('convexgs', 'tangcg  ', tangential_solver == 2)
-            ns%tol = tol; ts%tol = tol
-            ns%maxit = maxit; ts%maxit = maxit
+            ns%tol = tol; ts%tol = tol; s%settings%rolling%tol = tol
+            ns%maxit = maxit; ts%maxit = maxit; s%settings%rolling%maxit = maxit
             ts%inner_k = inner_k
             ns%precondition = precondition == 1
             ts%precondition = precondition == 1
@@ -520,7 +585,7 @@ contains
             call fail(s, ierr, FCL_ORDER, 'fc_calculate: normal loading not set (call fc_set_normal_force or '// &
                 'fc_set_normal_approach)'); return
         end if
-        if (s%load%problem == FC_PROBLEM_TANGENTIAL .and. .not. s%has_friction) then
+        if (s%load%problem /= FC_PROBLEM_NORMAL .and. .not. s%has_friction) then
             call fail(s, ierr, FCL_ORDER, 'fc_calculate: shifts or forces set but no friction (call fc_set_friction)')
             return
         end if

@@ -129,6 +129,11 @@ contains
             call kv_str('solver_tangential', s%solver_tangential)
             call kv_str('status_tangential', s%status_tangential)
             call kv_real('mu', s%mu)
+            if ((s%problem == 'rolling' .or. s%problem == 'transient_rolling') .and. s%mu*s%fn > 0) then
+                ! creep forces over mu*Fn (xi, eta, phi above are creepages [-, -, 1/mm] here)
+                call kv_real('fx_over_mu_fn', s%fx/(s%mu*s%fn))
+                call kv_real('fy_over_mu_fn', s%fy/(s%mu*s%fn))
+            end if
             call kv_str('tangential_load', merge('forces', 'shifts', s%tforce_prescribed))
             if (s%tforce_prescribed) then
                 call kv_real('fx_prescribed', s%fx_prescribed)

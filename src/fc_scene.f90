@@ -13,6 +13,7 @@ module fc_scene
     use fc_influence, only: fc_material, combine_material
     use fc_tangcg, only: fc_tangential_loading
     use fc_contact_types, only: fc_normal_loading, fc_contact_settings, FC_PROBLEM_NORMAL, FC_PROBLEM_TANGENTIAL
+    use fc_rolling, only: fc_rolling_case
     implicit none
     private
 
@@ -45,6 +46,7 @@ module fc_scene
         type(fc_normal_loading) :: normal            !! approach or total force
         type(fc_tangential_loading) :: tangential    !! friction, shifts or forces, spin
         logical :: tangential_given = .false.        !! analytic answer: shifts or forces were given
+        type(fc_rolling_case) :: rolling             !! rolling: kinetic friction, sweep or transient steps
         ! ---- solvers and the automatic layer
         type(fc_contact_settings) :: settings        !! both stages (and FMG)
         real(dp) :: target = 0                       !! accuracy target (relative error; 0: none)
@@ -61,7 +63,7 @@ contains
     !> Whether the case solves the tangential problem too.
     pure logical function is_tangential(c)
         type(fc_case), intent(in) :: c
-        is_tangential = c%problem == FC_PROBLEM_TANGENTIAL
+        is_tangential = c%problem /= FC_PROBLEM_NORMAL    ! shift or rolling
     end function is_tangential
 
     !> Whether the scene is a line contact: kind 'cylinder' or 'strip2d', or a quadratic

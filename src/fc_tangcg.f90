@@ -75,6 +75,7 @@ module fc_tangcg
     public :: fc_tangential_operator, build_tangential_operator, coupling_displacements
     public :: solve_tangential
     public :: solve_tangential_loading
+    public :: circle_newton   ! shared with the steady rolling solver (fc_rolling)
 
 contains
 

@@ -13,6 +13,7 @@ program tester
     use test_auto, only: collect_auto
     use test_stability, only: collect_stability
     use test_legacy, only: collect_legacy
+    use test_rolling, only: collect_rolling
     use test_operators, only: collect_operators
     use test_fem_ic, only: collect_fem_ic
     use test_parallel, only: collect_parallel
@@ -68,6 +69,9 @@ program tester
     end if
     if (want('auto')) then
         call collect_auto(tests); call run_suite('auto', tests, only, npass, nfail)
+    end if
+    if (want('rolling')) then
+        call collect_rolling(tests); call run_suite('rolling', tests, only, npass, nfail)
     end if
     if (want('operators')) then
         call collect_operators(tests); call run_suite('operators', tests, only, npass, nfail)

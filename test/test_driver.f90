@@ -374,8 +374,8 @@ contains
 
     subroutine test_unknown_problem(error)
         type(error_type), allocatable, intent(out) :: error
-        call expect_bad(error, replace(base_case('bad'), "name = 'bad'", "name = 'bad', problem = 'rolling'"), &
-            [character(len=20) :: '&case', 'problem', 'rolling', 'unknown'])
+        call expect_bad(error, replace(base_case('bad'), "name = 'bad'", "name = 'bad', problem = 'sliding'"), &
+            [character(len=20) :: '&case', 'problem', 'sliding', 'unknown'])
     end subroutine test_unknown_problem
 
     ! ---------------------------------------------------------------- tangential ----

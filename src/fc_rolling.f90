@@ -1,0 +1,531 @@
+!> Steady-state rolling contact (Kalker's steady formulation, thesis eq. 4.1 in a frame that
+!! moves with the contact): a reference block Gauss–Seidel solver and a fast Newton–GMRES
+!! solver in TangCG's variables.
+!!
+!! Body 1 rolls in +x over body 2; the contact area travels in +x relative to the material,
+!! so material enters at the leading edge x = xmax.  With the creepages ξ, η (dimensionless)
+!! and the spin φ [1/mm], the slip velocity over the rolling velocity is
+!!
+!!   s_I = w_I + (u_I − u_{I+x})/δx,   w_I = [ξ − φ·y_I, η + φ·x_I],   u = A p (+ offset),
+!!
+!! where I+x is the element ahead of I (the next column in +x; the material in front of the
+!! grid is undeformed, u = 0).  This is exactly the fixed point of the transient rolling step
+!! s = δq·w + u − u'(x + δq) with the travelled distance δq = δx, so transient rolling with
+!! that step converges to this solution.  Coulomb's law with a static coefficient μs for
+!! adhesion (|p_I| ≤ μs·pn_I, s_I = 0) and a kinetic one μk in slip (p_I = −μk·pn_I·s_I/|s_I|).
+!! Forces act on body 1: a positive ξ gives a negative Fx, a positive φ a negative Mz.
+!!
+!! * SteadyGS (`'steadygs'`): nonlinear block Gauss–Seidel marching from the leading edge;
+!!   per element the 2×2 adhesion solve or the Newton solve for the angle on the friction
+!!   circle (shared with ConvexGS).  Displacements maintained by O(n) column updates: a sweep
+!!   costs O(n_c·n).  The simple, trusted reference.
+!! * Newton–GMRES (`'gmres'`): TangCG's active set (tractions in adhesion, angles in slip,
+!!   elements moved between the areas after each Newton step) with the non-symmetric
+!!   Jacobian solved by restarted GMRES, right-preconditioned by TangCG's diagonal scaling
+!!   (thesis eq. 4.43 with the steady operator's diagonal).  Every Krylov step costs one
+!!   FFT product of the tangential operator.
+!!
+!! Stopping criterion as TangCG's (thesis eq. 4.49): relative RMS traction change of the last
+!! Newton step / sweep below `tol` with an unchanged subdivision.
+module fc_rolling
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
+    use fc_kinds
+    use fc_geometry, only: fc_grid
+    use fc_tangcg, only: fc_tangential_operator, fc_tangential_result, EL_EXTERIOR, EL_ADHESION, EL_SLIP
+    use fc_rolling_base
+    use fc_rolling_refsolvers, only: run_steadygs, run_march
+    implicit none
+    private
+
+    ! the types of fc_rolling_base are part of this module's interface
+    public :: fc_rolling_settings, fc_rolling_loading, fc_rolling_case
+
+
+    public :: solve_rolling, solve_rolling_loading, convective_difference, rolling_slip
+
+contains
+
+    !> Steady slip (sx, sy) [-] of tractions (px, py) for the creepages (ξ, η, φ):
+    !! s = w + (u − u_{+x})/δx with u = A p + offset.  For checks and tests.
+    subroutine rolling_slip(top, px, py, xi, eta, phi, sx, sy, offset_x, offset_y)
+        type(fc_tangential_operator), intent(inout) :: top
+        real(dp), intent(in) :: px(:, :), py(:, :), xi, eta, phi
+        real(dp), intent(out) :: sx(:, :), sy(:, :)
+        real(dp), intent(in), optional :: offset_x(:, :), offset_y(:, :)
+        real(dp), allocatable :: ux(:, :), uy(:, :), dx(:, :), dy(:, :)
+        allocate (ux, uy, dx, dy, mold=px)
+        call top%apply(px, py, ux, uy)
+        if (present(offset_x)) ux = ux + offset_x
+        if (present(offset_y)) uy = uy + offset_y
+        call convective_difference(ux, top%grid%dx, dx)
+        call convective_difference(uy, top%grid%dx, dy)
+        call rigid_creepage(top%grid, xi, eta, phi, sx, sy)
+        sx = sx + dx; sy = sy + dy
+    end subroutine rolling_slip
+
+    !> Steady rolling with prescribed creepages (ξ, η, φ) on pressure `pn` [N/mm²].
+    !! Optional: starting tractions (warm start) and a known displacement offset (e.g. the
+    !! coupling A^xz·pn for dissimilar materials), whose convective difference enters the slip.
+    !! Result: tractions on body 1, slip velocity over rolling velocity (sx, sy) [-],
+    !! displacement differences (ux, uy) = A p, element states, forces, moment, counts.
+    subroutine solve_rolling(top, pn, load, settings, res, stat, errmsg, px_start, py_start, offset_x, offset_y)
+        type(fc_tangential_operator), intent(inout) :: top
+        real(dp), intent(in) :: pn(:, :)
+        type(fc_rolling_loading), intent(in) :: load
+        type(fc_rolling_settings), intent(in) :: settings
+        type(fc_tangential_result), intent(out) :: res
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        real(dp), intent(in), optional :: px_start(:, :), py_start(:, :), offset_x(:, :), offset_y(:, :)
+        real(dp), allocatable :: wx(:, :), wy(:, :), gs(:, :), gk(:, :), ox(:, :), oy(:, :), dox(:, :), doy(:, :)
+        real(dp) :: muk
+        integer :: nx, ny, t0, t1, rate
+        stat = 0; errmsg = ''
+        nx = top%grid%nx; ny = top%grid%ny
+        if (.not. top%a_xx%built()) then
+            stat = 1; errmsg = 'solve_rolling: operator not built'; return
+        end if
+        if (top%a_xx%periodic) then
+            stat = 1; errmsg = 'solve_rolling: steady rolling needs a non-periodic operator'; return
+        end if
+        if (size(pn, 1) /= nx .or. size(pn, 2) /= ny) then
+            stat = 1; errmsg = 'solve_rolling: pn does not match the grid'; return
+        end if
+        muk = load%mu_kinetic
+        if (muk < 0) muk = load%mu
+        if (.not. (load%mu >= 0 .and. load%mu < huge(1.0_dp))) then
+            stat = 1; write (errmsg, '(a,g0.6,a)') 'rolling: mu = ', load%mu, ' must be >= 0 and finite'; return
+        end if
+        if (.not. (muk <= load%mu)) then
+            stat = 1; write (errmsg, '(a,g0.6,a,g0.6,a)') 'rolling: mu_kinetic = ', muk, ' must be <= mu = ', &
+                load%mu, ' (static)'; return
+        end if
+        if (.not. (abs(load%xi) < 1.0e3_dp .and. abs(load%eta) < 1.0e3_dp .and. abs(load%phi) < 1.0e6_dp)) then
+            stat = 1; errmsg = 'rolling: creepages xi, eta (|.| < 1e3) and phi (|.| < 1e6 1/mm) must be finite'
+            return
+        end if
+        if (.not. (settings%tol > 0 .and. settings%tol < 1)) then
+            stat = 1; write (errmsg, '(a,g0.6,a)') 'solver: tol = ', settings%tol, ' must be in (0, 1)'; return
+        end if
+        if (settings%maxit < 1 .or. settings%maxit > 10000000) then
+            stat = 1; write (errmsg, '(a,i0,a)') 'solver: maxit = ', settings%maxit, ' must be in [1, 10000000]'; return
+        end if
+        if (settings%restart < 2 .or. settings%restart > 500) then
+            stat = 1; write (errmsg, '(a,i0,a)') 'solver: restart = ', settings%restart, ' must be in [2, 500]'; return
+        end if
+        if (.not. (settings%forcing > 0 .and. settings%forcing < 1)) then
+            stat = 1; write (errmsg, '(a,g0.6,a)') 'solver: forcing = ', settings%forcing, ' must be in (0, 1)'; return
+        end if
+        if (settings%solver /= 'gmres' .and. settings%solver /= 'steadygs' .and. settings%solver /= 'march') then
+            stat = 1; errmsg = "solver: rolling = '"//trim(settings%solver)//"' is not one of 'gmres', 'march', 'steadygs'"
+            return
+        end if
+        if (settings%solver == 'march' .and. muk /= load%mu) then
+            stat = 1; errmsg = "solver: rolling = 'march' needs mu_kinetic = mu (the transient step has one mu)"
+            return
+        end if
+        allocate (wx(nx, ny), wy(nx, ny), gs(nx, ny), gk(nx, ny), ox(nx, ny), oy(nx, ny), dox(nx, ny), doy(nx, ny))
+        call rigid_creepage(top%grid, load%xi, load%eta, load%phi, wx, wy)
+        ox = 0; oy = 0
+        if (present(offset_x)) ox = offset_x
+        if (present(offset_y)) oy = offset_y
+        call convective_difference(ox, top%grid%dx, dox)
+        call convective_difference(oy, top%grid%dx, doy)
+        wx = wx + dox; wy = wy + doy
+        gs = load%mu*max(pn, 0.0_dp)
+        gk = muk*max(pn, 0.0_dp)
+        allocate (res%px(nx, ny), res%py(nx, ny), res%sx(nx, ny), res%sy(nx, ny), res%ux(nx, ny), res%uy(nx, ny))
+        allocate (res%state(nx, ny))
+        res%px = 0; res%py = 0
+        if (present(px_start)) res%px = px_start
+        if (present(py_start)) res%py = py_start
+        where (.not. pn > 0)
+            res%px = 0; res%py = 0
+        end where
+        res%xi = load%xi; res%eta = load%eta; res%phi = load%phi
+        top%nproducts = 0
+        call system_clock(t0, rate)
+        if (settings%solver == 'gmres') then
+            call run_newton_gmres(top, pn > 0, gs, gk, wx, wy, settings, res)
+        else if (settings%solver == 'march') then
+            call run_march(top, pn, load%mu, wx, wy, settings, res, stat, errmsg)
+            if (stat /= 0) return
+        else
+            call run_steadygs(top, pn > 0, gs, gk, wx, wy, settings, res)
+        end if
+        call system_clock(t1)
+        res%cpu_seconds = real(t1 - t0, dp)/rate
+        if (settings%solver /= 'march') res%matvecs = top%nproducts
+        call rolling_summary(top%grid, res)
+    end subroutine solve_rolling
+
+    !> Steady rolling for a [[fc_rolling_loading]]: creepages go to [[solve_rolling]];
+    !! prescribed creep forces (Fx, Fy) are met by a Broyden iteration on (ξ, η) started
+    !! from the initial creep stiffness of a circular contact of the same area (Kalker's
+    !! linear theory, C11 ≈ C22 ≈ π²/(4(1−ν/2)) as a rough, safe guess) and
+    !! safeguarded by step halving; each solve starts from the previous tractions.
+    !! |(Fx, Fy)| must be below μk·Fn.  Force tolerance: tol·μk·Fn.
+    subroutine solve_rolling_loading(top, pn, load, settings, res, stat, errmsg, px_start, py_start, &
+                                     offset_x, offset_y, xi_start, eta_start)
+        type(fc_tangential_operator), intent(inout) :: top
+        real(dp), intent(in) :: pn(:, :)
+        type(fc_rolling_loading), intent(in) :: load
+        type(fc_rolling_settings), intent(in) :: settings
+        type(fc_tangential_result), intent(out) :: res
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        real(dp), intent(in), optional :: px_start(:, :), py_start(:, :), offset_x(:, :), offset_y(:, :)
+        real(dp), intent(in), optional :: xi_start, eta_start   !! first guess of the creepages
+        real(dp), allocatable :: qx(:, :), qy(:, :), ox(:, :), oy(:, :)
+        type(fc_tangential_result) :: trial
+        type(fc_rolling_settings) :: inner
+        type(fc_rolling_loading) :: cur
+        real(dp) :: fn, flimit, k0, area, jac(2, 2), x(2), r(2), xn(2), rn(2), dx(2), dr(2), step, ftol, det, muk
+        real(dp) :: total_cpu
+        integer :: outer, total_it, total_mv, halvings, nx, ny
+        logical :: converged
+        nx = size(pn, 1); ny = size(pn, 2)
+        allocate (qx(nx, ny), qy(nx, ny), ox(nx, ny), oy(nx, ny))
+        qx = 0; qy = 0; ox = 0; oy = 0
+        if (present(px_start)) qx = px_start
+        if (present(py_start)) qy = py_start
+        if (present(offset_x)) ox = offset_x
+        if (present(offset_y)) oy = offset_y
+        if (.not. load%force_prescribed) then
+            call solve_rolling(top, pn, load, settings, res, stat, errmsg, qx, qy, ox, oy)
+            return
+        end if
+        stat = 0; errmsg = ''
+        muk = load%mu_kinetic
+        if (muk < 0) muk = load%mu
+        fn = sum(max(pn, 0.0_dp))*top%grid%area()
+        flimit = muk*fn
+        if (.not. (hypot(load%fx, load%fy) < flimit)) then
+            stat = 1
+            write (errmsg, '(a,es12.5,a,es12.5,a)') 'rolling: |(fx, fy)| = ', hypot(load%fx, load%fy), &
+                ' must be < mu_kinetic*fn = ', flimit, ' (full slip has no unique creepage)'
+            return
+        end if
+        area = count(pn > 0)*top%grid%area()
+        k0 = top%material%g*area/pi*pi**2/(4*(1 - top%material%nu/2))   ! G·ab·C11, ab = area/π
+        jac = 0; jac(1, 1) = -k0; jac(2, 2) = -k0
+        ftol = settings%tol*flimit
+        x = [-load%fx/k0, -load%fy/k0]
+        if (present(xi_start)) x(1) = xi_start
+        if (present(eta_start)) x(2) = eta_start
+        cur = load; cur%force_prescribed = .false.
+        total_it = 0; total_mv = 0; total_cpu = 0
+        converged = .false.
+        inner = settings
+        inner%tol = max(settings%tol, min(1.0e-3_dp, 0.1_dp*hypot(load%fx, load%fy)/flimit))
+        call evaluate(x, r, res)
+        if (stat /= 0) return
+        do outer = 1, 60
+            if (norm2(r) <= ftol .and. inner%tol <= settings%tol) then
+                converged = .true.; exit
+            end if
+            inner%tol = max(settings%tol, min(inner%tol, 0.01_dp*norm2(r)/flimit))
+            det = jac(1, 1)*jac(2, 2) - jac(1, 2)*jac(2, 1)
+            if (det == 0) exit
+            dx = -[jac(2, 2)*r(1) - jac(1, 2)*r(2), -jac(2, 1)*r(1) + jac(1, 1)*r(2)]/det
+            step = 1
+            do halvings = 0, 30
+                xn = x + step*dx
+                call evaluate(xn, rn, trial)
+                if (stat /= 0) return
+                if (norm2(rn) < norm2(r) .or. halvings == 30) exit
+                step = step/2
+            end do
+            dr = rn - r
+            dx = xn - x
+            if (dot_product(dx, dx) > 0) jac = jac + spread(dr - matmul(jac, dx), 2, 2)*spread(dx, 1, 2)/dot_product(dx, dx)
+            x = xn; r = rn
+            res = trial
+        end do
+        res%outer_iterations = outer
+        res%iterations = total_it
+        res%matvecs = total_mv
+        res%cpu_seconds = total_cpu
+        if (res%status == FC_CONVERGED .and. .not. converged) then
+            res%status = FC_NOT_CONVERGED
+            write (res%message, '(a,es10.3,a)') 'creep-force loop not converged: force error ', norm2(r), ' N'
+        end if
+    contains
+        subroutine evaluate(creep, resid, out)
+            real(dp), intent(in) :: creep(2)
+            real(dp), intent(out) :: resid(2)
+            type(fc_tangential_result), intent(inout) :: out
+            cur%xi = creep(1); cur%eta = creep(2)
+            call solve_rolling(top, pn, cur, inner, out, stat, errmsg, qx, qy, ox, oy)
+            if (stat /= 0) return
+            total_it = total_it + out%iterations
+            total_mv = total_mv + out%matvecs
+            total_cpu = total_cpu + out%cpu_seconds
+            qx = out%px; qy = out%py
+            resid = [out%fx - load%fx, out%fy - load%fy]
+        end subroutine evaluate
+    end subroutine solve_rolling_loading
+
+    !> Forces, moment and element counts.
+    subroutine rolling_summary(grid, res)
+        type(fc_grid), intent(in) :: grid
+        type(fc_tangential_result), intent(inout) :: res
+        integer :: i, j
+        res%fx = sum(res%px)*grid%area()
+        res%fy = sum(res%py)*grid%area()
+        res%mz = 0
+        do j = 1, grid%ny
+            do i = 1, grid%nx
+                res%mz = res%mz + (grid%x(i)*res%py(i, j) - grid%y(j)*res%px(i, j))
+            end do
+        end do
+        res%mz = res%mz*grid%area()
+        res%nadh = count(res%state == EL_ADHESION)
+        res%nslip = count(res%state == EL_SLIP)
+        res%ncon = res%nadh + res%nslip
+    end subroutine rolling_summary
+
+    !> Newton–GMRES with TangCG's active set and variables.
+    subroutine run_newton_gmres(top, contact, gs, gk, wx, wy, settings, res)
+        type(fc_tangential_operator), intent(inout) :: top
+        logical, intent(in) :: contact(:, :)
+        real(dp), intent(in) :: gs(:, :), gk(:, :), wx(:, :), wy(:, :)
+        type(fc_rolling_settings), intent(in) :: settings
+        type(fc_tangential_result), intent(inout) :: res
+        integer :: nx, ny, m
+        real(dp), dimension(size(gs, 1), size(gs, 2)) :: px, py, sx, sy, ux, uy, cx, cy, dx_, dy_, mx, my, &
+            pox, poy, tnorm, ex, ey, th
+        logical, dimension(size(gs, 1), size(gs, 2)) :: adh, slp
+        real(dp), allocatable :: vb(:, :, :, :), hess(:, :), cs(:), sn(:), gvec(:), yv(:), hist(:)
+        real(dp), allocatable :: wkx(:, :), wky(:, :), qsx(:, :), qsy(:, :), zx(:, :), zy(:, :)
+        real(dp) :: dxx, dyy, axx, gdx, yscale, change, dnorm, beta, rnorm, tol_in, h, tmp
+        integer :: it_total, newton, k, kk, nit
+        logical :: changed, converged
+        nx = size(gs, 1); ny = size(gs, 2)
+        m = settings%restart
+        allocate (vb(nx, ny, 2, m + 1), hess(m + 1, m), cs(m), sn(m), gvec(m + 1), yv(m))
+        allocate (wkx(nx, ny), wky(nx, ny), qsx(nx, ny), qsy(nx, ny), zx(nx, ny), zy(nx, ny))
+        allocate (hist(max(1, settings%maxit)))
+        call steady_diagonal(top, dxx, dyy)
+        axx = top%a_xx%kernel(0, 0); yscale = axx/top%a_yy%kernel(0, 0); gdx = top%grid%dx
+        px = res%px; py = res%py
+        adh = contact; slp = .false.
+        ! a warm start whose traction reaches the kinetic bound starts in slip (1e−8 slack
+        ! keeps a converged start's subdivision)
+        where (contact .and. gk > 0 .and. px**2 + py**2 >= (1 - 1.0e-8_dp)*gk**2)
+            slp = .true.; adh = .false.
+        end where
+        where (slp)
+            tnorm = sqrt(px**2 + py**2)
+            px = gk*px/tnorm; py = gk*py/tnorm
+        end where
+        where (contact .and. .not. gs > 0)
+            adh = .false.; slp = .false.; px = 0; py = 0
+        end where
+        call exact_slip()
+        it_total = 0
+        converged = .false.
+        res%status = FC_NOT_CONVERGED
+        change = huge(1.0_dp)
+        res%outer_iterations = 0
+        newton = 0
+        do
+            newton = newton + 1
+            ! defect d = −F: adhesion −s, slip −(px·sy − py·sx)
+            where (adh)
+                ex = -sx; ey = -sy
+            elsewhere (slp)
+                ex = -(px*sy - py*sx); ey = 0
+            elsewhere
+                ex = 0; ey = 0
+            end where
+            ! slip rows of the left preconditioner: TangCG's diagonal scaling (thesis eq. 4.43
+            ! with the steady diagonal) to the measure A^xx_II of the adhesion rows
+            where (slp)
+                mx = axx/(px**2*dyy + py**2*dxx + max(0.0_dp, -(px*sx + py*sy)))
+            elsewhere
+                mx = 0
+            end where
+            call precondition(ex, ey)
+            dnorm = sqrt(sum(ex**2 + ey**2))
+            if (dnorm == 0) then
+                dx_ = 0; dy_ = 0; nit = 0
+            else
+                tol_in = settings%forcing*dnorm
+                call gmres(nit)
+            end if
+            it_total = it_total + nit
+            ! update: adhesion tractions, slip angles (rotation on the circle)
+            pox = px; poy = py
+            where (adh)
+                px = px + dx_; py = py + dy_
+            elsewhere (slp)
+                th = atan2(py, px) + dx_
+                px = gk*cos(th); py = gk*sin(th)
+            end where
+            change = traction_change(px, py, pox, poy)
+            if (newton <= size(hist)) hist(newton) = change
+            if (ieee_is_nan(change) .or. change > 1.0e12_dp) then
+                res%status = FC_DIVERGED
+                res%message = 'Newton-GMRES diverged (traction change not finite)'
+                exit
+            end if
+            ! active set (TangCG step 11): adhesion above the static bound → slip on the
+            ! kinetic circle; slip whose traction does not oppose the slip → adhesion
+            changed = .false.
+            if (any(adh .and. px**2 + py**2 > gs**2)) then
+                where (adh .and. px**2 + py**2 > gs**2)
+                    slp = .true.; adh = .false.
+                    tnorm = sqrt(px**2 + py**2)
+                    px = gk*px/tnorm; py = gk*py/tnorm
+                end where
+                changed = .true.
+            end if
+            call exact_slip()
+            if (any(slp .and. px*sx + py*sy > 0)) then
+                where (slp .and. px*sx + py*sy > 0)
+                    adh = .true.; slp = .false.
+                end where
+                changed = .true.
+            end if
+            res%outer_iterations = newton
+            if (.not. changed .and. change < settings%tol) then
+                converged = .true.
+                exit
+            end if
+            if (it_total >= settings%maxit) exit
+        end do
+        res%iterations = it_total
+        call finish(res, converged, 'Newton-GMRES', settings%maxit, 'Krylov iterations', change)
+        res%px = px; res%py = py; res%ux = ux; res%uy = uy; res%sx = sx; res%sy = sy
+        res%state = EL_EXTERIOR
+        where (adh) res%state = EL_ADHESION
+        where (slp) res%state = EL_SLIP
+        where (.not. contact)
+            res%sx = 0; res%sy = 0
+        end where
+        allocate (res%history(min(newton, size(hist))), source=hist(1:min(newton, size(hist))))
+    contains
+        !> u = A p, s = w + (u − u_{+x})/δx (one FFT product).
+        subroutine exact_slip()
+            call top%apply(px, py, ux, uy)
+            call convective_difference(ux, top%grid%dx, cx)
+            call convective_difference(uy, top%grid%dx, cy)
+            sx = wx + cx; sy = wy + cy
+        end subroutine exact_slip
+
+        !> Left preconditioner P, in place.  Adhesion: along each run of consecutive adhesion
+        !! elements in x, the sum from the run's front (leading side) down to the element,
+        !! times δx — it turns the steady adhesion rows (u_I − u_{I+x})/δx into
+        !! u_I − u_front+x, an SPD-like shift operator minus one value per run; y rows scaled
+        !! by A^xx_II/A^yy_II.  Slip: the diagonal scaling in mx.
+        subroutine precondition(rx, ry)
+            real(dp), intent(inout) :: rx(:, :), ry(:, :)
+            integer :: i, j
+            real(dp) :: accx, accy
+            do j = 1, ny
+                accx = 0; accy = 0
+                do i = nx, 1, -1
+                    if (adh(i, j)) then
+                        accx = accx + rx(i, j)*gdx; accy = accy + ry(i, j)*gdx
+                        rx(i, j) = accx; ry(i, j) = accy*yscale
+                    else
+                        accx = 0; accy = 0
+                        rx(i, j) = mx(i, j)*rx(i, j); ry(i, j) = 0
+                    end if
+                end do
+            end do
+        end subroutine precondition
+
+        !> q = P·J·v for a direction v in primary variables, into (qx, qy).
+        subroutine jacobian_product(vx, vy, qx, qy)
+            real(dp), intent(in) :: vx(:, :), vy(:, :)
+            real(dp), intent(out) :: qx(:, :), qy(:, :)
+            zx = vx; zy = vy
+            where (adh)
+                wkx = zx; wky = zy
+            elsewhere (slp)
+                wkx = -zx*py; wky = zx*px
+            elsewhere
+                wkx = 0; wky = 0
+            end where
+            call top%apply(wkx, wky, qsx, qsy)
+            call convective_difference(qsx, top%grid%dx, cx)
+            call convective_difference(qsy, top%grid%dx, cy)
+            where (adh)
+                qx = cx; qy = cy
+            elsewhere (slp)
+                qx = px*cy - py*cx + sy*wkx - sx*wky; qy = 0
+            elsewhere
+                qx = 0; qy = 0
+            end where
+            call precondition(qx, qy)
+        end subroutine jacobian_product
+
+        !> Restarted GMRES(m) on J M z = d, δ = M z, from z = 0; at most the iterations left
+        !! in maxit.  Result in (dx_, dy_); `nit` Krylov iterations.
+        subroutine gmres(nit)
+            integer, intent(out) :: nit
+            integer :: j, i
+            real(dp) :: solx(nx, ny), soly(nx, ny)
+            solx = 0; soly = 0
+            nit = 0
+            do
+                ! residual r = d − J M z
+                if (nit == 0) then
+                    vb(:, :, 1, 1) = ex; vb(:, :, 2, 1) = ey
+                else
+                    call jacobian_product(solx, soly, vb(:, :, 1, 1), vb(:, :, 2, 1))
+                    vb(:, :, 1, 1) = ex - vb(:, :, 1, 1); vb(:, :, 2, 1) = ey - vb(:, :, 2, 1)
+                end if
+                beta = sqrt(sum(vb(:, :, :, 1)**2))
+                if (beta <= tol_in .or. beta == 0) exit
+                vb(:, :, :, 1) = vb(:, :, :, 1)/beta
+                gvec = 0; gvec(1) = beta
+                kk = 0
+                do k = 1, m
+                    if (it_total + nit >= settings%maxit) exit
+                    nit = nit + 1
+                    kk = k
+                    call jacobian_product(vb(:, :, 1, k), vb(:, :, 2, k), vb(:, :, 1, k + 1), vb(:, :, 2, k + 1))
+                    do j = 1, k      ! modified Gram–Schmidt
+                        h = sum(vb(:, :, :, j)*vb(:, :, :, k + 1))
+                        hess(j, k) = h
+                        vb(:, :, :, k + 1) = vb(:, :, :, k + 1) - h*vb(:, :, :, j)
+                    end do
+                    hess(k + 1, k) = sqrt(sum(vb(:, :, :, k + 1)**2))
+                    if (hess(k + 1, k) > 0) vb(:, :, :, k + 1) = vb(:, :, :, k + 1)/hess(k + 1, k)
+                    do j = 1, k - 1   ! previous Givens rotations
+                        tmp = cs(j)*hess(j, k) + sn(j)*hess(j + 1, k)
+                        hess(j + 1, k) = -sn(j)*hess(j, k) + cs(j)*hess(j + 1, k)
+                        hess(j, k) = tmp
+                    end do
+                    rnorm = hypot(hess(k, k), hess(k + 1, k))
+                    if (rnorm == 0) then
+                        cs(k) = 1; sn(k) = 0
+                    else
+                        cs(k) = hess(k, k)/rnorm; sn(k) = hess(k + 1, k)/rnorm
+                    end if
+                    hess(k, k) = rnorm; hess(k + 1, k) = 0
+                    gvec(k + 1) = -sn(k)*gvec(k); gvec(k) = cs(k)*gvec(k)
+                    if (abs(gvec(k + 1)) <= tol_in .or. rnorm == 0) exit
+                end do
+                if (kk == 0) exit
+                ! y = H⁻¹ g (upper triangular), z += V y
+                do i = kk, 1, -1
+                    if (hess(i, i) == 0) then
+                        yv(i) = 0
+                    else
+                        yv(i) = (gvec(i) - dot_product(hess(i, i + 1:kk), yv(i + 1:kk)))/hess(i, i)
+                    end if
+                end do
+                do i = 1, kk
+                    solx = solx + yv(i)*vb(:, :, 1, i); soly = soly + yv(i)*vb(:, :, 2, i)
+                end do
+                if (abs(gvec(kk + 1)) <= tol_in .or. it_total + nit >= settings%maxit) exit
+            end do
+            dx_ = solx; dy_ = soly
+        end subroutine gmres
+    end subroutine run_newton_gmres
+
+end module fc_rolling

@@ -1,0 +1,118 @@
+!> Shared pieces of the steady rolling solvers (module [[fc_rolling]]): settings, loading and
+!! case types, the convective difference of the steady slip, the rigid creepage, the
+!! traction-change criterion (thesis eq. 4.49), the diagonal of the steady operator and the
+!! final status of a solve.
+module fc_rolling_base
+    use fc_kinds
+    use fc_geometry, only: fc_grid
+    use fc_tangcg, only: fc_tangential_operator, fc_tangential_result
+    implicit none
+    private
+
+    !> Settings of the steady rolling solvers.
+    type, public :: fc_rolling_settings
+        character(len=8) :: solver = 'gmres'   !! 'gmres' (Newton–GMRES), 'march' or 'steadygs' (references)
+        real(dp) :: tol = 1.0e-5_dp            !! relative traction change (thesis eq. 4.49)
+        integer :: maxit = 2000                !! GMRES: Krylov iterations in all; SteadyGS: sweeps
+        integer :: restart = 40                !! GMRES restart length
+        real(dp) :: forcing = 0.1_dp           !! GMRES: relative residual reduction per Newton step
+    end type fc_rolling_settings
+
+    !> Loading of a steady rolling problem.
+    type, public :: fc_rolling_loading
+        real(dp) :: mu = 0                !! static coefficient of friction μs
+        real(dp) :: mu_kinetic = -1       !! kinetic coefficient μk (< 0: equal to μs)
+        real(dp) :: xi = 0, eta = 0       !! longitudinal and lateral creepage [-]
+        real(dp) :: phi = 0               !! spin creepage [1/mm]
+        real(dp) :: fx = 0, fy = 0        !! prescribed creep forces [N] (force_prescribed)
+        logical :: force_prescribed = .false.
+    end type fc_rolling_loading
+
+    !> What a rolling case adds to a contact case: the kinetic friction of steady rolling,
+    !! and a sequence — a creep-force sweep of one loading value, or transient rolling steps.
+    type, public :: fc_rolling_case
+        real(dp) :: mu_kinetic = -1        !! steady rolling: kinetic friction in slip (< 0: = mu)
+        logical :: transient = .false.     !! transient rolling: steps of dq from rest
+        real(dp) :: dq = 0                 !! transient: distance per step [mm] (0: dx)
+        integer :: nsteps = 0              !! transient: steps (0: the area length travelled 4 times)
+        character(len=8) :: sweep = ''     !! steady: swept value 'xi', 'eta', 'phi', 'fx', 'fy' ('': none)
+        real(dp) :: sweep_from = 0, sweep_to = 0  !! range of the swept value (ends included)
+        integer :: sweep_n = 20            !! points of the sweep
+        logical :: fastsim = .false.       !! steady: Kalker's simplified theory on the Hertz ellipse, no grid
+    end type fc_rolling_case
+
+    public :: convective_difference, rigid_creepage, traction_change, steady_diagonal, finish
+
+contains
+
+    !> d_i = (f_i − f_{i+1})/δx along x with f_{nx+1} = 0: the convective part of the steady
+    !! slip (material in front of the grid is undeformed).
+    pure subroutine convective_difference(f, dx, d)
+        real(dp), intent(in) :: f(:, :)
+        real(dp), intent(in) :: dx
+        real(dp), intent(out) :: d(:, :)
+        integer :: nx
+        nx = size(f, 1)
+        d(1:nx - 1, :) = (f(1:nx - 1, :) - f(2:nx, :))/dx
+        d(nx, :) = f(nx, :)/dx
+    end subroutine convective_difference
+
+    !> Rigid creepage w_I = [ξ − φ·y_I, η + φ·x_I].
+    pure subroutine rigid_creepage(grid, xi, eta, phi, wx, wy)
+        type(fc_grid), intent(in) :: grid
+        real(dp), intent(in) :: xi, eta, phi
+        real(dp), intent(out) :: wx(:, :), wy(:, :)
+        integer :: i, j
+        do j = 1, grid%ny
+            do i = 1, grid%nx
+                wx(i, j) = xi - phi*grid%y(j)
+                wy(i, j) = eta + phi*grid%x(i)
+            end do
+        end do
+    end subroutine rigid_creepage
+
+    !> Relative RMS change of the traction vector (thesis eq. 4.49).
+    pure real(dp) function traction_change(px, py, qx, qy)
+        real(dp), intent(in) :: px(:, :), py(:, :), qx(:, :), qy(:, :)
+        real(dp) :: num, den
+        num = sum((px - qx)**2 + (py - qy)**2)
+        den = sum(px**2 + py**2)
+        if (den > 0) then
+            traction_change = sqrt(num/den)
+        else if (num > 0) then
+            traction_change = huge(1.0_dp)
+        else
+            traction_change = 0
+        end if
+    end function traction_change
+
+    !> Diagonal (dxx, dyy) of the steady operator s ← (A p − (A p)_{+x})/δx:
+    !! (A_II − A_{I+x,I})/δx per component (A^xy vanishes on the x axis).
+    subroutine steady_diagonal(top, dxx, dyy)
+        type(fc_tangential_operator), intent(in) :: top
+        real(dp), intent(out) :: dxx, dyy
+        dxx = top%a_xx%kernel(0, 0); dyy = top%a_yy%kernel(0, 0)
+        if (top%grid%nx > 1) then
+            dxx = dxx - top%a_xx%kernel(1, 0); dyy = dyy - top%a_yy%kernel(1, 0)
+        end if
+        dxx = dxx/top%grid%dx; dyy = dyy/top%grid%dx
+    end subroutine steady_diagonal
+
+    !> Final status and message; `change` is the last traction change.
+    subroutine finish(res, converged, solver, maxit, unit_name, change)
+        type(fc_tangential_result), intent(inout) :: res
+        logical, intent(in) :: converged
+        character(len=*), intent(in) :: solver, unit_name
+        integer, intent(in) :: maxit
+        real(dp), intent(in) :: change
+        if (converged) then
+            res%status = FC_CONVERGED
+            res%message = 'converged'
+        else if (res%status == FC_NOT_CONVERGED) then
+            write (res%message, '(a,i0,1x,a,a,es10.3)') solver//' not converged in maxit = ', maxit, unit_name, &
+                '; last traction change ', change
+        end if
+        res%residual = change
+    end subroutine finish
+
+end module fc_rolling_base
