@@ -67,10 +67,10 @@ contains
         select case (lower(trim(key)))
         case ('g1', 'g2', 'nu1', 'nu2', 'xmin', 'xmax', 'ymin', 'ymax', 'margin', 'rx', 'ry', 'diameter', 'sigma', &
               'gamma', 'amplitude', 'wavelength_x', 'wavelength_y', 'length', 'approach', 'fn', 'mu', 'xi', 'eta', &
-              'phi', 'fx', 'fy', 'tol', 'omega', 'beta', 'target')
+              'phi', 'fx', 'fy', 'tol', 'omega', 'beta', 'target', 'mu_kinetic', 'dq', 'sweep_from', 'sweep_to')
             kind = 'real'
         case ('nx', 'ny', 'n_across', 'm_modes', 'n_modes', 'seed', 'maxit', 'inner_maxit', 'inner_k', 'max_levels', &
-              'threads')
+              'threads', 'nsteps', 'sweep_n')
             kind = 'integer'
         case ('auto', 'precondition', 'precondition_tangential', 'deflation', 'target_pmax', 'table', 'periodic')
             kind = 'logical'
@@ -78,7 +78,8 @@ contains
         case ('title'); kind = 'string'; maxlen = 128
         case ('problem', 'normal', 'tangential'); kind = 'string'; maxlen = 32
         case ('kind', 'cycle', 'strip', 'model'); kind = 'string'; maxlen = 16
-        case ('smoother'); kind = 'string'; maxlen = 8
+        case ('smoother', 'sweep'); kind = 'string'; maxlen = 8
+        case ('rolling'); kind = 'string'; maxlen = 16
         case ('ic_file', 'ic_file2', 'file', 'dir'); kind = 'string'; maxlen = 256
         case default; kind = ''
         end select
