@@ -13,7 +13,7 @@ program bench_parallel
     use, intrinsic :: iso_fortran_env, only: int64, output_unit
     use fc_kinds, only: dp
     use fc_driver, only: run_driver
-    use fc_threads, only: set_thread_count, fc_thread_count, fc_openmp_enabled
+    use fc_threads, only: fc_openmp_enabled
     implicit none
     integer :: nthreads, repeats, i, r, c, t, u, code, nul
     logical :: quick
@@ -45,7 +45,8 @@ program bench_parallel
     end if
     if (.not. fc_openmp_enabled()) write (*, '(a)') 'note: built without OpenMP: every run uses one thread'
     call execute_command_line('mkdir -p '//dir)
-    call write_cases()
+    call write_cases(1)
+    call write_cases(nthreads)
     allocate (wall(2, 2, repeats))
     open (newunit=u, file=trim(out_file), status='replace', action='write')
     write (u, '(a)') 'case,threads,repeat,wall_s,cpu_s,exit'
@@ -53,13 +54,13 @@ program bench_parallel
     do r = 1, repeats
         do c = 1, 2
             do t = 1, 2
-                call set_thread_count(merge(1, nthreads, t == 1))
                 call system_clock(t0, rate); call cpu_time(c0)
-                args(1) = dir//'/'//trim(cases(c))//'.nml'; args(2) = '--out'; args(3) = dir//'/out'
+                write (args(1), '(a,i0,a)') dir//'/'//trim(cases(c))//'_', merge(1, nthreads, t == 1), '.nml'
+                args(2) = '--out'; args(3) = dir//'/out'
                 call run_driver(args, code, nul, nul)
                 call system_clock(t1); call cpu_time(c1)
                 wall(t, c, r) = real(t1 - t0, dp)/rate
-                write (u, '(a,",",i0,",",i0,",",f0.4,",",f0.4,",",i0)') trim(cases(c)), fc_thread_count(), r, &
+                write (u, '(a,",",i0,",",i0,",",f0.4,",",f0.4,",",i0)') trim(cases(c)), merge(1, nthreads, t == 1), r, &
                     wall(t, c, r), c1 - c0, code
                 flush (u)
             end do
@@ -74,9 +75,12 @@ program bench_parallel
 
 contains
 
-    subroutine write_cases()
+    subroutine write_cases(nt)
+        integer, intent(in) :: nt
         integer :: v
-        open (newunit=v, file=dir//'/hertz.nml', status='replace', action='write')
+        character(len=64) :: solver
+        write (solver, '(a,i0,a)') '&solver threads = ', nt, ' /'
+        open (newunit=v, file=dir//'/hertz_'//itoa(nt)//'.nml', status='replace', action='write')
         write (v, '(a)') "&case name = 'hertz' /"
         write (v, '(a)') "&material g1 = 82000.0, g2 = 82000.0, nu1 = 0.28, nu2 = 0.28 /"
         if (quick) then
@@ -87,8 +91,9 @@ contains
         write (v, '(a)') "&geometry kind = 'quadratic', rx = 300.0, ry = 163.0 /"
         write (v, '(a)') "&normal approach = 0.1091 /"
         write (v, '(a)') "&output table = .false. /"
+        write (v, '(a)') trim(solver)
         close (v)
-        open (newunit=v, file=dir//'/cattaneo.nml', status='replace', action='write')
+        open (newunit=v, file=dir//'/cattaneo_'//itoa(nt)//'.nml', status='replace', action='write')
         write (v, '(a)') "&case name = 'cattaneo', problem = 'normal+tangential' /"
         write (v, '(a)') "&material g1 = 200.0, g2 = 200.0, nu1 = 0.42, nu2 = 0.42 /"
         if (quick) then
@@ -100,8 +105,17 @@ contains
         write (v, '(a)') "&normal fn = 9.1954 /"
         write (v, '(a)') "&tangential mu = 0.4, xi = 0.0021, eta = 0.0010, phi = 0.003 /"
         write (v, '(a)') "&output table = .false. /"
+        write (v, '(a)') trim(solver)
         close (v)
     end subroutine write_cases
+
+    function itoa(i) result(t)
+        integer, intent(in) :: i
+        character(len=:), allocatable :: t
+        character(len=12) :: b
+        write (b, '(i0)') i
+        t = trim(b)
+    end function itoa
 
     real(dp) function median(x)
         real(dp), intent(in) :: x(:)

@@ -38,20 +38,30 @@ FLAGS="-I/usr/include -fopenmp -O3 -funroll-loops"
 mpibin="mpi/$(cd mpi && FPM_FC=mpifort fpm run --flag "$FLAGS" --link-flag "-fopenmp" fastcontact-mpi --runner echo 2>/dev/null | tail -1)"
 MPIRUN=(mpirun --oversubscribe)
 [ "$(id -u)" -eq 0 ] && MPIRUN+=(--allow-run-as-root)
-echo "run,mode,ranks,wall_s,cpu_s,exit" >"$out"
+# cpu_max_rank_s: the largest CPU time of one rank (each rank timed by /usr/bin/time), i.e. the
+# wall time on an idle machine with one core per rank; serial CPU / cpu_max_rank is the
+# speed-up the batch achieves when each rank has its core (load balance and overheads included).
+echo "run,mode,ranks,wall_s,cpu_s,cpu_max_rank_s,load1,exit" >"$out"
 for r in $(seq 1 "$repeats"); do
     for mode in serial mpi2; do
         rm -rf "$tmp/out"
         if [ "$mode" = serial ]; then
             cmd=(env OMP_NUM_THREADS=1 "$serial" "$nml" --out "$tmp/out"); ranks=1
         else
-            cmd=(env OMP_NUM_THREADS=1 "${MPIRUN[@]}" -np 2 "$mpibin" "$nml" --out "$tmp/out"); ranks=2
+            cmd=(env OMP_NUM_THREADS=1 "${MPIRUN[@]}" -np 2 sh -c \
+                '/usr/bin/time -f "%U %S" -o "$0.$OMPI_COMM_WORLD_RANK" "$@"' "$tmp/rank" "$mpibin" "$nml" --out "$tmp/out"); ranks=2
         fi
         set +e
         /usr/bin/time -f "%e %U %S" -o "$tmp/time" "${cmd[@]}" >"$tmp/log" 2>&1
         code=$?
         set -e
         read -r wall user sys <"$tmp/time"
-        echo "$r,$mode,$ranks,$wall,$(awk "BEGIN{print $user+$sys}"),$code" | tee -a "$out"
+        cpu="$(awk "BEGIN{print $user+$sys}")"
+        cmax="$cpu"
+        if [ "$mode" = mpi2 ]; then
+            cmax="$(cat "$tmp"/rank.* | awk '{c=$1+$2; if (c>m) m=c} END{print m}')"
+            rm -f "$tmp"/rank.*
+        fi
+        echo "$r,$mode,$ranks,$wall,$cpu,$cmax,$(cut -d' ' -f1 /proc/loadavg),$code" | tee -a "$out"
     done
 done

@@ -91,7 +91,7 @@ contains
         real(dp) :: cx, cy, hx, hy
         s = s_in
         stat = 0; errmsg = ''
-        call set_thread_count(s%threads)   ! before any FFT plan of this case is made
+        call set_thread_count(s%threads, elements=s%nx*s%ny)   ! before any FFT plan of this case is made
         allocate (out%reductions(0), out%warnings(0), out%levels(0))
         out%material = s%material
         call combine_material(out%material, stat, errmsg)

@@ -155,7 +155,7 @@ contains
         character(len=*), intent(out) :: errmsg
         stat = 0; errmsg = ''
         if (ic%content /= 'combined' .or. .not. allocated(ic%a)) then
-            stat = 1; errmsg = "influence coefficients: a set of content 'combined' is needed (combine the bodies first)"
+            stat = FC_ERR_VALUE; errmsg = "influence coefficients: a set of content 'combined' is needed (combine the bodies first)"
             return
         end if
         ops%ic = ic
@@ -203,7 +203,7 @@ contains
         tangential = load%problem /= FC_PROBLEM_NORMAL
         use_fmg = settings%normal%solver == 'fmg'
         if (load%problem == FC_PROBLEM_ROLLING .and. load%transient /= FC_FROM_REST) then
-            stat = 1
+            stat = FC_ERR_UNSUPPORTED
             errmsg = 'solve_contact: steady rolling has no transient mode (use FC_PROBLEM_TANGENTIAL with '// &
                 'FC_TRANSIENT_ROLLING for transient rolling)'
             return
@@ -216,19 +216,20 @@ contains
         end if
         if (ops%periodic) then
             if (allocated(ops%ic%a)) then
-                stat = 1; errmsg = 'solve_contact: the periodic half-space and an influence-coefficient file exclude '// &
-                    'each other'; return
+                stat = FC_ERR_UNSUPPORTED
+                errmsg = 'solve_contact: the periodic half-space and an influence-coefficient file exclude each other'
+                return
             end if
             call check_periodic_grid(grid, periodic_images_default, stat, errmsg)
             if (stat == 0 .and. (tangential .or. use_fmg)) then
-                stat = 1; errmsg = 'solve_contact: the periodic half-space is available for normal contact with '// &
-                    "'bccg' or 'norm'"
+                stat = FC_ERR_UNSUPPORTED
+                errmsg = "solve_contact: the periodic half-space is available for normal contact with 'bccg' or 'norm'"
             end if
             if (stat /= 0) return
         end if
         if (allocated(ops%ic%a)) then
             if (use_fmg) then
-                stat = 1
+                stat = FC_ERR_UNSUPPORTED
                 errmsg = 'solve_contact: FMG needs influence coefficients on every coarser grid, an influence-'// &
                     'coefficient file holds them for one grid: use BCCG or NORM'
                 return

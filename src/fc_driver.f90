@@ -66,13 +66,17 @@ contains
 
     !> Run the driver on the command-line arguments `args` (without the program name).
     !! With `only_case` = k (the MPI batch driver): cases before k are read and checked only,
-    !! for what case k inherits; case k is solved and written; no closing summary line.
-    subroutine run_driver(args, exit_code, report_unit, error_unit, only_case)
+    !! for what case k inherits; cases k … `last_case` (default k) are solved and written, their
+    !! statuses (0 converged, 1 input error, 2 solver failure) returned in `statuses`; no
+    !! closing summary line.
+    subroutine run_driver(args, exit_code, report_unit, error_unit, only_case, last_case, statuses)
         character(len=*), intent(in) :: args(:)
         integer, intent(out) :: exit_code
         integer, intent(in), optional :: report_unit   !! report (default: stdout)
         integer, intent(in), optional :: error_unit    !! error messages (default: stderr)
-        integer, intent(in), optional :: only_case     !! solve only this case (1-based)
+        integer, intent(in), optional :: only_case     !! first case to solve (1-based)
+        integer, intent(in), optional :: last_case     !! last case to solve (with only_case)
+        integer, allocatable, intent(out), optional :: statuses(:)  !! per solved case (with only_case)
         integer :: rep, err, i, k, stat, ncase_err, ncase_fail
         character(len=:), allocatable :: case_file, out_dir
         type(fc_case_chunk), allocatable :: cases(:)
@@ -135,14 +139,19 @@ contains
         end if
         allocate (used(0), used_case(0))
         ncase_err = 0; ncase_fail = 0
+        if (present(statuses) .and. present(only_case)) then
+            allocate (statuses(max(0, min(last_solved(), size(cases)) - only_case + 1)))
+            statuses = -1
+        end if
         do k = 1, size(cases)
             if (present(only_case)) then
-                if (k > only_case) exit
+                if (k > last_solved()) exit
                 if (k < only_case) then
                     call inherit_case(k); cycle
                 end if
             end if
             call run_one_case(k, case_status)
+            if (present(statuses) .and. present(only_case)) statuses(k - only_case + 1) = case_status
             select case (case_status)
             case (0)
             case (1); ncase_err = ncase_err + 1
@@ -369,6 +378,12 @@ contains
                     trim(status_name(final_status))//': '//trim(s%message)
             end if
         end subroutine run_strip_case
+
+        !> Last case to solve with `only_case`.
+        integer function last_solved()
+            last_solved = only_case
+            if (present(last_case)) last_solved = max(only_case, last_case)
+        end function last_solved
 
         !> Apply and check case k without solving or writing: the state later cases inherit
         !! (as [[run_one_case]] leaves it, except after an error found only while solving).

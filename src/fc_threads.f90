@@ -20,6 +20,9 @@ module fc_threads
     private
 
     integer, parameter, public :: max_threads_allowed = 1024  !! bound on a requested count
+    !> Grids smaller than this (nx·ny) keep single-threaded FFT plans when the caller gives
+    !! the grid size (the doubled-grid transforms are then below 1024² points).
+    integer, parameter, public :: fftw_thread_min_elements = 512*512
 
     interface
         integer(c_int) function fftw_init_threads() bind(C, name='fftw_init_threads')
@@ -79,11 +82,15 @@ contains
     end subroutine check_thread_count
 
     !> Use `n` threads (n ≤ 0: [[fc_default_threads]]) for OpenMP regions and for FFTW plans
-    !! made from now on.  Call it outside parallel regions.
-    subroutine set_thread_count(n)
+    !! made from now on.  With `elements` (the grid size nx·ny), FFT plans stay on one thread
+    !! below [[fftw_thread_min_elements]]: the many small transforms of TangCG were 13× slower
+    !! in CPU time with 2 FFTW threads (Cattaneo 240×200, doc/parallel.md).  Call it outside
+    !! parallel regions.
+    subroutine set_thread_count(n, elements)
         integer, intent(in) :: n
+        integer, intent(in), optional :: elements
         integer(c_int) :: ok
-        integer :: m
+        integer :: m, nfft
         m = n
         if (m <= 0) m = fc_default_threads()
         !$ call omp_set_num_threads(min(m, max_threads_allowed))
@@ -94,7 +101,11 @@ contains
         !$     fftw_threads_ready = ok /= 0
         !$ end if
         !$omp end critical (fc_threads_init)
-        !$ if (fftw_threads_ready) call fftw_plan_with_nthreads(int(omp_get_max_threads(), c_int))
+        !$ nfft = omp_get_max_threads()
+        !$ if (present(elements)) then
+        !$     if (elements < fftw_thread_min_elements) nfft = 1
+        !$ end if
+        !$ if (fftw_threads_ready) call fftw_plan_with_nthreads(int(nfft, c_int))
         ok = 0
     end subroutine set_thread_count
 

@@ -9,11 +9,13 @@
 !! (1 if a case had an input error, else 2 if a solver failed, else 0).  A failing case
 !! only marks its own status; the other cases finish.
 !!
-!! Dynamic load balance: rank 0 hands out case indices.  Every rank, rank 0 included,
-!! solves cases; a worker holds one case in reserve and asks for the next one when it
-!! starts a case, so it rarely waits while rank 0 is busy with its own case (rank 0
-!! answers requests between its cases).  Waiting ranks poll with short sleeps rather than
-!! spin, so that an idle rank does not take a core from a busy one.
+!! Dynamic load balance: the cases are grouped in chunks of consecutive cases (about four
+!! chunks per rank, so that a rank reuses its operators across the cases of a chunk as the
+!! serial driver does across consecutive cases) and rank 0 hands out chunk indices.  Every
+!! rank, rank 0 included, solves chunks; a worker holds one chunk in reserve and asks for the
+!! next one when it starts one, so it rarely waits while rank 0 is busy with its own chunk
+!! (rank 0 answers requests between its chunks).  Waiting ranks poll with short sleeps rather
+!! than spin, so that an idle rank does not take a core from a busy one.
 !!
 !! Difference from the serial driver (documented in doc/parallel.md): a case whose input is
 !! rejected only while solving (e.g. a tangential force above μ·Fn) is, for the inheritance
@@ -38,9 +40,9 @@ module fcm_batch
         end function c_usleep
     end interface
 
-    !> Outcome of one case.
+    !> Outcome of one chunk of consecutive cases.
     type :: case_outcome
-        integer :: status = -1                      !! run_driver's exit code for the case
+        integer, allocatable :: statuses(:)         !! per case: 0 converged, 1 input error, 2 solver failure
         character(len=:), allocatable :: report     !! report text
         character(len=:), allocatable :: errors     !! error messages
         integer :: rank = -1                        !! rank that solved it
@@ -64,7 +66,7 @@ contains
         type(fc_case_chunk), allocatable :: cases(:)
         character(len=msg_len) :: errmsg
         character(len=:), allocatable :: case_file
-        integer :: stat, next
+        integer :: stat, next, csize, nchunks
         call mpi_comm_rank(comm, rank, ierr)
         call mpi_comm_size(comm, nprocs, ierr)
         rep = output_unit; err = error_unit
@@ -88,18 +90,16 @@ contains
             exit_code = -1 - ncases
             return
         end if
-        allocate (out(ncases))
+        csize = max(1, ncases/(4*nprocs))
+        nchunks = (ncases + csize - 1)/csize
+        allocate (out(nchunks))
         if (rank == 0) then
             call master(out)
-            nerr = 0; nfail = 0
-            do k = 1, ncases
+            nerr = count([(out(k)%statuses == 1, k=1, nchunks)])
+            nfail = count([(out(k)%statuses >= 2 .or. out(k)%statuses < 0, k=1, nchunks)])
+            do k = 1, nchunks
                 call write_lines(rep, out(k)%report)
                 call write_lines(err, out(k)%errors)
-                select case (out(k)%status)
-                case (EXIT_OK)
-                case (EXIT_INPUT_ERROR); nerr = nerr + 1
-                case default; nfail = nfail + 1
-                end select
             end do
             flush (err)
             write (rep, '(a,i0,a,i0,a,i0,a,i0,a)') 'fastcontact: ', ncases, ' case(s): ', ncases - nerr - nfail, &
@@ -110,7 +110,12 @@ contains
             else if (nfail > 0) then
                 exit_code = EXIT_NOT_CONVERGED
             end if
-            if (present(case_ranks)) case_ranks = out%rank
+            if (present(case_ranks)) then
+                allocate (case_ranks(ncases))
+                do k = 1, nchunks
+                    case_ranks((k - 1)*csize + 1:min(k*csize, ncases)) = out(k)%rank
+                end do
+            end if
         else
             call worker()
         end if
@@ -124,19 +129,19 @@ contains
             integer :: received, r, st(MPI_STATUS_SIZE), first(2)
             logical :: flag
             next = 1
-            ! two cases per worker to start with (the second one is the reserve)
+            ! two chunks per worker to start with (the second one is the reserve)
             do r = 1, nprocs - 1
                 first = 0
-                if (next <= ncases) then
+                if (next <= nchunks) then
                     first(1) = next; next = next + 1
                 end if
-                if (next <= ncases) then
+                if (next <= nchunks) then
                     first(2) = next; next = next + 1
                 end if
                 call mpi_send(first, 2, MPI_INTEGER, r, TAG_ASSIGN, comm, ierr)
             end do
             received = 0
-            do while (received < ncases)
+            do while (received < nchunks)
                 ! answer every request that has arrived
                 do
                     call mpi_iprobe(MPI_ANY_SOURCE, TAG_RESULT, comm, flag, st, ierr)
@@ -145,12 +150,12 @@ contains
                     received = received + 1
                     call mpi_send(take_next(), 1, MPI_INTEGER, st(MPI_SOURCE), TAG_ASSIGN, comm, ierr)
                 end do
-                if (next <= ncases) then
+                if (next <= nchunks) then
                     k = take_next()
                     call solve_case(k, out(k))
                     out(k)%rank = 0
                     received = received + 1
-                else if (received < ncases) then
+                else if (received < nchunks) then
                     ierr = c_usleep(2000_c_int)
                 end if
             end do
@@ -158,7 +163,7 @@ contains
 
         integer function take_next()
             take_next = 0
-            if (next <= ncases) then
+            if (next <= nchunks) then
                 take_next = next; next = next + 1
             end if
         end function take_next
@@ -166,7 +171,8 @@ contains
         !> Other ranks: solve the cases handed out, send each outcome (which also asks for
         !! the next case), keep one case in reserve.
         subroutine worker()
-            integer :: queue(2), nq, k, req, nextk, st(MPI_STATUS_SIZE), head(4), sreq(2)
+            integer :: queue(2), nq, k, req, nextk, st(MPI_STATUS_SIZE), head(4), sreq(3)
+            integer, allocatable :: sbuf(:)
             type(case_outcome) :: o
             character(len=:), allocatable :: text
             logical :: pending, sending
@@ -186,10 +192,13 @@ contains
                 ! outcome (also the request for the next case), sent without waiting for rank 0
                 if (sending) call wait_politely(sreq(1))
                 if (sending) call wait_politely(sreq(2))
-                head = [k, o%status, len(o%report), len(o%errors)]
+                if (sending) call wait_politely(sreq(3))
+                head = [k, size(o%statuses), len(o%report), len(o%errors)]
+                sbuf = [o%statuses, 0]
                 text = o%report//o%errors//' '
                 call mpi_isend(head, 4, MPI_INTEGER, 0, TAG_RESULT, comm, sreq(1), ierr)
-                call mpi_isend(text, len(text), MPI_CHARACTER, 0, TAG_TEXT, comm, sreq(2), ierr)
+                call mpi_isend(sbuf, size(sbuf), MPI_INTEGER, 0, TAG_TEXT, comm, sreq(2), ierr)
+                call mpi_isend(text, len(text), MPI_CHARACTER, 0, TAG_TEXT, comm, sreq(3), ierr)
                 sending = .true.
                 call mpi_irecv(nextk, 1, MPI_INTEGER, 0, TAG_ASSIGN, comm, req, ierr)
                 pending = .true.
@@ -204,6 +213,7 @@ contains
             if (pending) call wait_politely(req)
             if (sending) call wait_politely(sreq(1))
             if (sending) call wait_politely(sreq(2))
+            if (sending) call wait_politely(sreq(3))
         end subroutine worker
 
         subroutine wait_politely(req)
@@ -217,15 +227,15 @@ contains
             end do
         end subroutine wait_politely
 
-        !> Solve case k with the serial driver; report and errors captured as text.
+        !> Solve chunk k with the serial driver; report and errors captured as text.
         subroutine solve_case(k, o)
             integer, intent(in) :: k
             type(case_outcome), intent(out) :: o
             integer :: ur, ue, code
             open (newunit=ur, status='scratch', action='readwrite', form='formatted')
             open (newunit=ue, status='scratch', action='readwrite', form='formatted')
-            call run_driver(args, code, report_unit=ur, error_unit=ue, only_case=k)
-            o%status = code
+            call run_driver(args, code, report_unit=ur, error_unit=ue, only_case=(k - 1)*csize + 1, &
+                last_case=min(k*csize, ncases), statuses=o%statuses)
             o%report = slurp(ur)
             o%errors = slurp(ue)
             close (ur); close (ue)
@@ -235,12 +245,15 @@ contains
             integer, intent(in) :: src
             type(case_outcome), intent(inout) :: out(:)
             integer :: head(4), st(MPI_STATUS_SIZE), kk
+            integer, allocatable :: sbuf(:)
             character(len=:), allocatable :: text
             call mpi_recv(head, 4, MPI_INTEGER, src, TAG_RESULT, comm, st, ierr)
             kk = head(1)
+            allocate (sbuf(head(2) + 1))
+            call mpi_recv(sbuf, size(sbuf), MPI_INTEGER, src, TAG_TEXT, comm, st, ierr)
+            out(kk)%statuses = sbuf(1:head(2))
             allocate (character(len=head(3) + head(4) + 1) :: text)   ! one trailing blank: never empty
             call mpi_recv(text, len(text), MPI_CHARACTER, src, TAG_TEXT, comm, st, ierr)
-            out(kk)%status = head(2)
             out(kk)%report = text(1:head(3))
             out(kk)%errors = text(head(3) + 1:head(3) + head(4))
             out(kk)%rank = src
