@@ -210,6 +210,7 @@ contains
         integer(c_int), intent(out) :: ierr
         type(legacy_state), pointer :: s
         integer :: k
+        logical :: ok
         call lookup(handle, 'fc_set_gap_array', s, ierr)
         if (ierr /= FCL_OK) return
         if (.not. s%has_grid) then
@@ -221,7 +222,9 @@ contains
         end if
         do k = 1, n
             ! finite within ±max_length, or ≥ 1e20 / +Inf (element excluded); NaN and −Inf rejected
-            if (.not. (real_in_range(h0(k), -max_length, max_length) .or. h0(k) >= h_no_contact)) then
+            ok = real_in_range(h0(k), -max_length, max_length)
+            if (.not. ok .and. .not. ieee_is_nan(h0(k))) ok = h0(k) >= h_no_contact   ! NaN never compared
+            if (.not. ok) then
                 call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_gap_array: h0('//fmt_int(k)//') = '//fmt_g6(h0(k))// &
                     ' must be finite with |h0| <= '//fmt_limit(max_length)//' mm, or >= 1e20 (element excluded)')
                 return
