@@ -11,5 +11,6 @@ program fastcontact_main
         call get_command_argument(i, args(i))
     end do
     call run_driver(args, exit_code)
+    deallocate (args)   ! main-program allocatables are never freed implicitly (leak checkers)
     if (exit_code /= 0) stop exit_code, quiet=.true.
 end program fastcontact_main

@@ -30,7 +30,7 @@ module fc_driver
         solve_strip_fft_rsm
     use fc_hertz, only: hertz_from_approach, hertz_from_force
     use fc_namelist, only: fc_case_chunk, read_case_file
-    use fc_input, only: fc_case_input, apply_case, strip_model_index, is_given
+    use fc_input, only: fc_case_input, apply_case, strip_model_index, is_given, grid_is_auto
     use fc_input_validate, only: validate_case
     use fc_input_scene, only: build_case, case_notes
     use fc_scene, only: fc_case
@@ -600,6 +600,17 @@ contains
         case (FC_ERR_GRID)
             errmsg = '&grid nx = '//fmt_int(auto%grid%nx)//', ny = '//fmt_int(auto%grid%ny)// &
                 " with &solver normal = '"//trim(state%normal_solver)//"': "//trim(errmsg)//"; or use normal = 'bccg'"
+        case default
+            ! a grid the library rejects: name what it was made from
+            if (index(errmsg, 'grid:') == 1) then
+                if (grid_is_auto(state) .or. state%problem == 'hertz') then
+                    errmsg = '&grid (automatic, sized from &normal '//trim(merge('fn      ', 'approach', &
+                        state%force_prescribed))//' = '//fmt_real(merge(state%fn, state%approach, state%force_prescribed))// &
+                        ', &geometry rx = '//fmt_real(state%rx)//', ry = '//fmt_real(state%ry)//'): '//trim(errmsg)
+                else
+                    errmsg = '&grid nx = '//fmt_int(state%nx)//', ny = '//fmt_int(state%ny)//': '//trim(errmsg)
+                end if
+            end if
         end select
     end subroutine library_context
 

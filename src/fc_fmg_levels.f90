@@ -83,7 +83,7 @@ contains
                 if (ios == 0) read (s(ic + 1:i2 - 1), *, iostat=ios) nu2
             end if
         end if
-        if (ios /= 0 .or. nu1 < 0 .or. nu2 < 0 .or. nu1 + nu2 == 0) then
+        if (ios /= 0 .or. nu1 < 0 .or. nu2 < 0 .or. (nu1 == 0 .and. nu2 == 0)) then   ! no nu1 + nu2: it can overflow
             stat = FC_ERR_VALUE; errmsg = "solver: cycle = '"//trim(name)//"' is not 'V(n1,n2)' with n1, n2 >= 0, n1 + n2 > 0"
             nu1 = 1; nu2 = 1
         end if

@@ -5,8 +5,10 @@
 !! (xmin+(i-½)dx, ymin+(j-½)dy).  The undeformed distance `h0` returned here does not
 !! contain the approach: the solvers use h = h0 − δ.
 module fc_geometry
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use fc_kinds, only: dp, i8, pi, msg_len, FC_ERR_VALUE, FC_ERR_IO
     use fc_table_io, only: read_real_table
+    use fc_limits, only: max_length
     implicit none
     private
 
@@ -25,6 +27,9 @@ module fc_geometry
 
     !> Undeformed distance that keeps an element out of contact (outside a punch).
     real(dp), parameter, public :: h_no_contact = 1.0e20_dp
+
+    !> Smallest element size [mm]: below it the influence coefficients lose every digit.
+    real(dp), parameter, public :: min_element_size = 1.0e-9_dp
 
     !> Parameters of the random rough surface, thesis eqs. (2.13)–(2.16).
     type, public :: fc_rough_params
@@ -53,9 +58,27 @@ contains
             stat = FC_ERR_VALUE; write (errmsg, '(a,i0,a,i0)') 'grid: nx and ny must be >= 1, got nx = ', nx, ', ny = ', ny
             return
         end if
+        ! finite first: no comparison touches a NaN (floating-point traps stay quiet)
+        if (.not. all(ieee_is_finite([xmin, xmax, ymin, ymax]))) then
+            stat = FC_ERR_VALUE; write (errmsg, '(a,4(1x,g0.6))') 'grid: xmin, xmax, ymin, ymax must be finite, got', &
+                xmin, xmax, ymin, ymax
+            return
+        end if
+        if (maxval(abs([xmin, xmax, ymin, ymax])) > max_length) then
+            stat = FC_ERR_VALUE
+            write (errmsg, '(a,4(1x,g0.6),a,es8.1,a)') 'grid: xmin, xmax, ymin, ymax =', xmin, xmax, ymin, ymax, &
+                ' exceed the limit |x|, |y| <= ', max_length, ' mm'
+            return
+        end if
         if (.not. (xmax > xmin) .or. .not. (ymax > ymin)) then
             stat = FC_ERR_VALUE
             write (errmsg, '(a,4(es12.4))') 'grid: need xmax > xmin and ymax > ymin, got ', xmin, xmax, ymin, ymax
+            return
+        end if
+        if ((xmax - xmin)/nx < min_element_size .or. (ymax - ymin)/ny < min_element_size) then
+            stat = FC_ERR_VALUE
+            write (errmsg, '(a,2(es11.3e3),a,es8.1,a)') 'grid: element size dx, dy =', (xmax - xmin)/nx, &
+                (ymax - ymin)/ny, ' below the limit ', min_element_size, ' mm'
             return
         end if
         grid%nx = nx; grid%ny = ny

@@ -14,6 +14,7 @@
 !! is symmetric.
 module fc_influence
     use fc_kinds, only: dp, pi, msg_len, FC_ERR_VALUE
+    use fc_limits, only: real_in_range, min_modulus
     use fc_geometry, only: fc_grid
     use fc_toeplitz
     implicit none
@@ -49,19 +50,22 @@ contains
         character(len=*), intent(out) :: errmsg
         real(dp) :: c1, c2
         stat = 0; errmsg = ''
-        if (.not. (mat%g1 > 0)) then
-            stat = FC_ERR_VALUE; write (errmsg, '(a,es12.4,a)') 'material: g1 = ', mat%g1, ' must be > 0'
+        ! range tests that never compare a NaN (quiet under floating-point traps)
+        if (.not. real_in_range(mat%g1, min_modulus, huge(1.0_dp))) then
+            stat = FC_ERR_VALUE; write (errmsg, '(a,es12.4,a,es8.1,a)') 'material: g1 = ', mat%g1, ' must be > 0 (finite, >= ', &
+                min_modulus, ')'
             return
         end if
-        if (.not. (mat%g2 > 0)) then
-            stat = FC_ERR_VALUE; write (errmsg, '(a,es12.4,a)') 'material: g2 = ', mat%g2, ' must be > 0'
+        if (.not. real_in_range(mat%g2, min_modulus, huge(1.0_dp))) then
+            stat = FC_ERR_VALUE; write (errmsg, '(a,es12.4,a,es8.1,a)') 'material: g2 = ', mat%g2, ' must be > 0 (finite, >= ', &
+                min_modulus, ')'
             return
         end if
-        if (.not. (mat%nu1 >= 0 .and. mat%nu1 < 0.5_dp)) then
+        if (.not. (real_in_range(mat%nu1, 0.0_dp, 0.5_dp) .and. mat%nu1 /= 0.5_dp)) then
             stat = FC_ERR_VALUE; write (errmsg, '(a,g0.6,a)') 'material: nu1 = ', mat%nu1, ' must lie in [0, 0.5)'
             return
         end if
-        if (.not. (mat%nu2 >= 0 .and. mat%nu2 < 0.5_dp)) then
+        if (.not. (real_in_range(mat%nu2, 0.0_dp, 0.5_dp) .and. mat%nu2 /= 0.5_dp)) then
             stat = FC_ERR_VALUE; write (errmsg, '(a,g0.6,a)') 'material: nu2 = ', mat%nu2, ' must lie in [0, 0.5)'
             return
         end if

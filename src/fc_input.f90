@@ -56,6 +56,7 @@ module fc_input
     use fc_strings, only: lower
     use fc_geometry, only: fc_rough_params
     use fc_namelist, only: fc_nml_group, fc_case_chunk, key_len, val_len
+    use fc_input_check, only: check_value
     implicit none
     private
 
@@ -158,7 +159,7 @@ contains
         type(fc_case_input) :: s
         integer :: ig, k, ios
         character(len=256) :: iomsg
-        character(len=msg_len) :: where
+        character(len=msg_len) :: where, vmsg
         logical :: has_fn, has_approach, has_shift, has_force, tangential_group
         stat = 0; errmsg = ''
         tangential_group = .false.
@@ -187,6 +188,13 @@ contains
                         stat = FC_ERR_VALUE
                         errmsg = trim(where)//": unknown key '"//trim(g%items(k)%key)//"' (value "// &
                             trim(g%items(k)%value)//'); known keys: '//keys_of(g%name)
+                        return
+                    end if
+                    ! one literal of the key's type, before the namelist READ (named message)
+                    call check_value(g%name, g%items(k)%key, g%items(k)%value, vmsg)
+                    if (len_trim(vmsg) > 0) then
+                        stat = FC_ERR_VALUE
+                        write (errmsg, '(a,i0,a)') trim(vmsg)//' (line ', g%line, ')'
                         return
                     end if
                 end do

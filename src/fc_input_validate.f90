@@ -5,12 +5,13 @@
 !! builder uses as well.
 module fc_input_validate
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
-    use fc_kinds, only: dp, i8, msg_len
+    use fc_kinds, only: dp, i8, msg_len, max_iterations
     use fc_errors, only: FC_OK, FC_ERR_VALUE
     use fc_strings, only: fmt_int, fmt_real
     use fc_influence, only: fc_material, combine_material, rigid_modulus
     use fc_fmg_levels, only: fmg_cycle_from_name
     use fc_input, only: fc_case_input, is_given, grid_is_auto, is_tangential, strip_model_index, max_grid_elements
+    use fc_limits
     implicit none
     private
 
@@ -101,13 +102,13 @@ contains
             errmsg = '&material g1: missing required value (shear modulus of body 1; >= 1e29 for rigid)'
         else if (.not. is_given(s, 'material', 'g2')) then
             errmsg = '&material g2: missing required value (shear modulus of body 2; >= 1e29 for rigid)'
-        else if (.not. (s%g1 > 0)) then
-            errmsg = '&material g1 = '//fmt_real(s%g1)//': must be > 0'
-        else if (.not. (s%g2 > 0)) then
-            errmsg = '&material g2 = '//fmt_real(s%g2)//': must be > 0'
-        else if (.not. (s%nu1 >= 0 .and. s%nu1 < 0.5_dp)) then
+        else if (.not. real_in_range(s%g1, min_modulus, huge(1.0_dp))) then
+            errmsg = '&material g1 = '//fmt_real(s%g1)//': must be > 0 (finite, >= '//fmt_limit(min_modulus)//')'
+        else if (.not. real_in_range(s%g2, min_modulus, huge(1.0_dp))) then
+            errmsg = '&material g2 = '//fmt_real(s%g2)//': must be > 0 (finite, >= '//fmt_limit(min_modulus)//')'
+        else if (.not. (real_in_range(s%nu1, 0.0_dp, 0.5_dp) .and. s%nu1 /= 0.5_dp)) then
             errmsg = '&material nu1 = '//fmt_real(s%nu1)//': must lie in [0, 0.5)'
-        else if (.not. (s%nu2 >= 0 .and. s%nu2 < 0.5_dp)) then
+        else if (.not. (real_in_range(s%nu2, 0.0_dp, 0.5_dp) .and. s%nu2 /= 0.5_dp)) then
             errmsg = '&material nu2 = '//fmt_real(s%nu2)//': must lie in [0, 0.5)'
         else if (s%g1 >= rigid_modulus .and. s%g2 >= rigid_modulus) then
             errmsg = '&material g1 = '//fmt_real(s%g1)//', g2 = '//fmt_real(s%g2)//': both bodies rigid'
@@ -134,6 +135,16 @@ contains
                 "'wavy', 'strip2d' or 'table'"
             return
         end select
+        ! every real of the group finite and bounded before any comparison below
+        if (.not. all(real_in_range([s%rx, s%ry, s%diameter, s%rough%sigma, s%rough%gamma, s%amplitude, &
+            s%wavelength_x, s%wavelength_y, s%length], -huge(1.0_dp), huge(1.0_dp)))) then
+            errmsg = '&geometry rx = '//fmt_real(s%rx)//', ry = '//fmt_real(s%ry)//', diameter = '// &
+                fmt_real(s%diameter)//', sigma = '//fmt_real(s%rough%sigma)//', gamma = '//fmt_real(s%rough%gamma)// &
+                ', amplitude = '//fmt_real(s%amplitude)//', wavelength_x = '//fmt_real(s%wavelength_x)// &
+                ', wavelength_y = '//fmt_real(s%wavelength_y)//', length = '//fmt_real(s%length)// &
+                ': not all finite numbers'
+            return
+        end if
         if (s%problem == 'hertz') then
             if (s%kind /= 'quadratic' .or. .not. (s%rx > 0 .and. s%ry > 0)) then
                 errmsg = "&case problem = 'hertz': needs &geometry kind = 'quadratic' with rx > 0 and ry > 0 (got kind = '"// &
@@ -141,43 +152,57 @@ contains
                 return
             end if
         end if
-        if (s%kind == 'cylinder' .and. .not. (s%length > 0)) then
+        if (s%kind == 'cylinder' .and. .not. (s%length > 0 .and. s%length <= 2*max_length)) then
             errmsg = '&geometry length = '//fmt_real(s%length)//": must be > 0 for kind = 'cylinder' "// &
-                '(cylinder length along y [mm])'
+                '(cylinder length along y [mm], at most '//fmt_limit(2*max_length)//')'
             return
         end if
         select case (s%kind)
         case ('quadratic', 'strip2d', 'cylinder')
             if (.not. is_given(s, 'geometry', 'rx')) then
                 errmsg = "&geometry rx: missing required value for kind = '"//trim(s%kind)//"'"
-            else if (.not. (s%rx > 0)) then
-                errmsg = '&geometry rx = '//fmt_real(s%rx)//': must be > 0'
+            else if (.not. (s%rx >= min_radius)) then
+                errmsg = '&geometry rx = '//fmt_real(s%rx)//': must be > 0 (at least '//fmt_limit(min_radius)//' mm)'
             else if (s%kind == 'quadratic') then
                 if (.not. is_given(s, 'geometry', 'ry')) then
                     errmsg = "&geometry ry: missing required value for kind = 'quadratic' (0: flat in y)"
-                else if (.not. (s%ry >= 0)) then
-                    errmsg = '&geometry ry = '//fmt_real(s%ry)//': must be >= 0 (0: flat in y)'
+                else if (.not. (s%ry == 0 .or. s%ry >= min_radius)) then
+                    errmsg = '&geometry ry = '//fmt_real(s%ry)//': must be >= 0 (0: flat in y; else at least '// &
+                        fmt_limit(min_radius)//' mm)'
                 end if
             end if
         case ('punch_rough')
             if (.not. is_given(s, 'geometry', 'diameter')) then
                 errmsg = "&geometry diameter: missing required value for kind = 'punch_rough'"
-            else if (.not. (s%diameter > 0)) then
-                errmsg = '&geometry diameter = '//fmt_real(s%diameter)//': must be > 0'
-            else if (.not. (s%rough%sigma >= 0)) then
-                errmsg = '&geometry sigma = '//fmt_real(s%rough%sigma)//': must be >= 0'
+            else if (.not. (s%diameter > 0 .and. s%diameter <= 2*max_length)) then
+                errmsg = '&geometry diameter = '//fmt_real(s%diameter)//': must be > 0 (at most '// &
+                    fmt_limit(2*max_length)//' mm)'
+            else if (.not. (s%rough%sigma >= 0 .and. s%rough%sigma <= max_length)) then
+                errmsg = '&geometry sigma = '//fmt_real(s%rough%sigma)//': must be >= 0 (at most '// &
+                    fmt_limit(max_length)//' mm)'
             else if (.not. (s%rough%gamma > 0 .and. s%rough%gamma <= 1)) then
                 errmsg = '&geometry gamma = '//fmt_real(s%rough%gamma)//': must lie in (0, 1]'
-            else if (s%rough%m_modes < 1) then
-                errmsg = '&geometry m_modes = '//fmt_int(s%rough%m_modes)//': must be >= 1'
-            else if (s%rough%n_modes < 1) then
-                errmsg = '&geometry n_modes = '//fmt_int(s%rough%n_modes)//': must be >= 1'
+            else if (s%rough%m_modes < 1 .or. s%rough%m_modes > max_modes) then
+                errmsg = '&geometry m_modes = '//fmt_int(s%rough%m_modes)//': must lie in [1, '//fmt_int(max_modes)//']'
+            else if (s%rough%n_modes < 1 .or. s%rough%n_modes > max_modes) then
+                errmsg = '&geometry n_modes = '//fmt_int(s%rough%n_modes)//': must lie in [1, '//fmt_int(max_modes)//']'
+            else if (int(s%rough%m_modes, i8)*s%rough%n_modes > max_mode_pairs) then
+                errmsg = '&geometry m_modes = '//fmt_int(s%rough%m_modes)//', n_modes = '//fmt_int(s%rough%n_modes)// &
+                    ': m_modes*n_modes must be <= '//fmt_int(max_mode_pairs)
+            else if (int(s%rough%m_modes, i8)*s%rough%n_modes*(int(s%nx, i8) + s%ny) > max_mode_work) then
+                errmsg = '&geometry m_modes = '//fmt_int(s%rough%m_modes)//', n_modes = '//fmt_int(s%rough%n_modes)// &
+                    ' on the &grid nx = '//fmt_int(s%nx)//', ny = '//fmt_int(s%ny)// &
+                    ': too costly (m_modes*n_modes*(nx + ny) must be <= 2^32)'
             end if
         case ('wavy')
             if (.not. is_given(s, 'geometry', 'amplitude')) then
                 errmsg = "&geometry amplitude: missing required value for kind = 'wavy'"
-            else if (.not. (s%amplitude > 0)) then
-                errmsg = '&geometry amplitude = '//fmt_real(s%amplitude)//': must be > 0'
+            else if (.not. (s%amplitude > 0 .and. s%amplitude <= max_length)) then
+                errmsg = '&geometry amplitude = '//fmt_real(s%amplitude)//': must be > 0 (at most '// &
+                    fmt_limit(max_length)//' mm)'
+            else if (.not. (s%wavelength_x >= 0 .and. s%wavelength_y >= 0)) then
+                errmsg = '&geometry wavelength_x = '//fmt_real(s%wavelength_x)//', wavelength_y = '// &
+                    fmt_real(s%wavelength_y)//': must be >= 0 (0: flat)'
             end if
         case ('table')
             if (len_trim(s%file) == 0) then
@@ -197,7 +222,7 @@ contains
         logical :: auto
         errmsg = ''
         auto = grid_is_auto(s) .or. s%problem == 'hertz'
-        if (.not. (s%margin >= 0 .and. s%margin <= 10)) then
+        if (.not. real_in_range(s%margin, 0.0_dp, 10.0_dp)) then
             errmsg = '&grid margin = '//fmt_real(s%margin)//': must lie in [0, 10] (fraction added around the '// &
                 'Hertz estimate)'
             return
@@ -205,7 +230,7 @@ contains
         if (s%n_across < 0 .or. s%n_across > 4096) then
             errmsg = '&grid n_across = '//fmt_int(s%n_across)//': must lie in [0, 4096] (0: default)'; return
         end if
-        if (.not. (s%target >= 0 .and. s%target < 1)) then
+        if (.not. real_in_range(s%target, 0.0_dp, nearest(1.0_dp, -1.0_dp))) then
             errmsg = '&solver target = '//fmt_real(s%target)//': must lie in [0, 1) (relative error; 0: off)'; return
         end if
         if (s%max_levels < 2 .or. s%max_levels > 12) then
@@ -249,6 +274,15 @@ contains
                 end if
             end associate
         end do
+        do i = 1, 4
+            associate (x => [s%xmin, s%xmax, s%ymin, s%ymax])
+                if (.not. real_in_range(x(i), -max_length, max_length)) then
+                    errmsg = '&grid '//trim(area_keys(i + 2))//' = '//fmt_real(x(i))//': must be a finite number with |'// &
+                        trim(area_keys(i + 2))//'| <= '//fmt_limit(max_length)//' mm'
+                    return
+                end if
+            end associate
+        end do
         if (s%nx < 1) then
             errmsg = '&grid nx = '//fmt_int(s%nx)//': must be >= 1'
         else if (s%ny < 1) then
@@ -270,9 +304,11 @@ contains
         if (.not. (is_given(s, 'normal', 'approach') .or. is_given(s, 'normal', 'fn'))) then
             errmsg = '&normal approach, fn: missing required value (give approach or fn)'
         else if (s%force_prescribed) then
-            if (.not. (s%fn > 0)) errmsg = '&normal fn = '//fmt_real(s%fn)//': must be > 0'
-        else if (.not. ieee_is_finite(s%approach)) then
-            errmsg = '&normal approach = '//fmt_real(s%approach)//': not a finite number'
+            if (.not. real_in_range(s%fn, min_force, max_force)) errmsg = '&normal fn = '//fmt_real(s%fn)// &
+                ': must be > 0 (in ['//fmt_limit(min_force)//', '//fmt_limit(max_force)//'] N)'
+        else if (.not. real_in_range(s%approach, -max_length, max_length)) then
+            errmsg = '&normal approach = '//fmt_real(s%approach)//': not a finite number with |approach| <= '// &
+                fmt_limit(max_length)//' mm'
         end if
     end subroutine validate_normal
 
@@ -282,12 +318,17 @@ contains
         type(fc_case_input), intent(in) :: s
         character(len=*), intent(out) :: errmsg
         errmsg = ''
-        if (.not. (s%mu >= 0 .and. ieee_is_finite(s%mu))) then
-            errmsg = '&tangential mu = '//fmt_real(s%mu)//': must be >= 0 (coefficient of friction)'; return
+        if (.not. (real_in_range(s%mu, min_friction, max_friction) .or. s%mu == 0)) then
+            errmsg = '&tangential mu = '//fmt_real(s%mu)//': must be >= 0 (coefficient of friction: 0, or in ['// &
+                fmt_limit(min_friction)//', '//fmt_limit(max_friction)//'])'
+            return
         end if
-        if (.not. all(ieee_is_finite([s%xi, s%eta, s%phi, s%fx, s%fy]))) then
+        if (.not. (all(real_in_range([s%xi, s%eta], -max_length, max_length)) .and. &
+            real_in_range(s%phi, -max_spin, max_spin) .and. all(real_in_range([s%fx, s%fy], -max_force, max_force)))) then
             errmsg = '&tangential xi = '//fmt_real(s%xi)//', eta = '//fmt_real(s%eta)//', phi = '//fmt_real(s%phi)// &
-                ', fx = '//fmt_real(s%fx)//', fy = '//fmt_real(s%fy)//': not finite numbers'
+                ', fx = '//fmt_real(s%fx)//', fy = '//fmt_real(s%fy)//': not finite numbers within the limits |xi|, '// &
+                '|eta| <= '//fmt_limit(max_length)//' mm, |phi| <= '//fmt_limit(max_spin)//', |fx|, |fy| <= '// &
+                fmt_limit(max_force)//' N'
             return
         end if
         if (.not. is_tangential(s)) return
@@ -321,8 +362,9 @@ contains
         end select
         call validate_iteration_keys(s, errmsg)
         if (len_trim(errmsg) > 0) return
-        if (s%inner_maxit < 0) then
-            errmsg = '&solver inner_maxit = '//fmt_int(s%inner_maxit)//': must be >= 0 (0: no limit)'; return
+        if (s%inner_maxit < 0 .or. s%inner_maxit > max_iterations) then
+            errmsg = '&solver inner_maxit = '//fmt_int(s%inner_maxit)//': must lie in [0, '//fmt_int(max_iterations)// &
+                '] (0: no limit)'; return
         end if
         call validate_multigrid(s, errmsg)
         if (len_trim(errmsg) > 0) return
@@ -331,9 +373,9 @@ contains
         case default
             errmsg = "&solver tangential = '"//trim(s%tangential)//"': unknown solver; use 'tangcg' or 'convexgs'"; return
         end select
-        if (s%inner_k < 1) then
-            errmsg = '&solver inner_k = '//fmt_int(s%inner_k)//': must be >= 1 (TangCG iterations between '// &
-                'subdivision checks)'
+        if (s%inner_k < 1 .or. s%inner_k > max_iterations) then
+            errmsg = '&solver inner_k = '//fmt_int(s%inner_k)//': must lie in [1, '//fmt_int(max_iterations)// &
+                '] (TangCG iterations between subdivision checks)'
             return
         end if
         if (s%threads < 0 .or. s%threads > 1024) then
@@ -437,10 +479,10 @@ contains
         type(fc_case_input), intent(in) :: s
         character(len=*), intent(out) :: errmsg
         errmsg = ''
-        if (.not. (s%tol > 0)) then
+        if (.not. real_in_range(s%tol, tiny(1.0_dp), huge(1.0_dp))) then
             errmsg = '&solver tol = '//fmt_real(s%tol)//': must be > 0'
-        else if (s%maxit < 1) then
-            errmsg = '&solver maxit = '//fmt_int(s%maxit)//': must be >= 1'
+        else if (s%maxit < 1 .or. s%maxit > max_iterations) then
+            errmsg = '&solver maxit = '//fmt_int(s%maxit)//': must lie in [1, '//fmt_int(max_iterations)//']'
         end if
     end subroutine validate_iteration_keys
 
@@ -455,9 +497,11 @@ contains
         if (stat /= 0) then
             errmsg = "&solver cycle = '"//trim(s%cycle)//"': not 'V(n1,n2)' with n1, n2 >= 0 and n1 + n2 > 0 "// &
                 "(e.g. 'V(1,1)', 'V(1,0)', 'V(0,1)')"
-        else if (.not. (s%omega > 0 .and. s%omega < 2)) then
+        else if (nu1 > max_smoothing .or. nu2 > max_smoothing) then
+            errmsg = "&solver cycle = '"//trim(s%cycle)//"': smoothing steps n1, n2 must be <= "//fmt_int(max_smoothing)
+        else if (.not. real_in_range(s%omega, tiny(1.0_dp), nearest(2.0_dp, -1.0_dp))) then
             errmsg = '&solver omega = '//fmt_real(s%omega)//': must lie in (0, 2) (damping of the FMG smoother)'
-        else if (.not. (s%beta >= 0 .and. ieee_is_finite(s%beta))) then
+        else if (.not. real_in_range(s%beta, 0.0_dp, huge(1.0_dp))) then
             errmsg = '&solver beta = '//fmt_real(s%beta)//': must be >= 0 (FMG initial contact area e <= beta*max(u))'
         else if (.not. any(s%smoother == [character(len=8) :: 'gs', 'jacobi', 'fft-rsm'])) then
             errmsg = "&solver smoother = '"//trim(s%smoother)//"': unknown FMG smoother; use 'gs', 'jacobi' or 'fft-rsm'"

@@ -1,6 +1,7 @@
 !> Kinds, constants and status codes shared by every fastcontact module.
 module fc_kinds
     use, intrinsic :: iso_fortran_env, only: real64, int64
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
     implicit none
     private
 
@@ -15,6 +16,10 @@ module fc_kinds
     integer, parameter, public :: FC_ERROR = 3          !! invalid input or internal error
 
     integer, parameter, public :: msg_len = 512         !! length of error messages
+
+    !> Largest iteration limit (`maxit`) any solver accepts: bounds the per-iteration history
+    !! buffers (8 bytes per iteration) and the run time of a solve that never converges.
+    integer, parameter, public :: max_iterations = 1000000
 
     !> Error codes returned in `stat` (0: success); use them through [[fc_errors]].
     integer, parameter, public :: FC_OK = 0                 !! success
@@ -55,10 +60,12 @@ contains
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
         stat = 0; errmsg = ''
-        if (.not. (tol > 0)) then
+        if (ieee_is_nan(tol)) then      ! before any comparison: quiet under floating-point traps
+            stat = FC_ERR_VALUE; errmsg = 'tol = NaN must be > 0'
+        else if (.not. (tol > 0)) then
             stat = FC_ERR_VALUE; write (errmsg, '(a,es12.4,a)') 'tol = ', tol, ' must be > 0'
-        else if (maxit < 1) then
-            stat = FC_ERR_VALUE; write (errmsg, '(a,i0,a)') 'maxit = ', maxit, ' must be >= 1'
+        else if (maxit < 1 .or. maxit > max_iterations) then
+            stat = FC_ERR_VALUE; write (errmsg, '(a,i0,a,i0,a)') 'maxit = ', maxit, ' must lie in [1, ', max_iterations, ']'
         end if
     end subroutine check_iteration_settings
 

@@ -37,6 +37,7 @@ module fc_legacy
     use fc_strings, only: fmt_int, fmt_g6
     use fc_errors
     use fc_legacy_registry
+    use fc_limits
     use fc_icfile, only: fc_ic_set
     use fc_icfile_load, only: load_influence_source
     use fc_threads, only: set_thread_count, max_threads_allowed
@@ -209,6 +210,7 @@ contains
         integer(c_int), intent(out) :: ierr
         type(legacy_state), pointer :: s
         integer :: k
+        logical :: ok
         call lookup(handle, 'fc_set_gap_array', s, ierr)
         if (ierr /= FCL_OK) return
         if (.not. s%has_grid) then
@@ -219,11 +221,16 @@ contains
                 //fmt_int(s%grid%n())//' elements'); return
         end if
         do k = 1, n
-            if (ieee_is_nan(h0(k))) then
-                call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_gap_array: h0('//fmt_int(k)//') is NaN'); return
+            ! finite within ±max_length, or ≥ 1e20 / +Inf (element excluded); NaN and −Inf rejected
+            ok = real_in_range(h0(k), -max_length, max_length)
+            if (.not. ok .and. .not. ieee_is_nan(h0(k))) ok = h0(k) >= h_no_contact   ! NaN never compared
+            if (.not. ok) then
+                call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_gap_array: h0('//fmt_int(k)//') = '//fmt_g6(h0(k))// &
+                    ' must be finite with |h0| <= '//fmt_limit(max_length)//' mm, or >= 1e20 (element excluded)')
+                return
             end if
         end do
-        s%h0 = reshape(h0(1:n), [s%grid%nx, s%grid%ny])
+        s%h0 = reshape(min(h0(1:n), h_no_contact), [s%grid%nx, s%grid%ny])
         s%gap_kind = GAP_ARRAY
     end subroutine fc_set_gap_array
 
@@ -236,9 +243,14 @@ contains
         type(legacy_state), pointer :: s
         call lookup(handle, 'fc_set_gap_quadratic', s, ierr)
         if (ierr /= FCL_OK) return
-        if (.not. (finite(rx) .and. finite(ry)) .or. .not. (rx > 0 .or. ry > 0)) then
+        if (.not. s%has_grid) then
+            call fail(s, ierr, FCL_ORDER, 'fc_set_gap_quadratic: call fc_set_grid first'); return
+        end if
+        ! a radius <= 0 is flat in that direction; a positive one at least min_radius
+        if (.not. (real_in_range(rx, -huge(1.0_dp), 0.0_dp) .or. real_in_range(rx, min_radius, huge(1.0_dp))) .or. &
+            .not. (real_in_range(ry, -huge(1.0_dp), 0.0_dp) .or. real_in_range(ry, min_radius, huge(1.0_dp)))) then
             call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_gap_quadratic: rx = '//fmt_g6(rx)//', ry = '//fmt_g6(ry)// &
-                ': at least one radius must be > 0 and both finite'); return
+                ': each radius must be finite, <= 0 (flat) or >= '//fmt_limit(min_radius)//' mm'); return
         end if
         s%rx = rx; s%ry = ry
         s%gap_kind = GAP_QUADRATIC
@@ -252,9 +264,9 @@ contains
         type(legacy_state), pointer :: s
         call lookup(handle, 'fc_set_normal_approach', s, ierr)
         if (ierr /= FCL_OK) return
-        if (.not. finite(approach)) then
+        if (.not. real_in_range(approach, -max_length, max_length)) then
             call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_normal_approach: approach = '//fmt_g6(approach)// &
-                ' is not finite'); return
+                ' must be finite with |approach| <= '//fmt_limit(max_length)//' mm'); return
         end if
         s%load%normal%approach = approach; s%load%normal%force_prescribed = .false.; s%has_normal = .true.
     end subroutine fc_set_normal_approach
@@ -267,8 +279,9 @@ contains
         type(legacy_state), pointer :: s
         call lookup(handle, 'fc_set_normal_force', s, ierr)
         if (ierr /= FCL_OK) return
-        if (.not. (fn > 0 .and. finite(fn))) then
-            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_normal_force: fn = '//fmt_g6(fn)//' must be > 0'); return
+        if (.not. real_in_range(fn, min_force, max_force)) then
+            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_normal_force: fn = '//fmt_g6(fn)//' must be > 0 (in ['// &
+                fmt_limit(min_force)//', '//fmt_limit(max_force)//'] N)'); return
         end if
         s%load%normal%fn = fn; s%load%normal%force_prescribed = .true.; s%has_normal = .true.
     end subroutine fc_set_normal_force
@@ -281,8 +294,9 @@ contains
         type(legacy_state), pointer :: s
         call lookup(handle, 'fc_set_friction', s, ierr)
         if (ierr /= FCL_OK) return
-        if (.not. (mu >= 0 .and. finite(mu))) then
-            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_friction: mu = '//fmt_g6(mu)//' must be >= 0'); return
+        if (.not. (real_in_range(mu, min_friction, max_friction) .or. mu == 0)) then
+            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_friction: mu = '//fmt_g6(mu)//' must be >= 0 (0, or in ['// &
+                fmt_limit(min_friction)//', '//fmt_limit(max_friction)//'])'); return
         end if
         s%load%tangential%mu = mu; s%has_friction = .true.
     end subroutine fc_set_friction
@@ -298,9 +312,11 @@ contains
         type(legacy_state), pointer :: s
         call lookup(handle, 'fc_set_shifts', s, ierr)
         if (ierr /= FCL_OK) return
-        if (.not. (finite(xi) .and. finite(eta) .and. finite(phi))) then
+        if (.not. (real_in_range(xi, -max_length, max_length) .and. real_in_range(eta, -max_length, max_length) &
+            .and. real_in_range(phi, -max_spin, max_spin))) then
             call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_shifts: xi = '//fmt_g6(xi)//', eta = '//fmt_g6(eta)//', phi = ' &
-                //fmt_g6(phi)//' must be finite'); return
+                //fmt_g6(phi)//' must be finite with |xi|, |eta| <= '//fmt_limit(max_length)//' mm, |phi| <= '// &
+                fmt_limit(max_spin)); return
         end if
         s%load%tangential%xi = xi; s%load%tangential%eta = eta; s%load%tangential%phi = phi
         s%load%tangential%force_prescribed = .false.; s%load%problem = FC_PROBLEM_TANGENTIAL
@@ -316,9 +332,11 @@ contains
         type(legacy_state), pointer :: s
         call lookup(handle, 'fc_set_forces', s, ierr)
         if (ierr /= FCL_OK) return
-        if (.not. (finite(fx) .and. finite(fy) .and. finite(phi))) then
+        if (.not. (real_in_range(fx, -max_force, max_force) .and. real_in_range(fy, -max_force, max_force) &
+            .and. real_in_range(phi, -max_spin, max_spin))) then
             call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_forces: fx = '//fmt_g6(fx)//', fy = '//fmt_g6(fy)//', phi = ' &
-                //fmt_g6(phi)//' must be finite'); return
+                //fmt_g6(phi)//' must be finite with |fx|, |fy| <= '//fmt_limit(max_force)//' N, |phi| <= '// &
+                fmt_limit(max_spin)); return
         end if
         s%load%tangential%fx = fx; s%load%tangential%fy = fy; s%load%tangential%phi = phi
         s%load%tangential%force_prescribed = .true.; s%load%problem = FC_PROBLEM_TANGENTIAL
@@ -409,14 +427,16 @@ contains
             call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_solver: tangential_solver = '//fmt_int(tangential_solver)// &
                 ' is not 0/1 (TangCG) or 2 (ConvexGS)'); return
         end if
-        if (.not. (tol > 0 .and. tol < 1)) then
+        if (.not. real_in_range(tol, tiny(1.0_dp), nearest(1.0_dp, -1.0_dp))) then
             call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_solver: tol = '//fmt_g6(tol)//' must lie in (0, 1)'); return
         end if
-        if (maxit < 1) then
-            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_solver: maxit = '//fmt_int(maxit)//' must be >= 1'); return
+        if (maxit < 1 .or. maxit > max_iterations) then
+            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_solver: maxit = '//fmt_int(maxit)//' must lie in [1, '// &
+                fmt_int(max_iterations)//']'); return
         end if
-        if (inner_k < 1) then
-            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_solver: inner_k = '//fmt_int(inner_k)//' must be >= 1'); return
+        if (inner_k < 1 .or. inner_k > max_iterations) then
+            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_solver: inner_k = '//fmt_int(inner_k)//' must lie in [1, '// &
+                fmt_int(max_iterations)//']'); return
         end if
         if (precondition /= 0 .and. precondition /= 1) then
             call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_solver: precondition = '//fmt_int(precondition)// &
@@ -463,8 +483,9 @@ contains
         type(legacy_state), pointer :: s
         call lookup(handle, 'fc_set_rolling_step', s, ierr)
         if (ierr /= FCL_OK) return
-        if (.not. finite(dq)) then
-            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_rolling_step: dq = '//fmt_g6(dq)//' is not finite'); return
+        if (.not. real_in_range(dq, -max_length, max_length)) then
+            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_rolling_step: dq = '//fmt_g6(dq)//' must be finite with |dq| <= '// &
+                fmt_limit(max_length)//' mm'); return
         end if
         s%load%dq = dq
     end subroutine fc_set_rolling_step

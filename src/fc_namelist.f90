@@ -9,6 +9,7 @@
 module fc_namelist
     use fc_errors, only: FC_ERR_VALUE, FC_ERR_IO
     use fc_strings, only: lower, shorten
+    use fc_limits, only: max_line_length, max_file_chars, max_cases
     implicit none
     private
 
@@ -48,8 +49,8 @@ contains
         character(len=*), intent(out) :: errmsg
         character(len=:), allocatable :: text
         integer, allocatable :: lines(:)
-        integer :: unit, ios, lineno, n
-        character(len=4096) :: buf
+        integer :: unit, ios, lineno, n, pos, fsize
+        character(len=max_line_length + 1) :: buf
         character(len=256) :: iomsg
         logical :: in_quote
         character :: quote
@@ -58,19 +59,49 @@ contains
         if (ios /= 0) then
             stat = FC_ERR_IO; errmsg = "cannot open case file '"//trim(filename)//"': "//trim(iomsg); return
         end if
-        text = ''
-        allocate (lines(0))
-        lineno = 0; in_quote = .false.; quote = ' '
+        inquire (unit=unit, size=fsize)
+        if (fsize > max_file_chars) then
+            close (unit)
+            stat = FC_ERR_VALUE
+            write (errmsg, '(a,i0,a,i0,a)') "case file '"//trim(filename)//"': ", fsize, ' bytes exceed the limit ', &
+                max_file_chars, ' bytes'
+            return
+        end if
+        ! every line contributes at most its length + 1 (a blank for the newline): the text
+        ! and its line map are allocated once (no quadratic growth on long files)
+        fsize = max(fsize, 0) + 1
+        allocate (character(len=fsize) :: text)
+        allocate (lines(fsize))
+        pos = 0; lineno = 0; in_quote = .false.; quote = ' '
         do
-            read (unit, '(a)', iostat=ios) buf
-            if (ios /= 0) exit
+            read (unit, '(a)', advance='no', size=n, iostat=ios) buf
+            if (ios == 0) then
+                ! the buffer filled before the end of the line
+                close (unit)
+                stat = FC_ERR_VALUE
+                write (errmsg, '(a,i0,a,i0,a)') "case file '"//trim(filename)//"': line ", lineno + 1, &
+                    ' is longer than the limit of ', max_line_length, ' characters'
+                return
+            end if
+            if (is_iostat_end(ios) .and. n == 0) exit
+            if (.not. (is_iostat_eor(ios) .or. is_iostat_end(ios))) then
+                close (unit)
+                stat = FC_ERR_IO
+                write (errmsg, '(a,i0)') "cannot read case file '"//trim(filename)//"' at line ", lineno + 1
+                return
+            end if
             lineno = lineno + 1
-            call strip_comment(buf, in_quote, quote)
-            n = len_trim(buf)
-            text = text//buf(1:n)//' '
-            lines = [lines, spread(lineno, 1, n + 1)]
+            call strip_comment(buf(1:n), in_quote, quote)
+            n = len_trim(buf(1:n))
+            if (pos + n + 1 > len(text)) exit     ! cannot happen: fsize bounds the text
+            text(pos + 1:pos + n + 1) = buf(1:n)//' '
+            lines(pos + 1:pos + n + 1) = lineno
+            pos = pos + n + 1
+            if (is_iostat_end(ios)) exit
         end do
         close (unit)
+        text = text(1:pos)
+        lines = lines(1:max(pos, 1))
         call split_cases(text, lines, cases, stat, errmsg)
     end subroutine read_case_file
 
@@ -103,12 +134,13 @@ contains
         character(len=*), intent(out) :: errmsg
         type(fc_nml_group), allocatable :: groups(:)
         type(fc_nml_group) :: g
-        integer :: i, n, start, gstart, k, ncase, j
+        integer :: i, n, start, gstart, k, ncase, j, ngroups
         integer, allocatable :: starts(:)
         logical :: in_quote
         character :: quote, c
         stat = 0; errmsg = ''
-        allocate (groups(0))
+        allocate (groups(16))
+        ngroups = 0; ncase = 0
         n = len(text)
         i = 1
         do while (i <= n)
@@ -132,6 +164,15 @@ contains
             g%line = lines(min(gstart, size(lines)))
             if (len_trim(g%name) == 0) then
                 stat = FC_ERR_VALUE; write (errmsg, '(a,i0)') "'&' not followed by a group name at line ", g%line; return
+            end if
+            if (g%name == 'case') then
+                ncase = ncase + 1
+                if (ncase > max_cases) then
+                    stat = FC_ERR_VALUE
+                    write (errmsg, '(a,i0,a,i0,a)') 'the case file has more than ', max_cases, &
+                        ' &case groups (limit; the excess one starts at line ', g%line, '): split it into several files'
+                    return
+                end if
             end if
             if (g%name == 'end') then
                 i = k; cycle
@@ -164,7 +205,11 @@ contains
             g%text = '&'//trim(g%name)//' '//text(k:j - 1)//' /'
             call parse_items(g, text(k:j - 1), stat, errmsg)
             if (stat /= 0) return
-            groups = [groups, g]
+            if (ngroups == size(groups)) call grow(groups)   ! doubling: linear in the file size
+            ngroups = ngroups + 1
+            call move_alloc(g%items, groups(ngroups)%items)
+            groups(ngroups)%name = g%name; groups(ngroups)%line = g%line
+            call move_alloc(g%text, groups(ngroups)%text)
             if (text(j:j) == '/') then
                 i = j + 1
             else
@@ -172,6 +217,7 @@ contains
             end if
         end do
         ! cases: one per &case; groups before the first &case belong to the first case
+        groups = groups(1:ngroups)
         if (size(groups) == 0) then
             stat = FC_ERR_VALUE; errmsg = 'no namelist groups found in the case file'; return
         end if
@@ -189,7 +235,30 @@ contains
             cases(k)%groups = groups(starts(k):starts(k + 1) - 1)
             cases(k)%line = groups(starts(k))%line
         end do
+    contains
+        subroutine grow(a)
+            type(fc_nml_group), allocatable, intent(inout) :: a(:)
+            type(fc_nml_group), allocatable :: b(:)
+            integer :: m
+            allocate (b(2*size(a)))
+            do m = 1, size(a)
+                call move_alloc(a(m)%items, b(m)%items)
+                call move_alloc(a(m)%text, b(m)%text)
+                b(m)%name = a(m)%name; b(m)%line = a(m)%line
+            end do
+            call move_alloc(b, a)
+        end subroutine grow
     end subroutine split_cases
+
+    pure integer function count_char(text, c)
+        character(len=*), intent(in) :: text
+        character, intent(in) :: c
+        integer :: i
+        count_char = 0
+        do i = 1, len(text)
+            if (text(i:i) == c) count_char = count_char + 1
+        end do
+    end function count_char
 
     !> Find the `key = value` items in the body of a group.
     subroutine parse_items(g, body, stat, errmsg)
@@ -202,7 +271,9 @@ contains
         logical :: in_quote
         character :: quote, c
         n = len(body)
-        allocate (kpos(0), epos(0))
+        ! at most one item per '=': allocated once (no growth per item)
+        allocate (kpos(count_char(body, '=')), epos(count_char(body, '=')))
+        nitem = 0
         in_quote = .false.; quote = ' '
         do i = 1, n
             c = body(i:i)
@@ -247,10 +318,10 @@ contains
                     "): '=' without a key name in '"//trim(shorten(body))//"'"
                 return
             end if
-            kpos = [kpos, kstart]
-            epos = [epos, i]
+            nitem = nitem + 1
+            kpos(nitem) = kstart
+            epos(nitem) = i
         end do
-        nitem = size(kpos)
         allocate (g%items(nitem))
         if (nitem == 0) then
             if (len_trim(body) > 0) then

@@ -25,6 +25,7 @@
 module fc_norm
     use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
     use fc_kinds
+    use fc_errors, only: FC_ERR_NO_CONTACT
     use fc_geometry, only: fc_grid, h_no_contact
     use fc_influence
     use fc_icfile, only: fc_ic_set, ic_set_kernel
@@ -189,6 +190,11 @@ contains
         if (force_mode) then
             if (.not. (fn > 0)) then
                 stat = FC_ERR_VALUE; write (errmsg, '(a,es12.4,a)') 'normal: fn = ', fn, ' must be > 0'; return
+            end if
+            if (.not. any(h0 < 0.5_dp*h_no_contact)) then
+                stat = FC_ERR_NO_CONTACT
+                errmsg = 'normal: no element can come into contact (h0 >= 1e20 everywhere): fn cannot be carried'
+                return
             end if
             delta = 0
         else
@@ -500,9 +506,12 @@ contains
         type(fc_normal_result), intent(inout) :: res
         real(dp), dimension(size(h0, 1), size(h0, 2)) :: p, u, r, d, q, h
         logical, dimension(size(h0, 1), size(h0, 2)) :: con, con_new, allowed
-        real(dp) :: delta, area, alpha, beta, rr, rr_old, dq, hnorm, rnorm, inner_tol, e, rr_keep
-        integer :: outer, inner, inner_max, ncon, total_inner, i, j, ndrop
+        real(dp) :: delta, area, alpha, beta, rr, rr_old, dq, hnorm, rnorm, inner_tol, e, rr_keep, best
+        integer :: outer, inner, inner_max, ncon, total_inner, i, j, ndrop, since_best
         logical :: changed
+        !> Outer iterations without an active-set change and without a 0.1 % residual decrease
+        !! after which NORM reports stagnation (the tolerance is below what rounding allows).
+        integer, parameter :: stagnation_window = 5
         real(dp), allocatable :: hist(:)
         area = nop%grid%area()
         allowed = h0 < 0.5_dp*h_no_contact
@@ -519,9 +528,11 @@ contains
         ncon = count(con)
         inner_max = settings%inner_maxit
         if (inner_max <= 0) inner_max = max(50, ncon)
-        inner_tol = 0.1_dp*settings%tol
+        ! the inner CG cannot resolve the residual below rounding: floor its tolerance
+        inner_tol = max(0.1_dp*settings%tol, 10*epsilon(1.0_dp))
         allocate (hist(settings%maxit))
         total_inner = 0
+        best = huge(1.0_dp); since_best = 0
         rr_keep = 0; d = 0
         res%status = FC_NOT_CONVERGED
         do outer = 1, settings%maxit
@@ -617,6 +628,17 @@ contains
                 res%status = FC_CONVERGED
                 res%message = 'converged'
                 exit
+            end if
+            if (changed .or. res%residual < 0.999_dp*best) then
+                best = res%residual; since_best = 0    ! a new active set restarts the count
+            else
+                since_best = since_best + 1
+                if (since_best >= stagnation_window) then
+                    write (res%message, '(a,i0,a,es11.3e3,a,es11.3e3)') 'NORM stagnated: no residual decrease in ', &
+                        stagnation_window, ' active-set iterations (residual ', res%residual, ' > tol = ', settings%tol
+                    res%message = trim(res%message)//')'
+                    exit
+                end if
             end if
             if (outer == settings%maxit) then
                 write (res%message, '(a,i0,a)') 'NORM not converged in maxit = ', settings%maxit, ' active-set iterations'

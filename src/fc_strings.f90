@@ -44,7 +44,11 @@ contains
                 if (s(1:2) == '-.') s = '-0'//s(2:)
             end if
         else
-            write (buf, '(es15.8)') x
+            if (abs(x) >= 1.0e100_dp .or. abs(x) < 1.0e-99_dp) then
+                write (buf, '(es16.8e3)') x     ! three exponent digits keep the 'E'
+            else
+                write (buf, '(es15.8)') x
+            end if
             s = trim(adjustl(buf))
         end if
     end function fmt_real

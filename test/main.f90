@@ -18,6 +18,9 @@ program tester
     use test_operators, only: collect_operators
     use test_fem_ic, only: collect_fem_ic
     use test_parallel, only: collect_parallel
+    use test_api_fuzz, only: collect_api_fuzz
+    use test_reliability, only: collect_reliability
+    use test_readme, only: collect_readme
     implicit none
     character(len=64) :: suite, only
     integer :: npass, nfail
@@ -49,6 +52,15 @@ program tester
     end if
     if (want('legacy')) then
         call collect_legacy(tests); call run_suite('legacy', tests, only, npass, nfail)
+    end if
+    if (want('api_fuzz')) then
+        call collect_api_fuzz(tests); call run_suite('api_fuzz', tests, only, npass, nfail)
+    end if
+    if (want('reliability')) then
+        call collect_reliability(tests); call run_suite('reliability', tests, only, npass, nfail)
+    end if
+    if (want('readme')) then
+        call collect_readme(tests); call run_suite('readme', tests, only, npass, nfail)
     end if
     if (want('stability')) then
         call collect_stability(tests); call run_suite('stability', tests, only, npass, nfail)
