@@ -2,6 +2,7 @@
 !! as `.npy`, and the reader of text tables.
 module test_table_io
     use, intrinsic :: iso_fortran_env, only: int32, int64
+    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_positive_inf
     use fc_kinds, only: dp
     use fc_table_io
     use fc_geometry, only: fc_grid, make_grid
@@ -59,7 +60,7 @@ contains
         if (.not. allocated(first)) first = ''
         call check(error, nbad == 0, 'put_real differs from the run-time ES23.15E3 in some cases, first: '//first)
         if (allocated(error)) return
-        x = huge(1.0_dp); x = x*2
+        x = ieee_value(x, ieee_positive_inf)   ! (not huge*2: the sanitizer run traps overflow)
         call check(error, real_text(x) == 'null', 'Inf is written as null')
     contains
         subroutine compare(v)
