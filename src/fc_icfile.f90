@@ -18,7 +18,7 @@
 !! the 2×2 tangential block must be positive definite (A SPD); otherwise a clear error.
 module fc_icfile
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
-    use fc_kinds, only: dp, i8, msg_len
+    use fc_kinds, only: dp, i8, msg_len, FC_ERR_VALUE, FC_ERR_IO
     use fc_geometry, only: fc_grid
     use fc_influence, only: fc_material, combine_material, ic_kernel_extended, rigid_modulus, &
         IC_ZZ, IC_XX, IC_YY, IC_XY, IC_XZ, IC_ZX, IC_YZ, IC_ZY
@@ -120,7 +120,7 @@ contains
         character(len=*), intent(out) :: errmsg
         integer :: mx, my, i, j
         real(dp) :: s
-        stat = 1
+        stat = FC_ERR_VALUE
         if (b1%content /= 'body' .or. b2%content /= 'body') then
             errmsg = "influence coefficients: only sets of content 'body' can be combined"; return
         end if
@@ -163,7 +163,7 @@ contains
         real(dp) :: scale, tol
         real(dp), allocatable :: szz(:, :), sxx(:, :), syy(:, :), sxy(:, :), lam(:, :)
         integer :: loc(2)
-        stat = 1
+        stat = FC_ERR_VALUE
         if (.not. allocated(set%a)) then
             errmsg = trim(label)//': no coefficients'; return
         end if
@@ -259,7 +259,7 @@ contains
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
         integer :: i, j, ix, iy, ci, cj
-        stat = 1
+        stat = FC_ERR_VALUE
         if (.not. same_size(set%dx, grid%dx) .or. .not. same_size(set%dy, grid%dy)) then
             write (errmsg, '(a,2es14.6,a,2es14.6,a)') 'influence coefficients are for cells dx, dy = ', set%dx, set%dy, &
                 ' mm, the grid has ', grid%dx, grid%dy, ' mm'
@@ -310,7 +310,7 @@ contains
         tmp = temp_name(path)
         open (newunit=u, file=tmp, status='replace', action='write', iostat=ios, iomsg=iomsg)
         if (ios /= 0) then
-            stat = 1; errmsg = 'cannot write '//tmp//': '//trim(iomsg); return
+            stat = FC_ERR_IO; errmsg = 'cannot write '//tmp//': '//trim(iomsg); return
         end if
         write (u, '(a)') '# fastcontact influence coefficients (doc/ic_file_format.md)'
         write (u, '(a)') 'format = fastcontact-ic'
@@ -341,7 +341,7 @@ contains
         if (ios == 0) close (u, iostat=ios, iomsg=iomsg)
         if (ios /= 0) then
             close (u, status='delete', iostat=ix)
-            stat = 1; errmsg = 'cannot write '//tmp//': '//trim(iomsg); return
+            stat = FC_ERR_IO; errmsg = 'cannot write '//tmp//': '//trim(iomsg); return
         end if
         call rename_file(tmp, path, stat, errmsg)
     end subroutine write_ic_file
@@ -373,7 +373,7 @@ contains
         end interface
         stat = 0; errmsg = ''
         if (c_rename(trim(from)//c_null_char, trim(to)//c_null_char) /= 0) then
-            stat = 1; errmsg = 'cannot rename '//trim(from)//' to '//trim(to)
+            stat = FC_ERR_IO; errmsg = 'cannot rename '//trim(from)//' to '//trim(to)
         end if
     end subroutine rename_file
 
@@ -410,7 +410,7 @@ contains
         character(len=:), allocatable :: val
         character(len=msg_len) :: iomsg
         logical :: have_format
-        stat = 1
+        stat = FC_ERR_IO
         open (newunit=u, file=path, status='old', action='read', iostat=ios, iomsg=iomsg)
         if (ios /= 0) then
             errmsg = 'cannot open influence-coefficient file '//trim(path)//': '//trim(iomsg); return

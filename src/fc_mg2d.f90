@@ -110,10 +110,10 @@ contains
         real(dp) :: x
         stat = 0; errmsg = ''
         if (which < 1 .or. which > 3) then
-            stat = 1; write (errmsg, '(a,i0,a)') 'strip2d: model problem ', which, ' is not 1, 2 or 3'; return
+            stat = FC_ERR_VALUE; write (errmsg, '(a,i0,a)') 'strip2d: model problem ', which, ' is not 1, 2 or 3'; return
         end if
         if (n < 4 .or. iand(n, n - 1) /= 0) then
-            stat = 1; write (errmsg, '(a,i0,a)') 'strip2d: n = ', n, ' must be a power of 2 >= 4'; return
+            stat = FC_ERR_VALUE; write (errmsg, '(a,i0,a)') 'strip2d: n = ', n, ' must be a power of 2 >= 4'; return
         end if
         call make_grid(prob%grid, n, 1, -4.0_dp, 4.0_dp, -50.0_dp, 50.0_dp, stat, errmsg)
         if (stat /= 0) return
@@ -197,7 +197,7 @@ contains
             n = n/2; nlev = nlev + 1
         end do
         if (nlev_max > 1 .and. n > 4096) then
-            stat = 1
+            stat = FC_ERR_GRID
             write (errmsg, '(a,i0,a,i0,a)') 'strip2d: n = ', nf, ' coarsens only to ', n, &
                 ' cells (> 4096 for the direct coarsest solve); use n with more factors of 2'
             return
@@ -415,27 +415,28 @@ contains
         character(len=*), intent(out) :: errmsg
         stat = 0; errmsg = ''
         if (.not. allocated(prob%rhs) .or. .not. allocated(prob%contact)) then
-            stat = 1; errmsg = 'strip2d: problem not set (rhs/contact)'; return
+            stat = FC_ERR_NOT_READY; errmsg = 'strip2d: problem not set (rhs/contact)'; return
         end if
         if (prob%grid%ny /= 1 .or. size(prob%rhs) /= prob%grid%nx .or. size(prob%contact) /= prob%grid%nx) then
-            stat = 1; errmsg = 'strip2d: needs an n×1 grid with rhs and contact of size n'; return
+            stat = FC_ERR_SHAPE; errmsg = 'strip2d: needs an n×1 grid with rhs and contact of size n'; return
         end if
         if (.not. any(prob%contact)) then
-            stat = 1; errmsg = 'strip2d: no element in contact'; return
+            stat = FC_ERR_NO_CONTACT; errmsg = 'strip2d: no element in contact'; return
         end if
         select case (settings%smoother)
         case ('fft', 'fft-sd', 'fft-rsm')
         case default
-            stat = 1; errmsg = "solver: smoother = '"//trim(settings%smoother)//"' is not one of 'fft', 'fft-sd', 'fft-rsm'"
+            stat = FC_ERR_VALUE
+            errmsg = "solver: smoother = '"//trim(settings%smoother)//"' is not one of 'fft', 'fft-sd', 'fft-rsm'"
             return
         end select
         if (settings%nu1 < 0 .or. settings%nu2 < 0 .or. settings%nu1 + settings%nu2 == 0) then
-            stat = 1; write (errmsg, '(a,i0,a,i0,a)') 'solver: cycle V(', settings%nu1, ',', settings%nu2, &
+            stat = FC_ERR_VALUE; write (errmsg, '(a,i0,a,i0,a)') 'solver: cycle V(', settings%nu1, ',', settings%nu2, &
                 ') needs nu1, nu2 >= 0 and nu1 + nu2 > 0'
             return
         end if
         if (.not. (settings%tol > 0) .or. settings%maxit < 1) then
-            stat = 1; write (errmsg, '(a,es10.3,a,i0,a)') 'solver: tol = ', settings%tol, ', maxit = ', settings%maxit, &
+            stat = FC_ERR_VALUE; write (errmsg, '(a,es10.3,a,i0,a)') 'solver: tol = ', settings%tol, ', maxit = ', settings%maxit, &
                 ' need tol > 0, maxit >= 1'
             return
         end if
@@ -510,7 +511,7 @@ contains
         rhs(:, 1) = merge(prob%rhs, 0.0_dp, prob%contact)
         unorm = sqrt(sum(rhs**2))
         if (.not. (unorm > 0)) then
-            stat = 1; errmsg = 'strip2d: right-hand side is zero on the contact strips'
+            stat = FC_ERR_VALUE; errmsg = 'strip2d: right-hand side is zero on the contact strips'
             call destroy_hierarchy(hier); return
         end if
         call initial_guess(settings, hier%lev(hier%nlev)%con, p)
@@ -590,7 +591,7 @@ contains
         if (stat /= 0) return
         n = prob%grid%nx
         if (n > 1024) then
-            stat = 1; write (errmsg, '(a,i0,a)') 'mg2d_spectral_radius: n = ', n, ' > 1024'; return
+            stat = FC_ERR_VALUE; write (errmsg, '(a,i0,a)') 'mg2d_spectral_radius: n = ', n, ' > 1024'; return
         end if
         call build_hierarchy(prob, settings, 64, hier, stat, errmsg)
         if (stat /= 0) return
@@ -628,7 +629,7 @@ contains
         if (stat /= 0) return
         n = prob%grid%nx
         if (n > 1024) then
-            stat = 1; write (errmsg, '(a,i0,a)') 'strip_smoother_radius: n = ', n, ' > 1024'; return
+            stat = FC_ERR_VALUE; write (errmsg, '(a,i0,a)') 'strip_smoother_radius: n = ', n, ' > 1024'; return
         end if
         call build_hierarchy(prob, s, 1, hier, stat, errmsg)
         allocate (t(n, n), p(n, 1), d(n, 1), zero(n, 1))
