@@ -51,7 +51,7 @@ module fc_auto
     use fc_tangcg, only: fc_tangential_result, fc_tangential_loading
     use fc_contact, only: set_influence_coefficients, clear_influence_coefficients, &
         fc_contact_operators, fc_contact_loading, fc_contact_settings, fc_contact_result, &
-        solve_contact, FC_PROBLEM_TANGENTIAL
+        solve_contact, FC_PROBLEM_TANGENTIAL, FC_PROBLEM_ROLLING
     use fc_rolling_batch, only: is_rolling_sequence, rolling_sequence
     use fc_fmg, only: fc_quadratic_surface, fc_punch_rough_surface, fc_wavy_surface
     use fc_icfile, only: fc_ic_set
@@ -64,7 +64,8 @@ module fc_auto
         estimate_safety, estimate_safety_h2, h2_ratio_low, h2_ratio_high
     use fc_threads, only: set_thread_count
     use fc_auto_area, only: auto_area, line_indentation, plane_strain_hertz, contact_touches_boundary, even_up
-    use fc_auto_answers, only: analytic_answer, fastsim_answer, fastsim_meets_target
+    use fc_auto_answers, only: analytic_answer, fastsim_answer
+    use fc_fastsim, only: fastsim_error_bound
     implicit none
     private
 
@@ -416,6 +417,39 @@ contains
             end do
         end do
     end subroutine prolong_copy
+
+    !> With model = 'auto' and a target: steady rolling of a quadratic geometry with prescribed
+    !! creepages (K = 0, no sequence) is answered by FASTSIM when its error bound
+    !! [[fastsim_error_bound]]·μFn / max(|F|, 0.1·μFn) meets the target (|F| of FASTSIM);
+    !! otherwise a reduction note gives the bound and the full theory is solved.
+    logical function fastsim_meets_target(s, out) result(used)
+        type(fc_case), intent(in) :: s
+        type(fc_auto_outcome), intent(inout) :: out
+        type(fc_auto_outcome) :: fs
+        real(dp) :: bound, mufn
+        integer :: stat
+        character(len=256) :: msg
+        used = .false.
+        if (.not. (s%problem == FC_PROBLEM_ROLLING .and. s%reduce .and. s%target > 0)) return
+        if (s%kind /= 'quadratic' .or. .not. (s%rx > 0 .and. s%ry > 0) .or. s%tangential%force_prescribed) return
+        if (is_rolling_sequence(s) .or. out%material%k /= 0) return
+        fs%material = out%material
+        allocate (fs%reductions(0), fs%warnings(0), fs%levels(0))
+        call fastsim_answer(s, fs, stat, msg)
+        if (stat /= 0) return
+        mufn = s%tangential%mu*fs%hertz%fn
+        bound = fastsim_error_bound(fs%hertz%a/fs%hertz%b, s%tangential%xi, s%tangential%eta, s%tangential%phi)
+        if (bound < huge(1.0_dp)) bound = bound*mufn/max(hypot(fs%fx, fs%fy), 0.1_dp*mufn)
+        if (bound <= s%target) then
+            call append_line(fs%reductions, 'accuracy target '//fmt_real(s%target)//': FASTSIM meets it (error bound '// &
+                fmt_real(bound)//' from its measured error against the full theory)')
+            out = fs
+            out%target = s%target; out%estimate = bound; out%target_met = .true.
+            used = .true.
+        else if (bound < huge(1.0_dp)) then
+            call append_line(out%reductions, 'FASTSIM not used: error bound '//fmt_real(bound)//' > target '//fmt_real(s%target))
+        end if
+    end function fastsim_meets_target
 
     ! ---------------------------------------------------------------- helpers ----
 

@@ -1,21 +1,19 @@
 !> Answers of the automatic layer without a grid solve (model reduction, `&solver model`):
 !! the analytic elliptic Hertz solution with Cattaneo–Mindlin for `problem = 'hertz'`, and
-!! Kalker's simplified theory (FASTSIM) on the Hertz ellipse for steady rolling, either
-!! asked for (`model = 'fastsim'`) or chosen when its error bound meets the accuracy target.
+!! Kalker's simplified theory (FASTSIM) on the Hertz ellipse for steady rolling, asked for
+!! (`model = 'fastsim'`) or chosen by [[fc_auto]] when its error bound meets the target.
 module fc_auto_answers
     use fc_kinds, only: dp
     use fc_hertz, only: hertz_from_approach, hertz_from_force, cattaneo_mindlin
-    use fc_fastsim, only: fastsim, fc_fastsim_result, fastsim_error_bound
+    use fc_fastsim, only: fastsim, fc_fastsim_result
     use fc_errors, only: FC_ERR_VALUE, FC_ERR_NO_CONTACT, FC_ERR_FRICTION_BOUND
     use fc_strings, only: fmt_real, append_line
     use fc_scene, only: fc_case
-    use fc_contact_types, only: FC_PROBLEM_ROLLING
-    use fc_rolling_batch, only: is_rolling_sequence
     use fc_case_result, only: fc_auto_outcome
     implicit none
     private
 
-    public :: analytic_answer, fastsim_answer, fastsim_meets_target
+    public :: analytic_answer, fastsim_answer
 
 contains
 
@@ -66,39 +64,6 @@ contains
         end if
         out%estimate = 0
     end subroutine analytic_answer
-
-    !> With model = 'auto' and a target: steady rolling of a quadratic geometry with prescribed
-    !! creepages (K = 0, no sequence) is answered by FASTSIM when its error bound
-    !! [[fastsim_error_bound]]·μFn / max(|F|, 0.1·μFn) meets the target (|F| of FASTSIM);
-    !! otherwise a reduction note gives the bound and the full theory is solved.
-    logical function fastsim_meets_target(s, out) result(used)
-        type(fc_case), intent(in) :: s
-        type(fc_auto_outcome), intent(inout) :: out
-        type(fc_auto_outcome) :: fs
-        real(dp) :: bound, mufn
-        integer :: stat
-        character(len=256) :: msg
-        used = .false.
-        if (.not. (s%problem == FC_PROBLEM_ROLLING .and. s%reduce .and. s%target > 0)) return
-        if (s%kind /= 'quadratic' .or. .not. (s%rx > 0 .and. s%ry > 0) .or. s%tangential%force_prescribed) return
-        if (is_rolling_sequence(s) .or. out%material%k /= 0) return
-        fs%material = out%material
-        allocate (fs%reductions(0), fs%warnings(0), fs%levels(0))
-        call fastsim_answer(s, fs, stat, msg)
-        if (stat /= 0) return
-        mufn = s%tangential%mu*fs%hertz%fn
-        bound = fastsim_error_bound(fs%hertz%a/fs%hertz%b, s%tangential%xi, s%tangential%eta, s%tangential%phi)
-        if (bound < huge(1.0_dp)) bound = bound*mufn/max(hypot(fs%fx, fs%fy), 0.1_dp*mufn)
-        if (bound <= s%target) then
-            call append_line(fs%reductions, 'accuracy target '//fmt_real(s%target)//': FASTSIM meets it (error bound '// &
-                fmt_real(bound)//' from its measured error against the full theory)')
-            out = fs
-            out%target = s%target; out%estimate = bound; out%target_met = .true.
-            used = .true.
-        else if (bound < huge(1.0_dp)) then
-            call append_line(out%reductions, 'FASTSIM not used: error bound '//fmt_real(bound)//' > target '//fmt_real(s%target))
-        end if
-    end function fastsim_meets_target
 
     !> model = 'fastsim': elliptic Hertz for the normal problem and Kalker's simplified theory
     !! (FASTSIM, 200 × 200 strips) for the creep forces of steady rolling.

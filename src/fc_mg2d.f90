@@ -30,6 +30,10 @@
 !! the finest grid = 1, halved per coarser level; the defect after a cycle is reused by
 !! the next one, so a V(1,1)-cycle costs 5 products on the finest grid, V(1,0)/V(0,1) 3
 !! (as counted in the thesis, §3.5.2).
+!!
+!! Size (~660 lines): the model problems, the level hierarchy, the two smoothers, the
+!! V-cycle and the spectral-radius diagnostics of thesis ch. 3 form one 1D-strip solver whose
+!! parts share the private level types; split it when a second strip solver needs them.
 module fc_mg2d
     use fc_kinds
     use fc_geometry, only: fc_grid, make_grid
