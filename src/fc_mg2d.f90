@@ -150,6 +150,10 @@ contains
     !! a_{−(n−1)…n−1} form a (2n−1)-circulant, its symbol is inverted pointwise and the
     !! inverse circulant's coefficients for offsets |d| ≤ n−1 are M's (equivalently: the
     !! centre column of the inverse of the circulant, "m = IFFT(FFT(u)./FFT(a))").
+    !! Not [[inverse_toeplitz_from_kernel]]: that 2D construction embeds A in a 2n-circulant
+    !! whose wrap-around slot holds the coefficient at offset n and floors the symbol at 1e−8;
+    !! this is the thesis' (2n−1)-circulant, whose smoothing and convergence factors ch. 3
+    !! reports.  The two give different M (not a round-off difference), so each keeps its own.
     subroutine strip_toeplitz_inverse(n, a, m, min_symbol)
         integer, intent(in) :: n                         !! grid size
         real(dp), intent(in) :: a(-(n - 1):n - 1)        !! A's coefficients
