@@ -6,7 +6,7 @@ module fc_auto_answers
     use fc_kinds, only: dp
     use fc_hertz, only: hertz_from_approach, hertz_from_force, cattaneo_mindlin
     use fc_fastsim, only: fastsim, fc_fastsim_result
-    use fc_errors, only: FC_ERR_VALUE, FC_ERR_NO_CONTACT, FC_ERR_FRICTION_BOUND
+    use fc_errors, only: FC_ERR_NO_CONTACT, FC_ERR_FRICTION_BOUND, FC_ERR_MODEL_RANGE
     use fc_strings, only: fmt_real, append_line
     use fc_scene, only: fc_case
     use fc_case_result, only: fc_auto_outcome
@@ -90,7 +90,7 @@ contains
         call fastsim(out%hertz%a, out%hertz%b, out%hertz%fn, s%tangential%mu, out%material%g, out%material%nu, &
                      s%tangential%xi, s%tangential%eta, s%tangential%phi, 200, 200, fr, stat, errmsg)
         if (stat /= 0) then
-            stat = FC_ERR_VALUE; return
+            stat = FC_ERR_MODEL_RANGE; return
         end if
         out%fx = fr%fx; out%fy = fr%fy; out%mz = fr%mz
         call append_line(out%reductions, "model = 'fastsim': elliptic Hertz and Kalker's simplified theory (FASTSIM), no grid")
