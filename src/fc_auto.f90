@@ -40,9 +40,12 @@
 !!   Cattaneo–Mindlin for a circular contact with a prescribed tangential force), no grid; a
 !!   line contact → the 2D strip (n×1 grid, the element spanning the cylinder length); no
 !!   tangential loading → no tangential solve; K = 0 → one normal and one tangential solve.
+!!
+!! This module holds the decisions and the refinement loop; the area's sizing is in
+!! [[fc_auto_area]], the answers without a grid (analytic Hertz, FASTSIM) in
+!! [[fc_auto_answers]], the error estimate in [[fc_auto_estimate]].
 module fc_auto
-    use fc_kinds, only: dp, i8, pi, FC_CONVERGED, status_name
-    use fc_geometry, only: fc_grid, h_no_contact
+    use fc_kinds, only: dp, i8, FC_CONVERGED, status_name
     use fc_influence, only: fc_material, combine_material
     use fc_norm, only: fc_normal_result
     use fc_tangcg, only: fc_tangential_result, fc_tangential_loading
@@ -50,20 +53,19 @@ module fc_auto
         fc_contact_operators, fc_contact_loading, fc_contact_settings, fc_contact_result, &
         solve_contact, FC_PROBLEM_TANGENTIAL, FC_PROBLEM_ROLLING
     use fc_rolling_batch, only: is_rolling_sequence, rolling_sequence
-    use fc_fastsim, only: fastsim, fc_fastsim_result, fastsim_error_bound
-    use fc_hertz, only: fc_hertz_solution, fc_cattaneo_solution, hertz_from_approach, hertz_from_force, &
-        cattaneo_mindlin
     use fc_fmg, only: fc_quadratic_surface, fc_punch_rough_surface, fc_wavy_surface
     use fc_icfile, only: fc_ic_set
     use fc_icfile_load, only: load_influence_source
-    use fc_errors, only: FC_ERR_VALUE, FC_ERR_UNSUPPORTED, FC_ERR_NO_CONTACT, FC_ERR_FRICTION_BOUND, &
-        FC_ERR_IC_FILE, FC_ERR_MODEL_RANGE
-    use fc_strings, only: fmt_int, fmt_real
+    use fc_errors, only: FC_ERR_UNSUPPORTED, FC_ERR_IC_FILE
+    use fc_strings, only: fmt_int, fmt_real, append_line
     use fc_scene, only: fc_case, case_setup, is_tangential, is_line_contact
     use fc_case_result, only: fc_level, fc_auto_outcome
     use fc_auto_estimate, only: richardson_estimate, level_estimate, certify_coarsest, target_quantities, &
         estimate_safety, estimate_safety_h2, h2_ratio_low, h2_ratio_high
     use fc_threads, only: set_thread_count
+    use fc_auto_area, only: auto_area, line_indentation, plane_strain_hertz, contact_touches_boundary, even_up
+    use fc_auto_answers, only: analytic_answer, fastsim_answer
+    use fc_fastsim, only: fastsim_error_bound
     implicit none
     private
 
@@ -115,15 +117,15 @@ contains
         if (tang .and. s%reduce) then
             if (s%tangential%mu == 0) then
                 tang = .false.
-                call add(out%reductions, 'mu = 0: frictionless, no tangential solve (tractions are zero)')
+                call append_line(out%reductions, 'mu = 0: frictionless, no tangential solve (tractions are zero)')
             else if (out%material%k == 0 .and. no_tangential_loading(s%tangential) .and. &
                      .not. is_rolling_sequence(s)) then
                 tang = .false.
-                call add(out%reductions, 'no tangential loading (zero shifts or forces, K = 0): no tangential solve '// &
+                call append_line(out%reductions, 'no tangential loading (zero shifts or forces, K = 0): no tangential solve '// &
                     '(tractions are zero)')
             end if
         end if
-        if (tang .and. out%material%k == 0 .and. s%reduce) call add(out%reductions, 'quasi-identical '// &
+        if (tang .and. out%material%k == 0 .and. s%reduce) call append_line(out%reductions, 'quasi-identical '// &
             'materials (K = 0): one normal and one tangential solve, no Panagiotopoulos loop')
         out%tangential = tang
         ! ---- line contact → 2D strip
@@ -133,11 +135,11 @@ contains
             if (s%kind == 'quadratic' .and. s%ry > 0) then
                 ! elongated ellipse: only a strip when the y curvature is negligible over the area
                 if (s%grid_auto) then
-                    call add(out%reductions, 'not reduced: ry >= 1e3 rx but the automatic area would be sized by the '// &
+                    call append_line(out%reductions, 'not reduced: ry >= 1e3 rx but the automatic area would be sized by the '// &
                         'elliptic Hertz solution (give a fixed grid or ry = 0 for a line contact)')
                     line = .false.
                 else if (max(s%ymin**2, s%ymax**2)/(2*s%ry) > 0.01_dp*line_indentation(s, out%material)) then
-                    call add(out%reductions, 'not reduced: ry >= 1e3 rx but the y curvature over the grid exceeds '// &
+                    call append_line(out%reductions, 'not reduced: ry >= 1e3 rx but the y curvature over the grid exceeds '// &
                         '1 % of the indentation')
                     line = .false.
                 end if
@@ -151,7 +153,7 @@ contains
                 end if
                 out%model = 'strip2d'
                 s%ny = 1
-                call add(out%reductions, 'line contact ('//trim(s%kind)//'): 2D strip model, n x 1 grid, one element '// &
+                call append_line(out%reductions, 'line contact ('//trim(s%kind)//'): 2D strip model, n x 1 grid, one element '// &
                     'over the length '//fmt_real(s%ymax - s%ymin)//' mm (plane strain)')
             end if
         end if
@@ -170,7 +172,8 @@ contains
         if (s%target > 0 .and. s%settings%normal%tol > 0.01_dp*s%target) then
             s%settings%normal%tol = 0.01_dp*s%target
             s%settings%tangential%tol = s%settings%normal%tol
-            call add(out%reductions, 'solver tol tightened to '//fmt_real(s%settings%normal%tol)//' = target/100 (solver '// &
+            call append_line(out%reductions, 'solver tol tightened to '//fmt_real(s%settings%normal%tol)// &
+                ' = target/100 (solver '// &
                 'error below the discretisation error)')
         end if
         out%tol = s%settings%normal%tol
@@ -182,10 +185,10 @@ contains
             if (.not. out%touches_boundary) exit
             if (.not. out%grid_auto .or. attempt == max_enlargements + 1) then
                 if (out%grid_auto) then
-                    call add(out%warnings, 'contact still reaches the boundary of the potential contact area after '// &
+                    call append_line(out%warnings, 'contact still reaches the boundary of the potential contact area after '// &
                         'the largest automatic enlargement: the solution is clipped')
                 else
-                    call add(out%warnings, 'CONTACT REACHES THE BOUNDARY of the potential contact area (first or '// &
+                    call append_line(out%warnings, 'CONTACT REACHES THE BOUNDARY of the potential contact area (first or '// &
                         'last row or column): the area given in &grid is too small and the solution is clipped; '// &
                         'enlarge xmin..ymax or use &grid auto = .true.')
                 end if
@@ -202,7 +205,7 @@ contains
                 s%ny = even_up(s%ny*enlarge_factor)
                 s%ymin = cy - hy*s%ny/ny_old; s%ymax = cy + hy*s%ny/ny_old
             end if
-            call add(out%reductions, 'automatic area enlarged x1.5: contact reached its boundary')
+            call append_line(out%reductions, 'automatic area enlarged x1.5: contact reached its boundary')
             deallocate (out%levels); allocate (out%levels(0))
         end do
     end subroutine solve_case_auto
@@ -248,7 +251,7 @@ contains
                 end if
             end if
             if (real(sl%nx, dp)*sl%ny > 4096.0_dp**2) then
-                call add(out%warnings, 'accuracy target: the next grid would exceed 4096^2 elements; stopped')
+                call append_line(out%warnings, 'accuracy target: the next grid would exceed 4096^2 elements; stopped')
                 exit
             end if
             call solve_one(sl, tang, ops, out, p0, px0, py0, stat, errmsg)
@@ -269,13 +272,13 @@ contains
             if (size(out%levels) < 2) out%target_met = .false.
             if (out%target_met) call certify_coarsest(out%levels, s, tang, out%estimate, s%target, out%sufficient, &
                 out%sufficient_bound)
-            if (size(out%levels) == 2 .and. out%target_met) call add(out%warnings, 'accuracy target: estimate from '// &
+            if (size(out%levels) == 2 .and. out%target_met) call append_line(out%warnings, 'accuracy target: estimate from '// &
                 'two grids: 2|d|, assuming only that the error at least halves per level (a third grid would '// &
                 'measure the rate)')
-            if (.not. out%reliable) call add(out%warnings, 'accuracy target: convergence is non-monotone (successive '// &
+            if (.not. out%reliable) call append_line(out%warnings, 'accuracy target: convergence is non-monotone (successive '// &
                 'differences change sign or grow); the estimate is the conservative bound max(|d_k|, |d_k-1|) without '// &
                 'extrapolation')
-            if (.not. out%target_met) call add(out%warnings, 'accuracy target '//fmt_real(s%target)// &
+            if (.not. out%target_met) call append_line(out%warnings, 'accuracy target '//fmt_real(s%target)// &
                 ' NOT MET: estimated error '//fmt_real(out%estimate)//' after '//fmt_int(size(out%levels))//' grids')
         end if
     end subroutine solve_levels
@@ -415,150 +418,6 @@ contains
         end do
     end subroutine prolong_copy
 
-    !> Whether any element in contact lies in the first or last column (and, unless `line`,
-    !! the first or last row) of the grid.
-    pure logical function contact_touches_boundary(pn, line) result(touches)
-        real(dp), intent(in) :: pn(:, :)
-        logical, intent(in) :: line   !! line contact: the y edges are the ends of the body
-        integer :: nx, ny
-        nx = size(pn, 1); ny = size(pn, 2)
-        touches = any(pn(1, :) > 0) .or. any(pn(nx, :) > 0)
-        if (.not. line .and. ny > 1) touches = touches .or. any(pn(:, 1) > 0) .or. any(pn(:, ny) > 0)
-    end function contact_touches_boundary
-
-    !> Plane-strain Hertz for a cylinder of radius r [mm] under force per length pl [N/mm],
-    !! estar = G/(1−ν): half-width b = sqrt(4 r P'/(π E*)) and p0 = 2P'/(π b).
-    pure subroutine plane_strain_hertz(r, pl, estar, b, p0)
-        real(dp), intent(in) :: r, pl, estar
-        real(dp), intent(out) :: b, p0
-        b = sqrt(4*r*pl/(pi*estar))
-        p0 = 2*pl/(pi*max(b, tiny(1.0_dp)))
-    end subroutine plane_strain_hertz
-
-    !> Size the potential contact area of `s` from the Hertz estimate (sets nx, ny, xmin …
-    !! ymax).  Quadratic: elliptic Hertz semi-axes a, b; line contacts: plane-strain half
-    !! width (force per length) or the geometric overlap √(2 R δ) (approach).  Each half-axis
-    !! gets (1 + margin); n_across elements span the contact's diameter in x (and in y for
-    !! elliptic contacts).
-    subroutine auto_area(s, mat, stat, errmsg)
-        type(fc_case), intent(inout) :: s
-        type(fc_material), intent(in) :: mat
-        integer, intent(out) :: stat
-        character(len=*), intent(out) :: errmsg
-        type(fc_hertz_solution) :: hz
-        real(dp) :: estar, ha, hb, p0, len_y
-        integer :: nacross
-        stat = 0; errmsg = ''
-        estar = mat%g/(1 - mat%nu)
-        nacross = s%n_across
-        if (nacross == 0) nacross = merge(8, 32, s%target > 0)
-        select case (s%kind)
-        case ('quadratic')
-            if (s%normal%force_prescribed) then
-                hz = hertz_from_force(0.5_dp/s%rx, 0.5_dp/s%ry, estar, s%normal%fn)
-            else
-                hz = hertz_from_approach(0.5_dp/s%rx, 0.5_dp/s%ry, estar, s%normal%approach)
-            end if
-            if (.not. (hz%a > 0 .and. hz%b > 0)) then
-                stat = FC_ERR_NO_CONTACT
-                errmsg = 'approach = '//fmt_real(s%normal%approach)//': no contact, the automatic area cannot be sized'
-                return
-            end if
-            ha = (1 + s%margin)*hz%a; hb = (1 + s%margin)*hz%b
-            s%nx = even_up((1 + s%margin)*nacross)
-            s%ny = even_up((1 + s%margin)*nacross)
-            s%xmin = -ha; s%xmax = ha; s%ymin = -hb; s%ymax = hb
-        case ('cylinder', 'strip2d')
-            len_y = s%ymax - s%ymin
-            if (s%kind == 'cylinder') len_y = s%length
-            if (s%normal%force_prescribed) then
-                call plane_strain_hertz(s%rx, s%normal%fn/len_y, estar, ha, p0)
-            else
-                if (.not. (s%normal%approach > 0)) then
-                    stat = FC_ERR_NO_CONTACT
-                    errmsg = 'approach = '//fmt_real(s%normal%approach)//': no contact, the automatic area cannot be sized'
-                    return
-                end if
-                ha = sqrt(2*s%rx*s%normal%approach)
-            end if
-            ha = (1 + s%margin)*ha
-            s%nx = even_up((1 + s%margin)*nacross)
-            s%xmin = -ha; s%xmax = ha
-            if (s%kind == 'cylinder') then
-                s%ymin = -0.5_dp*len_y; s%ymax = 0.5_dp*len_y
-            end if
-            if (s%ny == -1) then
-                s%ny = min(512, max(2, even_up(len_y/((s%xmax - s%xmin)/s%nx))))
-            else
-                s%ny = 1
-            end if
-        case default
-            stat = FC_ERR_VALUE
-            errmsg = "kind = '"//trim(s%kind)//"': the automatic area needs kind = 'quadratic', 'cylinder' or 'strip2d'"
-        end select
-    end subroutine auto_area
-
-    !> Indentation scale of a line contact: the approach, or b²/(2R) from plane-strain Hertz.
-    real(dp) function line_indentation(s, mat) result(d)
-        type(fc_case), intent(in) :: s
-        type(fc_material), intent(in) :: mat
-        real(dp) :: b, p0
-        if (.not. s%normal%force_prescribed) then
-            d = abs(s%normal%approach)
-        else
-            call plane_strain_hertz(s%rx, s%normal%fn/(s%ymax - s%ymin), mat%g/(1 - mat%nu), b, p0)
-            d = b**2/(2*s%rx)
-        end if
-    end function line_indentation
-
-    !> problem = 'hertz': elliptic Hertz for the approach or force, and Cattaneo–Mindlin for a
-    !! circular contact with a prescribed tangential force.
-    subroutine analytic_answer(s, out, stat, errmsg)
-        type(fc_case), intent(in) :: s
-        type(fc_auto_outcome), intent(inout) :: out
-        integer, intent(out) :: stat
-        character(len=*), intent(out) :: errmsg
-        real(dp) :: estar, q
-        stat = 0; errmsg = ''
-        out%analytic = .true.
-        out%model = 'hertz_analytic'
-        estar = out%material%g/(1 - out%material%nu)
-        if (s%normal%force_prescribed) then
-            out%hertz = hertz_from_force(0.5_dp/s%rx, 0.5_dp/s%ry, estar, s%normal%fn)
-        else
-            out%hertz = hertz_from_approach(0.5_dp/s%rx, 0.5_dp/s%ry, estar, s%normal%approach)
-            if (.not. (out%hertz%fn > 0)) then
-                stat = FC_ERR_NO_CONTACT
-                errmsg = 'approach = '//fmt_real(s%normal%approach)//': must be > 0 for the analytic Hertz solution (no contact)'
-                return
-            end if
-        end if
-        call add(out%reductions, "problem = 'hertz': analytic elliptic Hertz solution, no grid")
-        if (out%material%k /= 0) call add(out%warnings, 'K = '//fmt_real(out%material%k)//' /= 0: the analytic '// &
-            'Hertz solution neglects the normal-tangential coupling of dissimilar materials')
-        if (s%tangential%mu > 0 .and. s%tangential_given) then
-            q = hypot(s%tangential%fx, s%tangential%fy)
-            if (.not. s%tangential%force_prescribed) then
-                call add(out%warnings, "problem = 'hertz' with prescribed shifts: Cattaneo-Mindlin needs the "// &
-                    'tangential force (fx, fy); tangential part not computed')
-            else if (abs(s%rx - s%ry) > 1.0e-12_dp*s%rx) then
-                call add(out%warnings, "problem = 'hertz': Cattaneo-Mindlin needs a circular contact (rx = ry); "// &
-                    'tangential part not computed')
-            else if (.not. (q < s%tangential%mu*out%hertz%fn)) then
-                stat = FC_ERR_FRICTION_BOUND
-                errmsg = '|(fx, fy)| = '//fmt_real(q)//' must be < mu*fn = '//fmt_real(s%tangential%mu*out%hertz%fn)
-                return
-            else
-                out%cattaneo = cattaneo_mindlin(out%hertz%a, out%hertz%p0, out%hertz%fn, s%tangential%mu, q, out%material%g, &
-                    out%material%nu)
-                out%has_cattaneo = .true.
-                out%fx = s%tangential%fx; out%fy = s%tangential%fy
-                call add(out%reductions, 'circular contact with a tangential force: analytic Cattaneo-Mindlin')
-            end if
-        end if
-        out%estimate = 0
-    end subroutine analytic_answer
-
     !> With model = 'auto' and a target: steady rolling of a quadratic geometry with prescribed
     !! creepages (K = 0, no sequence) is answered by FASTSIM when its error bound
     !! [[fastsim_error_bound]]·μFn / max(|F|, 0.1·μFn) meets the target (|F| of FASTSIM);
@@ -582,49 +441,15 @@ contains
         bound = fastsim_error_bound(fs%hertz%a/fs%hertz%b, s%tangential%xi, s%tangential%eta, s%tangential%phi)
         if (bound < huge(1.0_dp)) bound = bound*mufn/max(hypot(fs%fx, fs%fy), 0.1_dp*mufn)
         if (bound <= s%target) then
-            call add(fs%reductions, 'accuracy target '//fmt_real(s%target)//': FASTSIM meets it (error bound '// &
+            call append_line(fs%reductions, 'accuracy target '//fmt_real(s%target)//': FASTSIM meets it (error bound '// &
                 fmt_real(bound)//' from its measured error against the full theory)')
             out = fs
             out%target = s%target; out%estimate = bound; out%target_met = .true.
             used = .true.
         else if (bound < huge(1.0_dp)) then
-            call add(out%reductions, 'FASTSIM not used: error bound '//fmt_real(bound)//' > target '//fmt_real(s%target))
+            call append_line(out%reductions, 'FASTSIM not used: error bound '//fmt_real(bound)//' > target '//fmt_real(s%target))
         end if
     end function fastsim_meets_target
-
-    !> model = 'fastsim': elliptic Hertz for the normal problem and Kalker's simplified theory
-    !! (FASTSIM, 200 × 200 strips) for the creep forces of steady rolling.
-    subroutine fastsim_answer(s, out, stat, errmsg)
-        type(fc_case), intent(in) :: s
-        type(fc_auto_outcome), intent(inout) :: out
-        integer, intent(out) :: stat
-        character(len=*), intent(out) :: errmsg
-        type(fc_fastsim_result) :: fr
-        real(dp) :: estar
-        stat = 0; errmsg = ''
-        out%analytic = .true.
-        out%model = 'fastsim'
-        estar = out%material%g/(1 - out%material%nu)
-        if (s%normal%force_prescribed) then
-            out%hertz = hertz_from_force(0.5_dp/s%rx, 0.5_dp/s%ry, estar, s%normal%fn)
-        else
-            out%hertz = hertz_from_approach(0.5_dp/s%rx, 0.5_dp/s%ry, estar, s%normal%approach)
-        end if
-        if (.not. (out%hertz%fn > 0)) then
-            stat = FC_ERR_NO_CONTACT
-            errmsg = 'approach = '//fmt_real(s%normal%approach)//': must be > 0 (no contact)'; return
-        end if
-        call fastsim(out%hertz%a, out%hertz%b, out%hertz%fn, s%tangential%mu, out%material%g, out%material%nu, &
-                     s%tangential%xi, s%tangential%eta, s%tangential%phi, 200, 200, fr, stat, errmsg)
-        if (stat /= 0) then
-            stat = FC_ERR_MODEL_RANGE; return
-        end if
-        out%fx = fr%fx; out%fy = fr%fy; out%mz = fr%mz
-        call add(out%reductions, "model = 'fastsim': elliptic Hertz and Kalker's simplified theory (FASTSIM), no grid")
-        if (out%material%k /= 0) call add(out%warnings, 'K = '//fmt_real(out%material%k)//' /= 0: FASTSIM and the '// &
-            'analytic Hertz solution neglect the normal-tangential coupling')
-        out%estimate = 0
-    end subroutine fastsim_answer
 
     ! ---------------------------------------------------------------- helpers ----
 
@@ -637,22 +462,6 @@ contains
             no_tangential_loading = t%phi == 0 .and. t%xi == 0 .and. t%eta == 0
         end if
     end function no_tangential_loading
-
-    !> Smallest even integer ≥ x (at least 2).
-    pure integer function even_up(x)
-        real(dp), intent(in) :: x
-        even_up = max(2, 2*ceiling(0.5_dp*x - 1.0e-9_dp))
-    end function even_up
-
-    subroutine add(list, text)
-        character(len=*), allocatable, intent(inout) :: list(:)
-        character(len=*), intent(in) :: text
-        character(len=len(list)), allocatable :: tmp(:)
-        allocate (tmp(size(list) + 1))
-        tmp(1:size(list)) = list
-        tmp(size(list) + 1) = text
-        call move_alloc(tmp, list)
-    end subroutine add
 
     !> Influence coefficients of the case: a file (`ic_file`, body 2 from `ic_file2` or the
     !! half-space) replaces the half-space kernels in `ops`; without one the half-space

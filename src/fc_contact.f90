@@ -37,7 +37,7 @@ module fc_contact
     use fc_contact_types, only: FC_PROBLEM_NORMAL, FC_PROBLEM_TANGENTIAL, FC_PROBLEM_ROLLING, fc_normal_loading, &
         fc_contact_settings, &
         fc_contact_result
-    use fc_icfile, only: fc_ic_set, ic_set_kernel
+    use fc_influence, only: fc_ic_set, ic_set_kernel
     use fc_periodic, only: build_periodic_normal_operator, check_periodic_grid, periodic_images_default
     implicit none
     private

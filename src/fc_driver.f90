@@ -11,7 +11,7 @@
 !! 'normal+tangential' / 'tangential' (the same: [[solve_contact]], normal then
 !! tangential, Panagiotopoulos rounds when K ≠ 0; FMG only when K = 0), through [[fc_auto]].
 !! 'strip_mp1' … 'strip_mp3': the 2D no-slip model problems of thesis §3.2.5 solved by
-!! [[fc_mg2d]] (`&solver strip`), see [[solve_strip_case]].
+!! [[fc_mg2d]] (`&solver strip`), see [[solve_strip_case]] ([[fc_driver_strip]]).
 !! The normal and tangential operators are kept across cases and rebuilt only when the grid
 !! or the material changes.
 !!
@@ -19,23 +19,20 @@
 !! case file was bad); 2 no input error but a solver did not converge or diverged.
 module fc_driver
     use, intrinsic :: iso_fortran_env, only: output_unit, int64, error_unit_default => error_unit
-    use fc_kinds, only: dp, msg_len, FC_CONVERGED, FC_DIVERGED, FC_ERROR, status_name
+    use fc_kinds, only: dp, msg_len, FC_CONVERGED, FC_DIVERGED, status_name
     use fc_geometry, only: fc_grid
     use fc_influence, only: fc_material
-    use fc_norm, only: fc_normal_result
-    use fc_tangcg, only: fc_tangential_result, EL_EXTERIOR, EL_ADHESION
     use fc_contact, only: fc_contact_operators, FC_PROBLEM_ROLLING
     use fc_rolling_batch, only: write_sequence_csv, sweep_header, steps_header
-    use fc_mg2d, only: fc_strip_problem, fc_mg2d_settings, fc_mg2d_result, strip_model_problem, solve_strip_mg, &
-        solve_strip_fft_rsm
+    use fc_driver_strip, only: solve_strip_case
     use fc_hertz, only: hertz_from_approach, hertz_from_force
     use fc_namelist, only: fc_case_chunk, read_case_file
-    use fc_input, only: fc_case_input, apply_case, strip_model_index, is_given, grid_is_auto
+    use fc_input, only: fc_case_input, apply_case, strip_model_index, grid_is_auto
     use fc_input_validate, only: validate_case
     use fc_input_scene, only: build_case, case_notes
     use fc_scene, only: fc_case
     use fc_strings, only: fmt_int, fmt_real
-    use fc_errors, only: FC_ERR_VALUE, FC_ERR_FRICTION_BOUND, FC_ERR_NO_CONTACT, FC_ERR_GEOMETRY, FC_ERR_IO, FC_ERR_ALLOC, &
+    use fc_errors, only: FC_ERR_FRICTION_BOUND, FC_ERR_NO_CONTACT, FC_ERR_GEOMETRY, FC_ERR_IO, FC_ERR_ALLOC, &
         FC_ERR_GRID, FC_ERR_IC_FILE, FC_ERR_MODEL_RANGE
     use fc_output, only: fc_case_summary, write_case_json, write_case_csv, write_case_npy, write_case_report
     use fc_auto, only: fc_auto_outcome, solve_case_auto
@@ -441,70 +438,6 @@ contains
             end if
         end function output_dir
     end subroutine run_driver
-
-    !> Solve a strip model problem case (problem = 'strip_mp1' … 'strip_mp3', thesis §3.2.5):
-    !! the no-slip tangential problem A^xx p = u on an nx×1 grid of [−4,4]×[−50,50] mm with
-    !! `&solver strip` = 'mg-fft-rsm' / 'mg-fft-sd' (multigrid V-cycles `cycle` with the FFT+RSM
-    !! / FFT+SD smoother) or 'fft-rsm' (one-grid FFT+RSM).  Returns the summary, the grid, the
-    !! traction px per element and the element states (A on the contact strips, E elsewhere).
-    !! tol is 1e−8 (thesis) unless `&solver tol` was given.
-    subroutine solve_strip_case(state, kase, s, grid, px, el, final_status, stat, errmsg)
-        type(fc_case_input), intent(in) :: state
-        type(fc_case), intent(in) :: kase
-        type(fc_case_summary), intent(inout) :: s
-        type(fc_grid), intent(out) :: grid
-        real(dp), allocatable, intent(out) :: px(:, :)
-        integer, allocatable, intent(out) :: el(:, :)
-        integer, intent(out) :: final_status
-        integer, intent(out) :: stat
-        character(len=*), intent(out) :: errmsg
-        type(fc_strip_problem) :: prob
-        type(fc_mg2d_settings) :: t
-        type(fc_mg2d_result) :: r
-        integer :: n
-        final_status = FC_ERROR
-        call strip_model_problem(strip_model_index(state), state%nx, prob, stat, errmsg)
-        if (stat /= 0) then
-            errmsg = '&grid nx = '//fmt_int(state%nx)//": problem = '"//trim(state%problem)//"': "//trim(errmsg); return
-        end if
-        t%tol = 1.0e-8_dp
-        if (is_given(state, 'solver', 'tol')) t%tol = kase%settings%normal%tol
-        t%maxit = kase%settings%normal%maxit
-        t%nu1 = kase%settings%fmg%nu1; t%nu2 = kase%settings%fmg%nu2
-        select case (state%strip)
-        case ('mg-fft-rsm', 'mg-fft-sd')
-            t%smoother = state%strip(4:)
-            call solve_strip_mg(prob, t, r, stat, errmsg)
-        case ('fft-rsm')
-            call solve_strip_fft_rsm(prob, t, r, stat, errmsg)
-        case default
-            stat = FC_ERR_VALUE; errmsg = 'unknown strip solver'
-        end select
-        if (stat /= 0) then
-            errmsg = "&solver strip = '"//trim(state%strip)//"': "//trim(errmsg); return
-        end if
-        grid = prob%grid
-        n = grid%nx
-        px = reshape(r%p, [n, 1])
-        el = reshape(merge(EL_ADHESION, EL_EXTERIOR, prob%contact), [n, 1])
-        final_status = r%status
-        s%name = state%name; s%title = state%title; s%problem = state%problem; s%geometry = 'strip2d'
-        s%outcome%material = prob%material; s%outcome%grid = grid; s%outcome%model = 'strip2d'
-        allocate (s%outcome%reductions(0), s%outcome%warnings(0))
-        s%notes = state%notes//case_notes(state)
-        s%status = status_name(r%status); s%message = r%message
-        s%solver = state%strip
-        s%solver_normal = 'none'; s%status_normal = 'not_run'
-        s%fx = sum(r%p)*grid%dx*grid%dy
-        s%ncon = count(prob%contact); s%nadh = s%ncon; s%nslip = 0
-        s%iterations = r%iterations; s%outer_iterations = r%iterations
-        s%matvecs = nint(r%work_units); s%residual = r%residual; s%tol = t%tol
-        s%work_units = r%work_units; s%convergence_factor = r%factor
-        s%cycle = ''
-        if (state%strip /= 'fft-rsm') s%cycle = state%cycle
-        s%cpu_seconds_tangential = r%cpu_seconds
-        stat = 0; errmsg = ''
-    end subroutine solve_strip_case
 
     !> Summary of an analytic (problem = 'hertz') case: no grid, Hertz values as results.
     subroutine analytic_summary(s, state)

@@ -12,7 +12,7 @@
 !! w = [ξ − φ·y, η + φ·x]):  p(x − δx) = p(x) − δx·[ξ/L1 − φ·y/L3, η/L2 + φ·x/L3], clipped
 !! to |p| ≤ g.  Cost O(nx·ny), no linear system.
 module fc_fastsim
-    use fc_kinds, only: dp, pi
+    use fc_kinds, only: dp, pi, FC_ERR_VALUE
     use fc_rolling_ref, only: kalker_coefficients
     implicit none
     private
@@ -51,7 +51,7 @@ contains
         character(len=*), intent(out) :: errmsg
         real(dp) :: l1, l2, l3, p0, dy, y, ay, dx, x, px, py, gb, t, area
         integer :: i, j
-        stat = 1; errmsg = ''
+        stat = FC_ERR_VALUE; errmsg = ''
         if (.not. (a > 0 .and. b > 0 .and. fn > 0 .and. g > 0 .and. mu >= 0)) then
             write (errmsg, '(a,5(g0.6,a))') 'fastsim: a = ', a, ', b = ', b, ', fn = ', fn, ', g = ', g, &
                 ', mu = ', mu, ': a, b, fn, g must be > 0 and mu >= 0'

@@ -14,7 +14,7 @@
 !! the FE's reciprocity error, reported in [[fc_fem_info]]).
 module fc_fem_ic
     use, intrinsic :: iso_c_binding, only: c_int, c_long
-    use fc_kinds, only: dp, msg_len
+    use fc_kinds, only: dp, msg_len, FC_ERR_VALUE, FC_ERR_IO
     use fc_fem_mesh
     use fc_icfile, only: fc_ic_set, ic_set_allocate, hash_text
     implicit none
@@ -80,7 +80,7 @@ contains
         logical :: made_dir, need_y
         integer :: ix, iy, mxy
         real(dp) :: sx, sy, f(3), scale
-        stat = 1
+        stat = FC_ERR_VALUE
         if (.not. (g > 0 .and. g < 1.0e29_dp)) then
             write (errmsg, '(a,es12.4,a)') 'material: g1 = ', g, ' must be > 0 and < 1e29 (an elastic body)'; return
         end if
@@ -236,11 +236,11 @@ contains
             made = .true.
         end if
         if (index(dir, "'") > 0) then
-            stat = 1; errmsg = "fem: workdir = '"//dir//"' must not contain a quote"; return
+            stat = FC_ERR_VALUE; errmsg = "fem: workdir = '"//dir//"' must not contain a quote"; return
         end if
         call execute_command_line("mkdir -p '"//dir//"'", exitstat=es, cmdstat=cs)
         if (cs /= 0 .or. es /= 0) then
-            stat = 1; errmsg = "fem: cannot create the work directory '"//dir//"'"; return
+            stat = FC_ERR_IO; errmsg = "fem: cannot create the work directory '"//dir//"'"; return
         end if
         stat = 0; errmsg = ''
     end subroutine make_workdir
@@ -275,7 +275,7 @@ contains
         call system_clock(t1)
         cpu = children_cpu() - c0
         wall = real(t1 - t0, dp)/rate
-        stat = 1
+        stat = FC_ERR_IO
         if (cs /= 0 .or. es == 127 .or. es == 126) then
             errmsg = "fem: CalculiX command '"//trim(p%ccx)//"' not found or not executable "// &
                 '(install calculix-ccx or set &fem ccx); command `'//cmd//'`, log '//logf
@@ -356,7 +356,7 @@ contains
                 end if
             end do
         end do
-        stat = 1
+        stat = FC_ERR_IO
         open (newunit=un, file=path, status='old', action='read', iostat=ios)
         if (ios /= 0) then
             errmsg = 'fem: cannot open the CalculiX results '//path; return

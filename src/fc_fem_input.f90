@@ -2,7 +2,7 @@
 !! `&grid` groups plus `&fem` (the FE model, every key defaulted).  Groups are read with
 !! namelist READs; an unknown key or group is an error that names it.
 module fc_fem_input
-    use fc_kinds, only: dp, msg_len
+    use fc_kinds, only: dp, msg_len, FC_ERR_IO
     use fc_fem_mesh, only: fc_fem_params
     implicit none
     private
@@ -42,7 +42,7 @@ contains
         namelist /grid/ nx, ny, xmin, xmax, ymin, ymax
         namelist /fem/ mesh, order, load, l_over_hc, cube_over_hc, hc_over_hs, stretch, stretch_far, solver, threads, ccx, &
             workdir, keep_work
-        stat = 1
+        stat = FC_ERR_IO
         open (newunit=u, file=path, status='old', action='read', iostat=ios, iomsg=iomsg)
         if (ios /= 0) then
             errmsg = 'cannot open '//trim(path)//': '//trim(iomsg); return

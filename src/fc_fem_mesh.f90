@@ -18,7 +18,7 @@
 !! along +x or +y.  Symmetry planes x = 0 and y = 0 carry the Dirichlet conditions of
 !! Table 5.1 for the load direction; the faces x = −L, y = −L, z = −L are clamped.
 module fc_fem_mesh
-    use fc_kinds, only: dp, i8, msg_len
+    use fc_kinds, only: dp, i8, msg_len, FC_ERR_VALUE, FC_ERR_IO, FC_ERR_INTERNAL
     implicit none
     private
 
@@ -136,7 +136,7 @@ contains
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
         real(dp) :: m, l
-        stat = 1
+        stat = FC_ERR_VALUE
         if (p%mesh /= 'hex' .and. p%mesh /= 'prism') then
             errmsg = "fem: mesh = '"//trim(p%mesh)//"' must be 'hex' or 'prism'"; return
         end if
@@ -212,7 +212,7 @@ contains
                 h = h*f_far
             end if
             if (n >= max_cells_axis) then
-                stat = 1
+                stat = FC_ERR_VALUE
                 write (errmsg, '(a,i0,a)') 'fem: the mesh needs more than ', max_cells_axis, &
                     ' cells per axis; raise stretch or lower l_over_hc or hc_over_hs'
                 return
@@ -265,7 +265,7 @@ contains
             if (mesh%prism) count = count + int(mesh%nxc + 1, i8)*mesh%nyc*mesh%nzc
         end if
         if (count > max_nodes) then
-            stat = 1
+            stat = FC_ERR_VALUE
             write (errmsg, '(a,i0,a,i0,a)') 'fem: the model has ', count, ' nodes, more than ', max_nodes, &
                 '; raise stretch or lower l_over_hc, cube_over_hc or hc_over_hs'
             return
@@ -318,7 +318,7 @@ contains
         character(len=msg_len) :: iomsg
         open (newunit=u, file=path, status='replace', action='write', iostat=ios, iomsg=iomsg)
         if (ios /= 0) then
-            stat = 1; errmsg = 'fem: cannot write the CalculiX deck '//trim(path)//': '//trim(iomsg); return
+            stat = FC_ERR_IO; errmsg = 'fem: cannot write the CalculiX deck '//trim(path)//': '//trim(iomsg); return
         end if
         write (u, '(a)') '** fastcontact influence-coefficient model (thesis ch. 5), generated'
         write (u, '(a,i0,a,i0,a,i0,a,es12.5)') '** cells ', mesh%nxc, ' x ', mesh%nyc, ' x ', mesh%nzc, ', L = ', mesh%domain
@@ -395,7 +395,7 @@ contains
         write (u, '(a)') '*END STEP'
         close (u, iostat=ios, iomsg=iomsg)
         if (ios /= 0) then
-            stat = 1; errmsg = 'fem: cannot write the CalculiX deck '//trim(path)//': '//trim(iomsg); return
+            stat = FC_ERR_IO; errmsg = 'fem: cannot write the CalculiX deck '//trim(path)//': '//trim(iomsg); return
         end if
         stat = 0; errmsg = ''
     contains
@@ -497,13 +497,13 @@ contains
                 ya = mesh%ys(jj); yb = mesh%ys(jj + 1)
                 if (yb <= -ext_y*(1 - 1e-9_dp)) cycle
                 if (ya < -ext_y*(1 + 1e-9_dp)) then
-                    stat = 1; errmsg = 'fem: internal error: the load edge in y is not a mesh line'; return
+                    stat = FC_ERR_INTERNAL; errmsg = 'fem: internal error: the load edge in y is not a mesh line'; return
                 end if
                 do ii = 0, mesh%nxc - 1
                     xa = mesh%xs(ii); xb = mesh%xs(ii + 1)
                     if (xb <= -ext_x*(1 - 1e-9_dp)) cycle
                     if (xa < -ext_x*(1 + 1e-9_dp)) then
-                        stat = 1; errmsg = 'fem: internal error: the load edge in x is not a mesh line'; return
+                        stat = FC_ERR_INTERNAL; errmsg = 'fem: internal error: the load edge in x is not a mesh line'; return
                     end if
                     nn = 8; if (mesh%order == 1) nn = 4
                     do q2 = 1, 4

@@ -9,24 +9,11 @@ module fc_geometry
     use fc_kinds, only: dp, i8, pi, msg_len, FC_ERR_VALUE, FC_ERR_IO
     use fc_table_io, only: read_real_table
     use fc_limits, only: max_length
+    use fc_geometry_grid, only: fc_grid, h_no_contact
     implicit none
     private
 
-    !> Grid of the potential contact area (units: mm).
-    type, public :: fc_grid
-        integer :: nx = 0            !! elements in x
-        integer :: ny = 0            !! elements in y
-        real(dp) :: xmin = 0, xmax = 0, ymin = 0, ymax = 0  !! outer edges [mm]
-        real(dp) :: dx = 0, dy = 0   !! element size [mm]
-    contains
-        procedure :: x => grid_x
-        procedure :: y => grid_y
-        procedure :: n => grid_n
-        procedure :: area => grid_area
-    end type fc_grid
-
-    !> Undeformed distance that keeps an element out of contact (outside a punch).
-    real(dp), parameter, public :: h_no_contact = 1.0e20_dp
+    public :: fc_grid, h_no_contact   ! (from [[fc_geometry_grid]])
 
     !> Smallest element size [mm]: below it the influence coefficients lose every digit.
     real(dp), parameter, public :: min_element_size = 1.0e-9_dp
@@ -86,32 +73,6 @@ contains
         grid%dx = (xmax - xmin)/nx
         grid%dy = (ymax - ymin)/ny
     end subroutine make_grid
-
-    !> x coordinate of the centre of column i [mm].
-    elemental real(dp) function grid_x(self, i)
-        class(fc_grid), intent(in) :: self
-        integer, intent(in) :: i
-        grid_x = self%xmin + (i - 0.5_dp)*self%dx
-    end function grid_x
-
-    !> y coordinate of the centre of row j [mm].
-    elemental real(dp) function grid_y(self, j)
-        class(fc_grid), intent(in) :: self
-        integer, intent(in) :: j
-        grid_y = self%ymin + (j - 0.5_dp)*self%dy
-    end function grid_y
-
-    !> Number of elements.
-    pure integer function grid_n(self)
-        class(fc_grid), intent(in) :: self
-        grid_n = self%nx*self%ny
-    end function grid_n
-
-    !> Element area dx·dy [mm²].
-    pure real(dp) function grid_area(self)
-        class(fc_grid), intent(in) :: self
-        grid_area = self%dx*self%dy
-    end function grid_area
 
     !> Quadratic (Hertzian) profile h0 = (x−x0)²/(2 rx) + (y−y0)²/(2 ry) [mm].
     !! A radius of 0 or a huge radius means "flat in that direction" (thesis §2.5.1).

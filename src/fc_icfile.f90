@@ -1,5 +1,8 @@
 !> Influence-coefficient sets: kernels A^ab(offset) read from files (FE or other sources),
-!! their validation, the combination of two bodies and the fastcontact file format.
+!! their validation, the combination of two bodies and the fastcontact file format.  The set
+!! type [[fc_ic_set]] and the kernel of one block for a grid ([[ic_set_kernel]]) live in
+!! [[fc_influence]], beside the analytic kernels, so that the operators need not depend on
+!! the file formats; they are re-exported here.
 !!
 !! A set holds, for every offset (ix, iy) with |ix| ≤ mx, |iy| ≤ my, the 3×3 coefficients
 !! a(ix, iy, i, j): displacement component i (1 = x, 2 = y, 3 = z) at a cell centre due to a
@@ -18,10 +21,11 @@
 !! the 2×2 tangential block must be positive definite (A SPD); otherwise a clear error.
 module fc_icfile
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
-    use fc_kinds, only: dp, i8, msg_len
-    use fc_geometry, only: fc_grid
+    use fc_kinds, only: dp, i8, msg_len, FC_ERR_VALUE, FC_ERR_IO
+    use fc_geometry_grid, only: fc_grid
     use fc_influence, only: fc_material, combine_material, ic_kernel_extended, rigid_modulus, &
-        IC_ZZ, IC_XX, IC_YY, IC_XY, IC_XZ, IC_ZX, IC_YZ, IC_ZY
+        IC_ZZ, IC_XX, IC_YY, IC_XY, IC_XZ, IC_ZX, IC_YZ, IC_ZY, fc_ic_set, ic_set_allocate, ic_block_index, &
+        ic_set_kernel, same_size => same_cell_size
     use fc_fftw
     use, intrinsic :: iso_c_binding, only: c_char, c_null_char
     implicit none
@@ -30,53 +34,14 @@ module fc_icfile
     integer, parameter, public :: ic_format_version = 1  !! version written by [[write_ic_file]]
     integer, parameter, public :: ic_max_offset = 4096   !! largest mx, my accepted from a file
 
-    !> A set of influence coefficients on a uniform grid (see the module header).
-    type, public :: fc_ic_set
-        integer :: mx = 0, my = 0                    !! largest offsets stored
-        real(dp) :: dx = 0, dy = 0                   !! cell size [mm]
-        character(len=16) :: content = 'body'        !! 'body' or 'combined'
-        character(len=16) :: source = ''             !! 'fem', 'analytic', 'contact', ...
-        real(dp) :: g = 0, nu = 0                    !! material of the body (content 'body') [N/mm², –]
-        character(len=16) :: load = 'constant'       !! traction shape of the source cell
-        character(len=512) :: model = ''            !! model description (FE parameters, ...)
-        character(len=16) :: hash = ''               !! cache key of the model parameters
-        real(dp), allocatable :: a(:, :, :, :)       !! a(−mx:mx, −my:my, 3, 3) [mm/(N/mm²)]
-    end type fc_ic_set
-
     character(len=2), parameter :: comp_name(3) = ['x ', 'y ', 'z ']
 
-    public :: ic_set_allocate, ic_block_index, validate_ic_set, combine_ic_sets, analytic_body_set
-    public :: ic_set_kernel, write_ic_file, read_ic_file, hash_text, is_fastcontact_ic_file
+    public :: fc_ic_set, ic_set_allocate, ic_block_index, ic_set_kernel   ! (from [[fc_influence]])
+    public :: validate_ic_set, combine_ic_sets, analytic_body_set
+    public :: write_ic_file, read_ic_file, hash_text, is_fastcontact_ic_file
     public :: rename_file, temp_name
 
 contains
-
-    !> Allocate a zeroed set.
-    subroutine ic_set_allocate(set, mx, my, dx, dy)
-        type(fc_ic_set), intent(inout) :: set
-        integer, intent(in) :: mx, my
-        real(dp), intent(in) :: dx, dy
-        if (allocated(set%a)) deallocate (set%a)
-        set%mx = mx; set%my = my; set%dx = dx; set%dy = dy
-        allocate (set%a(-mx:mx, -my:my, 3, 3), source=0.0_dp)
-    end subroutine ic_set_allocate
-
-    !> Component indices (i, j) of a library block IC_ZZ, IC_XX, ... (displacement i due to load j).
-    pure subroutine ic_block_index(block, i, j)
-        integer, intent(in) :: block
-        integer, intent(out) :: i, j
-        select case (block)
-        case (IC_ZZ); i = 3; j = 3
-        case (IC_XX); i = 1; j = 1
-        case (IC_YY); i = 2; j = 2
-        case (IC_XY); i = 1; j = 2
-        case (IC_XZ); i = 1; j = 3
-        case (IC_ZX); i = 3; j = 1
-        case (IC_YZ); i = 2; j = 3
-        case (IC_ZY); i = 3; j = 2
-        case default; i = 0; j = 0
-        end select
-    end subroutine ic_block_index
 
     !> One body's analytic half-space set (G, ν): the combined kernel of that body against a
     !! rigid one, so that two half-space bodies sum to the library's analytic kernel.
@@ -120,7 +85,7 @@ contains
         character(len=*), intent(out) :: errmsg
         integer :: mx, my, i, j
         real(dp) :: s
-        stat = 1
+        stat = FC_ERR_VALUE
         if (b1%content /= 'body' .or. b2%content /= 'body') then
             errmsg = "influence coefficients: only sets of content 'body' can be combined"; return
         end if
@@ -147,11 +112,6 @@ contains
         stat = 0; errmsg = ''
     end subroutine combine_ic_sets
 
-    pure logical function same_size(a, b)
-        real(dp), intent(in) :: a, b
-        same_size = abs(a - b) <= 1.0e-9_dp*max(abs(a), abs(b))
-    end function same_size
-
     !> Check a set: finite values, even symmetric blocks with xy = yx, positive FFT symbols
     !! of A^zz and of the tangential 2×2 block.  `label` names the file in messages.
     subroutine validate_ic_set(set, label, stat, errmsg)
@@ -163,7 +123,7 @@ contains
         real(dp) :: scale, tol
         real(dp), allocatable :: szz(:, :), sxx(:, :), syy(:, :), sxy(:, :), lam(:, :)
         integer :: loc(2)
-        stat = 1
+        stat = FC_ERR_VALUE
         if (.not. allocated(set%a)) then
             errmsg = trim(label)//': no coefficients'; return
         end if
@@ -248,40 +208,6 @@ contains
         sym = real(c, dp)
     end subroutine kernel_symbol
 
-    !> Kernel of one library block for a grid of nx×ny cells: kernel(−nx:nx, −ny:ny) (the
-    !! offsets ±nx, ±ny serve only the preconditioner's wrap-around slot; when the set stops
-    !! at nx−1 they repeat the last stored coefficient).
-    subroutine ic_set_kernel(set, block, grid, kernel, stat, errmsg)
-        type(fc_ic_set), intent(in) :: set
-        integer, intent(in) :: block
-        type(fc_grid), intent(in) :: grid
-        real(dp), allocatable, intent(out) :: kernel(:, :)
-        integer, intent(out) :: stat
-        character(len=*), intent(out) :: errmsg
-        integer :: i, j, ix, iy, ci, cj
-        stat = 1
-        if (.not. same_size(set%dx, grid%dx) .or. .not. same_size(set%dy, grid%dy)) then
-            write (errmsg, '(a,2es14.6,a,2es14.6,a)') 'influence coefficients are for cells dx, dy = ', set%dx, set%dy, &
-                ' mm, the grid has ', grid%dx, grid%dy, ' mm'
-            return
-        end if
-        if (set%mx < grid%nx - 1 .or. set%my < grid%ny - 1) then
-            write (errmsg, '(a,i0,a,i0,a,i0,a,i0,a)') 'influence coefficients reach offsets ', set%mx, ' x ', set%my, &
-                ', the grid of ', grid%nx, ' x ', grid%ny, ' cells needs at least nx-1, ny-1'
-            return
-        end if
-        call ic_block_index(block, i, j)
-        allocate (kernel(-grid%nx:grid%nx, -grid%ny:grid%ny))
-        do iy = -grid%ny, grid%ny
-            cj = max(-set%my, min(set%my, iy))
-            do ix = -grid%nx, grid%nx
-                ci = max(-set%mx, min(set%mx, ix))
-                kernel(ix, iy) = set%a(ci, cj, i, j)
-            end do
-        end do
-        stat = 0; errmsg = ''
-    end subroutine ic_set_kernel
-
     !> 64-bit FNV-1a hash of `text` as 16 hexadecimal digits (cache key).
     function hash_text(text) result(h)
         character(len=*), intent(in) :: text
@@ -310,7 +236,7 @@ contains
         tmp = temp_name(path)
         open (newunit=u, file=tmp, status='replace', action='write', iostat=ios, iomsg=iomsg)
         if (ios /= 0) then
-            stat = 1; errmsg = 'cannot write '//tmp//': '//trim(iomsg); return
+            stat = FC_ERR_IO; errmsg = 'cannot write '//tmp//': '//trim(iomsg); return
         end if
         write (u, '(a)') '# fastcontact influence coefficients (doc/ic_file_format.md)'
         write (u, '(a)') 'format = fastcontact-ic'
@@ -341,7 +267,7 @@ contains
         if (ios == 0) close (u, iostat=ios, iomsg=iomsg)
         if (ios /= 0) then
             close (u, status='delete', iostat=ix)
-            stat = 1; errmsg = 'cannot write '//tmp//': '//trim(iomsg); return
+            stat = FC_ERR_IO; errmsg = 'cannot write '//tmp//': '//trim(iomsg); return
         end if
         call rename_file(tmp, path, stat, errmsg)
     end subroutine write_ic_file
@@ -373,7 +299,7 @@ contains
         end interface
         stat = 0; errmsg = ''
         if (c_rename(trim(from)//c_null_char, trim(to)//c_null_char) /= 0) then
-            stat = 1; errmsg = 'cannot rename '//trim(from)//' to '//trim(to)
+            stat = FC_ERR_IO; errmsg = 'cannot rename '//trim(from)//' to '//trim(to)
         end if
     end subroutine rename_file
 
@@ -410,7 +336,7 @@ contains
         character(len=:), allocatable :: val
         character(len=msg_len) :: iomsg
         logical :: have_format
-        stat = 1
+        stat = FC_ERR_IO
         open (newunit=u, file=path, status='old', action='read', iostat=ios, iomsg=iomsg)
         if (ios /= 0) then
             errmsg = 'cannot open influence-coefficient file '//trim(path)//': '//trim(iomsg); return

@@ -18,7 +18,7 @@
 !! the surfaces apart, A^zz > 0); the lateral coordinate is our y; nmatrix = 1 only (one
 !! matrix, translation invariant: the only case a BTTB operator represents).
 module fc_icfile_contact
-    use fc_kinds, only: dp, msg_len
+    use fc_kinds, only: dp, msg_len, FC_ERR_VALUE, FC_ERR_IO
     use fc_icfile, only: fc_ic_set, ic_set_allocate, validate_ic_set, ic_max_offset, rename_file, temp_name
     implicit none
     private
@@ -38,7 +38,7 @@ contains
         real(dp) :: s, scale
         character(len=:), allocatable :: tmp
         character(len=msg_len) :: iomsg
-        stat = 1
+        stat = FC_ERR_VALUE
         if (set%content /= 'combined') then
             errmsg = "CONTACT influence-coefficient files hold combined coefficients; got content '"// &
                 trim(set%content)//"'"
@@ -56,7 +56,7 @@ contains
         tmp = temp_name(path)
         open (newunit=u, file=tmp, status='replace', action='write', iostat=ios, iomsg=iomsg)
         if (ios /= 0) then
-            errmsg = 'cannot write '//tmp//': '//trim(iomsg); return
+            stat = FC_ERR_IO; errmsg = 'cannot write '//tmp//': '//trim(iomsg); return
         end if
         write (u, '(a)') '   1    1    % nmatrix, iaconvex: one matrix for all positions; convex body 1'
         write (u, '(a)') '   0  312    % lquasid, xyzorder: general (9 columns), order n, x, y'
@@ -77,7 +77,7 @@ contains
         if (ios == 0) close (u, iostat=ios, iomsg=iomsg)
         if (ios /= 0) then
             close (u, status='delete', iostat=ix)
-            errmsg = 'cannot write '//tmp//': '//trim(iomsg); return
+            stat = FC_ERR_IO; errmsg = 'cannot write '//tmp//': '//trim(iomsg); return
         end if
         call rename_file(tmp, path, stat, errmsg)
     end subroutine write_contact_file
@@ -99,7 +99,7 @@ contains
         real(dp) :: dx, dy, v(10)
         character(len=4096) :: buf
         character(len=msg_len) :: iomsg
-        stat = 1
+        stat = FC_ERR_IO
         open (newunit=u, file=path, status='old', action='read', iostat=ios, iomsg=iomsg)
         if (ios /= 0) then
             errmsg = 'cannot open influence-coefficient file '//trim(path)//': '//trim(iomsg); return

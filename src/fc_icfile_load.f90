@@ -2,7 +2,7 @@
 !! combine a body's coefficients with body 2 (a second file or the analytic half-space),
 !! check them against the body's material — one call for the driver and the flat API.
 module fc_icfile_load
-    use fc_kinds, only: dp, msg_len
+    use fc_kinds, only: dp, msg_len, FC_ERR_VALUE, FC_ERR_IO
     use fc_icfile
     use fc_icfile_contact, only: read_contact_file
     implicit none
@@ -21,7 +21,7 @@ contains
         logical :: exists
         inquire (file=path, exist=exists)
         if (.not. exists) then
-            stat = 1; errmsg = "influence-coefficient file '"//trim(path)//"' does not exist"; return
+            stat = FC_ERR_IO; errmsg = "influence-coefficient file '"//trim(path)//"' does not exist"; return
         end if
         if (is_fastcontact_ic_file(path)) then
             call read_ic_file(path, set, stat, errmsg)
@@ -45,7 +45,7 @@ contains
         if (stat /= 0) return
         if (b1%content == 'combined') then
             if (len_trim(path2) > 0) then
-                stat = 1
+                stat = FC_ERR_VALUE
                 errmsg = "'"//trim(path)//"' holds combined coefficients of both bodies; ic_file2 = '"//trim(path2)// &
                     "' must not be given"
                 return
@@ -59,7 +59,7 @@ contains
             call read_any_ic_file(path2, b2, stat, errmsg)
             if (stat /= 0) return
             if (b2%content /= 'body') then
-                stat = 1; errmsg = "ic_file2 = '"//trim(path2)//"' must hold one body's coefficients (content body)"
+                stat = FC_ERR_VALUE; errmsg = "ic_file2 = '"//trim(path2)//"' must hold one body's coefficients (content body)"
                 return
             end if
             call check_material(b2, path2, g2, nu2, 'g2', 'nu2', stat, errmsg)
@@ -81,7 +81,7 @@ contains
         character(len=*), intent(out) :: errmsg
         stat = 0; errmsg = ''
         if (abs(b%g - g) > 1.0e-9_dp*abs(g) .or. abs(b%nu - nu) > 1.0e-9_dp) then
-            stat = 1
+            stat = FC_ERR_VALUE
             write (errmsg, '(5a,es12.5,3a,g0.6,a,es12.5,a,g0.6)') "'", trim(path), "' was computed for another body: ", &
                 gkey, ' = ', g, ', ', nukey, ' = ', nu, ' but the file has g = ', b%g, ', nu = ', b%nu
         end if

@@ -15,7 +15,7 @@
 module fc_influence
     use fc_kinds, only: dp, pi, msg_len, FC_ERR_VALUE
     use fc_limits, only: real_in_range, min_modulus
-    use fc_geometry, only: fc_grid
+    use fc_geometry_grid, only: fc_grid
     use fc_toeplitz
     implicit none
     private
@@ -33,10 +33,28 @@ module fc_influence
     integer, parameter, public :: IC_ZZ = 1, IC_XX = 2, IC_YY = 3, IC_XY = 4, IC_XZ = 5, IC_ZX = 6, &
         IC_YZ = 7, IC_ZY = 8
 
+    !> A set of tabulated influence coefficients (FE, files): for every offset (ix, iy) with
+    !! |ix| ≤ mx, |iy| ≤ my the 3×3 coefficients a(ix, iy, i, j), displacement component i
+    !! (1 = x, 2 = y, 3 = z) at a cell centre due to a unit traction component j on a cell of
+    !! size dx×dy centred at offset (−ix·dx, −iy·dy) from it [mm per N/mm²]; files, validation
+    !! and the combination of two bodies: [[fc_icfile]].
+    type, public :: fc_ic_set
+        integer :: mx = 0, my = 0                    !! largest offsets stored
+        real(dp) :: dx = 0, dy = 0                   !! cell size [mm]
+        character(len=16) :: content = 'body'        !! 'body' or 'combined'
+        character(len=16) :: source = ''             !! 'fem', 'analytic', 'contact', ...
+        real(dp) :: g = 0, nu = 0                    !! material of the body (content 'body') [N/mm², –]
+        character(len=16) :: load = 'constant'       !! traction shape of the source cell
+        character(len=512) :: model = ''            !! model description (FE parameters, ...)
+        character(len=16) :: hash = ''               !! cache key of the model parameters
+        real(dp), allocatable :: a(:, :, :, :)       !! a(−mx:mx, −my:my, 3, 3) [mm/(N/mm²)]
+    end type fc_ic_set
+
     real(dp), parameter :: rigid_modulus = 1.0e29_dp  !! moduli at or above this are rigid (1/G = 0)
 
     public :: combine_material, element_coefficient, ic_kernel, build_bttb, rigid_modulus, build_inverse_toeplitz
     public :: ic_kernel_extended
+    public :: ic_set_allocate, ic_block_index, ic_set_kernel, same_cell_size
     ! the fast operators built from the coefficients (fc_toeplitz)
     public :: fc_bttb, build_bttb_from_kernel, inverse_toeplitz_from_kernel, fft_symbol_of_kernel, copy_bttb
     public :: spectrum_pair_product, SYMBOL_GENERAL, SYMBOL_EVEN, SYMBOL_ODD
@@ -304,5 +322,74 @@ contains
         call ic_kernel_extended(block, mat, grid, grid%nx, grid%ny, kext)
         call inverse_toeplitz_from_kernel(kext, grid%nx, grid%ny, prec, min_symbol, plans_from)
     end subroutine build_inverse_toeplitz
+
+    ! ------------------------------------------------- tabulated coefficients ----
+
+    !> Allocate a zeroed set.
+    subroutine ic_set_allocate(set, mx, my, dx, dy)
+        type(fc_ic_set), intent(inout) :: set
+        integer, intent(in) :: mx, my
+        real(dp), intent(in) :: dx, dy
+        if (allocated(set%a)) deallocate (set%a)
+        set%mx = mx; set%my = my; set%dx = dx; set%dy = dy
+        allocate (set%a(-mx:mx, -my:my, 3, 3), source=0.0_dp)
+    end subroutine ic_set_allocate
+
+    !> Component indices (i, j) of a library block IC_ZZ, IC_XX, ... (displacement i due to load j).
+    pure subroutine ic_block_index(block, i, j)
+        integer, intent(in) :: block
+        integer, intent(out) :: i, j
+        select case (block)
+        case (IC_ZZ); i = 3; j = 3
+        case (IC_XX); i = 1; j = 1
+        case (IC_YY); i = 2; j = 2
+        case (IC_XY); i = 1; j = 2
+        case (IC_XZ); i = 1; j = 3
+        case (IC_ZX); i = 3; j = 1
+        case (IC_YZ); i = 2; j = 3
+        case (IC_ZY); i = 3; j = 2
+        case default; i = 0; j = 0
+        end select
+    end subroutine ic_block_index
+
+    !> Whether two cell sizes agree to 1e-9 (relative).
+    pure logical function same_cell_size(a, b)
+        real(dp), intent(in) :: a, b
+        same_cell_size = abs(a - b) <= 1.0e-9_dp*max(abs(a), abs(b))
+    end function same_cell_size
+
+    !> Kernel of one library block for a grid of nx×ny cells: kernel(−nx:nx, −ny:ny) (the
+    !! offsets ±nx, ±ny serve only the preconditioner's wrap-around slot; when the set stops
+    !! at nx−1 they repeat the last stored coefficient).
+    subroutine ic_set_kernel(set, block, grid, kernel, stat, errmsg)
+        type(fc_ic_set), intent(in) :: set
+        integer, intent(in) :: block
+        type(fc_grid), intent(in) :: grid
+        real(dp), allocatable, intent(out) :: kernel(:, :)
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        integer :: i, j, ix, iy, ci, cj
+        stat = FC_ERR_VALUE
+        if (.not. same_cell_size(set%dx, grid%dx) .or. .not. same_cell_size(set%dy, grid%dy)) then
+            write (errmsg, '(a,2es14.6,a,2es14.6,a)') 'influence coefficients are for cells dx, dy = ', set%dx, set%dy, &
+                ' mm, the grid has ', grid%dx, grid%dy, ' mm'
+            return
+        end if
+        if (set%mx < grid%nx - 1 .or. set%my < grid%ny - 1) then
+            write (errmsg, '(a,i0,a,i0,a,i0,a,i0,a)') 'influence coefficients reach offsets ', set%mx, ' x ', set%my, &
+                ', the grid of ', grid%nx, ' x ', grid%ny, ' cells needs at least nx-1, ny-1'
+            return
+        end if
+        call ic_block_index(block, i, j)
+        allocate (kernel(-grid%nx:grid%nx, -grid%ny:grid%ny))
+        do iy = -grid%ny, grid%ny
+            cj = max(-set%my, min(set%my, iy))
+            do ix = -grid%nx, grid%nx
+                ci = max(-set%mx, min(set%mx, ix))
+                kernel(ix, iy) = set%a(ci, cj, i, j)
+            end do
+        end do
+        stat = 0; errmsg = ''
+    end subroutine ic_set_kernel
 
 end module fc_influence

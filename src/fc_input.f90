@@ -50,6 +50,10 @@
 !!
 !! Every value persists from case to case except `name`.  A case with an input error does
 !! not change the inherited state: the next case inherits from the last good case.
+!!
+!! Size (~610 lines): the case record, its inheritance and one reader per namelist group
+!! (the reader's keys are the documented keys); validation is in [[fc_input_validate]], the
+!! scene builder in [[fc_input_scene]], the pre-parser in [[fc_namelist]].
 module fc_input
     use fc_kinds, only: dp, i8, msg_len
     use fc_errors, only: FC_ERR_VALUE

@@ -21,10 +21,11 @@
 !! grid size/spacing and the material are unchanged; the previous solution warm-starts the
 !! next call and, in the transient modes, is the previous state (u', p') of the step.
 !!
-!! Size: one bind(C) routine with its argument checks per entry of the documented API (30
-!! entries, ~650 lines), kept together so that this module, include/fc_legacy.h and
-!! doc/legacy_api.md list the same surface.  The handles live in [[fc_legacy_registry]]; every calculation goes through the library's
-!! orchestrator [[solve_contact]].  Fortran-77 callers link through [[fc_legacy_f77]].
+!! Size (~840 lines): one bind(C) routine with its argument checks per entry of the
+!! documented API (30 entries), kept together so that this module, include/fc_legacy.h and
+!! doc/legacy_api.md list the same surface.  The handles live in [[fc_legacy_registry]];
+!! every calculation goes through the library's orchestrator [[solve_contact]].
+!! Fortran-77 callers link through [[fc_legacy_f77]].
 module fc_legacy
     use, intrinsic :: iso_c_binding, only: c_int, c_double, c_char, c_null_char
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan

@@ -30,6 +30,10 @@
 !! the finest grid = 1, halved per coarser level; the defect after a cycle is reused by
 !! the next one, so a V(1,1)-cycle costs 5 products on the finest grid, V(1,0)/V(0,1) 3
 !! (as counted in the thesis, §3.5.2).
+!!
+!! Size (~660 lines): the model problems, the level hierarchy, the two smoothers, the
+!! V-cycle and the spectral-radius diagnostics of thesis ch. 3 form one 1D-strip solver whose
+!! parts share the private level types; split it when a second strip solver needs them.
 module fc_mg2d
     use fc_kinds
     use fc_geometry, only: fc_grid, make_grid
@@ -110,10 +114,10 @@ contains
         real(dp) :: x
         stat = 0; errmsg = ''
         if (which < 1 .or. which > 3) then
-            stat = 1; write (errmsg, '(a,i0,a)') 'strip2d: model problem ', which, ' is not 1, 2 or 3'; return
+            stat = FC_ERR_VALUE; write (errmsg, '(a,i0,a)') 'strip2d: model problem ', which, ' is not 1, 2 or 3'; return
         end if
         if (n < 4 .or. iand(n, n - 1) /= 0) then
-            stat = 1; write (errmsg, '(a,i0,a)') 'strip2d: n = ', n, ' must be a power of 2 >= 4'; return
+            stat = FC_ERR_VALUE; write (errmsg, '(a,i0,a)') 'strip2d: n = ', n, ' must be a power of 2 >= 4'; return
         end if
         call make_grid(prob%grid, n, 1, -4.0_dp, 4.0_dp, -50.0_dp, 50.0_dp, stat, errmsg)
         if (stat /= 0) return
@@ -146,6 +150,10 @@ contains
     !! a_{−(n−1)…n−1} form a (2n−1)-circulant, its symbol is inverted pointwise and the
     !! inverse circulant's coefficients for offsets |d| ≤ n−1 are M's (equivalently: the
     !! centre column of the inverse of the circulant, "m = IFFT(FFT(u)./FFT(a))").
+    !! Not [[inverse_toeplitz_from_kernel]]: that 2D construction embeds A in a 2n-circulant
+    !! whose wrap-around slot holds the coefficient at offset n and floors the symbol at 1e−8;
+    !! this is the thesis' (2n−1)-circulant, whose smoothing and convergence factors ch. 3
+    !! reports.  The two give different M (not a round-off difference), so each keeps its own.
     subroutine strip_toeplitz_inverse(n, a, m, min_symbol)
         integer, intent(in) :: n                         !! grid size
         real(dp), intent(in) :: a(-(n - 1):n - 1)        !! A's coefficients
@@ -197,7 +205,7 @@ contains
             n = n/2; nlev = nlev + 1
         end do
         if (nlev_max > 1 .and. n > 4096) then
-            stat = 1
+            stat = FC_ERR_GRID
             write (errmsg, '(a,i0,a,i0,a)') 'strip2d: n = ', nf, ' coarsens only to ', n, &
                 ' cells (> 4096 for the direct coarsest solve); use n with more factors of 2'
             return
@@ -415,27 +423,28 @@ contains
         character(len=*), intent(out) :: errmsg
         stat = 0; errmsg = ''
         if (.not. allocated(prob%rhs) .or. .not. allocated(prob%contact)) then
-            stat = 1; errmsg = 'strip2d: problem not set (rhs/contact)'; return
+            stat = FC_ERR_NOT_READY; errmsg = 'strip2d: problem not set (rhs/contact)'; return
         end if
         if (prob%grid%ny /= 1 .or. size(prob%rhs) /= prob%grid%nx .or. size(prob%contact) /= prob%grid%nx) then
-            stat = 1; errmsg = 'strip2d: needs an n×1 grid with rhs and contact of size n'; return
+            stat = FC_ERR_SHAPE; errmsg = 'strip2d: needs an n×1 grid with rhs and contact of size n'; return
         end if
         if (.not. any(prob%contact)) then
-            stat = 1; errmsg = 'strip2d: no element in contact'; return
+            stat = FC_ERR_NO_CONTACT; errmsg = 'strip2d: no element in contact'; return
         end if
         select case (settings%smoother)
         case ('fft', 'fft-sd', 'fft-rsm')
         case default
-            stat = 1; errmsg = "solver: smoother = '"//trim(settings%smoother)//"' is not one of 'fft', 'fft-sd', 'fft-rsm'"
+            stat = FC_ERR_VALUE
+            errmsg = "solver: smoother = '"//trim(settings%smoother)//"' is not one of 'fft', 'fft-sd', 'fft-rsm'"
             return
         end select
         if (settings%nu1 < 0 .or. settings%nu2 < 0 .or. settings%nu1 + settings%nu2 == 0) then
-            stat = 1; write (errmsg, '(a,i0,a,i0,a)') 'solver: cycle V(', settings%nu1, ',', settings%nu2, &
+            stat = FC_ERR_VALUE; write (errmsg, '(a,i0,a,i0,a)') 'solver: cycle V(', settings%nu1, ',', settings%nu2, &
                 ') needs nu1, nu2 >= 0 and nu1 + nu2 > 0'
             return
         end if
         if (.not. (settings%tol > 0) .or. settings%maxit < 1) then
-            stat = 1; write (errmsg, '(a,es10.3,a,i0,a)') 'solver: tol = ', settings%tol, ', maxit = ', settings%maxit, &
+            stat = FC_ERR_VALUE; write (errmsg, '(a,es10.3,a,i0,a)') 'solver: tol = ', settings%tol, ', maxit = ', settings%maxit, &
                 ' need tol > 0, maxit >= 1'
             return
         end if
@@ -510,7 +519,7 @@ contains
         rhs(:, 1) = merge(prob%rhs, 0.0_dp, prob%contact)
         unorm = sqrt(sum(rhs**2))
         if (.not. (unorm > 0)) then
-            stat = 1; errmsg = 'strip2d: right-hand side is zero on the contact strips'
+            stat = FC_ERR_VALUE; errmsg = 'strip2d: right-hand side is zero on the contact strips'
             call destroy_hierarchy(hier); return
         end if
         call initial_guess(settings, hier%lev(hier%nlev)%con, p)
@@ -590,7 +599,7 @@ contains
         if (stat /= 0) return
         n = prob%grid%nx
         if (n > 1024) then
-            stat = 1; write (errmsg, '(a,i0,a)') 'mg2d_spectral_radius: n = ', n, ' > 1024'; return
+            stat = FC_ERR_VALUE; write (errmsg, '(a,i0,a)') 'mg2d_spectral_radius: n = ', n, ' > 1024'; return
         end if
         call build_hierarchy(prob, settings, 64, hier, stat, errmsg)
         if (stat /= 0) return
@@ -628,7 +637,7 @@ contains
         if (stat /= 0) return
         n = prob%grid%nx
         if (n > 1024) then
-            stat = 1; write (errmsg, '(a,i0,a)') 'strip_smoother_radius: n = ', n, ' > 1024'; return
+            stat = FC_ERR_VALUE; write (errmsg, '(a,i0,a)') 'strip_smoother_radius: n = ', n, ' > 1024'; return
         end if
         call build_hierarchy(prob, s, 1, hier, stat, errmsg)
         allocate (t(n, n), p(n, 1), d(n, 1), zero(n, 1))

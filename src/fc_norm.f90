@@ -22,13 +22,16 @@
 !!
 !! Residual (both solvers): ‖g‖₂/‖h_F‖₂, g the gap on the free set — thesis (2.18) with
 !! the norm taken over the free set.
+!!
+!! Size (~660 lines): the operator type and its lifetime, and the two normal solvers of
+!! thesis ch. 2 (BCCG, NORM) that share its preconditioner, the force constraint and the
+!! result type; kept in one home like CONTACT's `norm` while the solver internals are tuned.
 module fc_norm
     use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
     use fc_kinds
     use fc_errors, only: FC_ERR_NO_CONTACT
     use fc_geometry, only: fc_grid, h_no_contact
     use fc_influence
-    use fc_icfile, only: fc_ic_set, ic_set_kernel
     use, intrinsic :: iso_c_binding, only: c_loc, c_associated
     use fc_errors, only: FC_ERR_VALUE
     implicit none

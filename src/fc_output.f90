@@ -121,6 +121,8 @@ contains
         call kv_int('outer_iterations_normal', s%outer_iterations_normal)
         call kv_int('matvecs_normal', s%matvecs_normal)
         call kv_real('residual_normal', s%residual_normal)
+        call kv_int('precond_applications_normal', s%outcome%result%normal%precond_applications)
+        call kv_reals('history_normal', s%outcome%result%normal%history)
         if (s%work_units >= 0) then
             call kv_real('work_units', s%work_units)
             call kv_real('convergence_factor', s%convergence_factor)
@@ -144,6 +146,7 @@ contains
             call kv_int('outer_iterations_tangential', s%outer_iterations_tangential)
             call kv_int('matvecs_tangential', s%matvecs_tangential)
             call kv_real('residual_tangential', s%residual_tangential)
+            call kv_reals('history_tangential', s%outcome%result%tangential%history)
             call kv_int('panagiotopoulos_rounds', s%panagiotopoulos_rounds)
             call kv_real('setup_seconds_tangential', s%setup_seconds_tangential)
         end if
@@ -208,6 +211,20 @@ contains
             write (buf, '(i0)') val
             write (u, '(a)') '  "'//key//'": '//trim(buf)//','
         end subroutine kv_int
+        !> A real array as a JSON list ([] when not allocated).
+        subroutine kv_reals(key, vals)
+            character(len=*), intent(in) :: key
+            real(dp), allocatable, intent(in) :: vals(:)
+            integer :: k
+            write (u, '(a)', advance='no') '  "'//key//'": ['
+            if (allocated(vals)) then
+                do k = 1, size(vals)
+                    if (k > 1) write (u, '(a)', advance='no') ', '
+                    write (u, '(a)', advance='no') json_real(vals(k))
+                end do
+            end if
+            write (u, '(a)') '],'
+        end subroutine kv_reals
         subroutine kv_list(key, list)
             character(len=*), intent(in) :: key
             character(len=*), allocatable, intent(in) :: list(:)

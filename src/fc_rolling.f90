@@ -83,45 +83,46 @@ contains
         stat = 0; errmsg = ''
         nx = top%grid%nx; ny = top%grid%ny
         if (.not. top%a_xx%built()) then
-            stat = 1; errmsg = 'solve_rolling: operator not built'; return
+            stat = FC_ERR_NOT_READY; errmsg = 'solve_rolling: operator not built'; return
         end if
         if (top%a_xx%periodic) then
-            stat = 1; errmsg = 'solve_rolling: steady rolling needs a non-periodic operator'; return
+            stat = FC_ERR_UNSUPPORTED; errmsg = 'solve_rolling: steady rolling needs a non-periodic operator'; return
         end if
         if (size(pn, 1) /= nx .or. size(pn, 2) /= ny) then
-            stat = 1; errmsg = 'solve_rolling: pn does not match the grid'; return
+            stat = FC_ERR_SHAPE; errmsg = 'solve_rolling: pn does not match the grid'; return
         end if
         muk = load%mu_kinetic
         if (muk < 0) muk = load%mu
         if (.not. (load%mu >= 0 .and. load%mu < huge(1.0_dp))) then
-            stat = 1; write (errmsg, '(a,g0.6,a)') 'rolling: mu = ', load%mu, ' must be >= 0 and finite'; return
+            stat = FC_ERR_VALUE; write (errmsg, '(a,g0.6,a)') 'rolling: mu = ', load%mu, ' must be >= 0 and finite'; return
         end if
         if (.not. (muk <= load%mu)) then
-            stat = 1; write (errmsg, '(a,g0.6,a,g0.6,a)') 'rolling: mu_kinetic = ', muk, ' must be <= mu = ', &
+            stat = FC_ERR_VALUE; write (errmsg, '(a,g0.6,a,g0.6,a)') 'rolling: mu_kinetic = ', muk, ' must be <= mu = ', &
                 load%mu, ' (static)'; return
         end if
         if (.not. (abs(load%xi) < 1.0e3_dp .and. abs(load%eta) < 1.0e3_dp .and. abs(load%phi) < 1.0e6_dp)) then
-            stat = 1; errmsg = 'rolling: creepages xi, eta (|.| < 1e3) and phi (|.| < 1e6 1/mm) must be finite'
+            stat = FC_ERR_VALUE; errmsg = 'rolling: creepages xi, eta (|.| < 1e3) and phi (|.| < 1e6 1/mm) must be finite'
             return
         end if
         if (.not. (settings%tol > 0 .and. settings%tol < 1)) then
-            stat = 1; write (errmsg, '(a,g0.6,a)') 'solver: tol = ', settings%tol, ' must be in (0, 1)'; return
+            stat = FC_ERR_VALUE; write (errmsg, '(a,g0.6,a)') 'solver: tol = ', settings%tol, ' must be in (0, 1)'; return
         end if
         if (settings%maxit < 1 .or. settings%maxit > 10000000) then
-            stat = 1; write (errmsg, '(a,i0,a)') 'solver: maxit = ', settings%maxit, ' must be in [1, 10000000]'; return
+            stat = FC_ERR_VALUE; write (errmsg, '(a,i0,a)') 'solver: maxit = ', settings%maxit, ' must be in [1, 10000000]'; return
         end if
         if (settings%restart < 2 .or. settings%restart > 500) then
-            stat = 1; write (errmsg, '(a,i0,a)') 'solver: restart = ', settings%restart, ' must be in [2, 500]'; return
+            stat = FC_ERR_VALUE; write (errmsg, '(a,i0,a)') 'solver: restart = ', settings%restart, ' must be in [2, 500]'; return
         end if
         if (.not. (settings%forcing > 0 .and. settings%forcing < 1)) then
-            stat = 1; write (errmsg, '(a,g0.6,a)') 'solver: forcing = ', settings%forcing, ' must be in (0, 1)'; return
+            stat = FC_ERR_VALUE; write (errmsg, '(a,g0.6,a)') 'solver: forcing = ', settings%forcing, ' must be in (0, 1)'; return
         end if
         if (settings%solver /= 'gmres' .and. settings%solver /= 'steadygs' .and. settings%solver /= 'march') then
-            stat = 1; errmsg = "solver: rolling = '"//trim(settings%solver)//"' is not one of 'gmres', 'march', 'steadygs'"
+            stat = FC_ERR_VALUE
+            errmsg = "solver: rolling = '"//trim(settings%solver)//"' is not one of 'gmres', 'march', 'steadygs'"
             return
         end if
         if (settings%solver == 'march' .and. muk /= load%mu) then
-            stat = 1; errmsg = "solver: rolling = 'march' needs mu_kinetic = mu (the transient step has one mu)"
+            stat = FC_ERR_UNSUPPORTED; errmsg = "solver: rolling = 'march' needs mu_kinetic = mu (the transient step has one mu)"
             return
         end if
         allocate (wx(nx, ny), wy(nx, ny), gs(nx, ny), gk(nx, ny), ox(nx, ny), oy(nx, ny), dox(nx, ny), doy(nx, ny))
@@ -201,7 +202,7 @@ contains
         fn = sum(max(pn, 0.0_dp))*top%grid%area()
         flimit = muk*fn
         if (.not. (hypot(load%fx, load%fy) < flimit)) then
-            stat = 1
+            stat = FC_ERR_FRICTION_BOUND
             write (errmsg, '(a,es12.5,a,es12.5,a)') 'rolling: |(fx, fy)| = ', hypot(load%fx, load%fy), &
                 ' must be < mu_kinetic*fn = ', flimit, ' (full slip has no unique creepage)'
             return

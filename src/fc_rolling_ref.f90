@@ -18,7 +18,7 @@
 !!   Tabulated for ν = 0, 0.25, 0.5 and a/b = 0.1 … 1 and b/a = 0.9 … 0.1; interpolated
 !!   quadratically in ν and linearly in the ratio between the nodes.
 module fc_rolling_ref
-    use fc_kinds, only: dp, pi
+    use fc_kinds, only: dp, pi, FC_ERR_VALUE
     implicit none
     private
 
@@ -95,7 +95,7 @@ contains
     end function carter_force_ratio
 
     !> Kalker's creep coefficients C11, C22, C23 for Poisson's ratio ν ∈ [0, 0.5] and
-    !! semi-axis ratio a/b ∈ [0.1, 10] (a along the rolling direction).  stat = 1 outside.
+    !! semi-axis ratio a/b ∈ [0.1, 10] (a along the rolling direction).  stat = FC_ERR_VALUE outside.
     pure subroutine kalker_coefficients(nu, a_over_b, c11, c22, c23, stat)
         real(dp), intent(in) :: nu, a_over_b
         real(dp), intent(out) :: c11, c22, c23
@@ -103,7 +103,7 @@ contains
         real(dp) :: wnu(3), t
         integer :: k, lo
         c11 = 0; c22 = 0; c23 = 0
-        stat = 1
+        stat = FC_ERR_VALUE
         if (.not. (nu >= 0 .and. nu <= 0.5_dp)) return
         if (.not. (a_over_b >= ratio_node(1)*(1 - 1e-12_dp) .and. a_over_b <= ratio_node(19)*(1 + 1e-12_dp))) return
         stat = 0

@@ -13,7 +13,7 @@ module fc_scene
     use fc_influence, only: fc_material, combine_material
     use fc_tangcg, only: fc_tangential_loading
     use fc_contact_types, only: fc_normal_loading, fc_contact_settings, FC_PROBLEM_NORMAL, FC_PROBLEM_TANGENTIAL
-    use fc_rolling, only: fc_rolling_case
+    use fc_rolling_base, only: fc_rolling_case
     implicit none
     private
 

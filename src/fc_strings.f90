@@ -6,7 +6,7 @@ module fc_strings
     implicit none
     private
 
-    public :: fmt_int, fmt_real, fmt_g6, lower, upper, shorten
+    public :: fmt_int, fmt_real, fmt_g6, lower, upper, shorten, append_line
 
 contains
 
@@ -94,5 +94,16 @@ contains
             t = trim(s)
         end if
     end function shorten
+
+    !> Append `text` as a new line to the list `list` (cut to the list's length).
+    pure subroutine append_line(list, text)
+        character(len=*), allocatable, intent(inout) :: list(:)
+        character(len=*), intent(in) :: text
+        character(len=len(list)), allocatable :: tmp(:)
+        allocate (tmp(size(list) + 1))
+        tmp(1:size(list)) = list
+        tmp(size(list) + 1) = text
+        call move_alloc(tmp, list)
+    end subroutine append_line
 
 end module fc_strings

@@ -21,6 +21,10 @@
 !!
 !! Stopping criterion (thesis eq. 4.49): ‖p^k − p^{k−1}‖_rms/‖p^k‖_rms < tol, with an
 !! unchanged subdivision.
+!!
+!! Size (~660 lines): TangCG and ConvexGS share the loading, the force loop, the result
+!! and the slip bookkeeping of thesis ch. 4; kept in one home like CONTACT's `tangcg` (the
+!! operator is in [[fc_tangcg_operator]], the preconditioner in [[fc_tangprec]]).
 module fc_tangcg
     use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
     use fc_kinds

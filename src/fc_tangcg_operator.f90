@@ -7,7 +7,6 @@ module fc_tangcg_operator
     use fc_kinds
     use fc_geometry, only: fc_grid
     use fc_influence
-    use fc_icfile, only: fc_ic_set, ic_set_kernel
     use, intrinsic :: iso_c_binding, only: c_loc, c_associated
     use fc_tangprec, only: fc_block_inverse, build_block_inverse
     implicit none

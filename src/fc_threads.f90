@@ -18,6 +18,7 @@
 !! periodic kernel, the rows and columns of the distributed products (doc/parallel.md).
 module fc_threads
     use, intrinsic :: iso_c_binding, only: c_int
+    use fc_kinds, only: FC_ERR_VALUE
     !$ use omp_lib, only: omp_get_max_threads, omp_set_num_threads, omp_get_num_procs
     implicit none
     private
@@ -78,7 +79,7 @@ contains
         character(len=*), intent(out) :: errmsg
         stat = 0; errmsg = ''
         if (n < 0 .or. n > max_threads_allowed) then
-            stat = 1
+            stat = FC_ERR_VALUE
             write (errmsg, '(a,i0,a,i0,a)') 'solver: threads = ', n, ' must lie in [0, ', max_threads_allowed, &
                 '] (0: OMP_NUM_THREADS)'
         end if

@@ -120,6 +120,7 @@ contains
     !! pointwise; the central (2nx−1)×(2ny−1) coefficients of the inverse form M's kernel.
     !! M on the grid is a principal block of that positive definite circulant, hence
     !! symmetric positive definite; symbol values are floored at 1e−8 of the maximum.
+    !! (The 1D strip solver keeps the thesis' (2n−1)-circulant, [[strip_toeplitz_inverse]].)
     subroutine inverse_toeplitz_from_kernel(kext, nx, ny, prec, min_symbol, plans_from)
         integer, intent(in) :: nx, ny
         real(dp), intent(in) :: kext(-nx:, -ny:)

@@ -21,6 +21,7 @@ program tester
     use test_api_fuzz, only: collect_api_fuzz
     use test_reliability, only: collect_reliability
     use test_readme, only: collect_readme
+    use test_summary, only: collect_summary
     implicit none
     character(len=64) :: suite, only
     integer :: npass, nfail
@@ -58,6 +59,9 @@ program tester
     end if
     if (want('reliability')) then
         call collect_reliability(tests); call run_suite('reliability', tests, only, npass, nfail)
+    end if
+    if (want('summary')) then
+        call collect_summary(tests); call run_suite('summary', tests, only, npass, nfail)
     end if
     if (want('readme')) then
         call collect_readme(tests); call run_suite('readme', tests, only, npass, nfail)
