@@ -534,11 +534,12 @@ contains
         !! tangential problem minimises on |p_I| ≤ g_I) is kept.  Cost: one product with M
         !! and six with A.
         subroutine cold_start()
-            real(dp), dimension(size(g, 1), size(g, 2)) :: ex, ey, qx, qy, qux, quy
-            logical, dimension(size(g, 1), size(g, 2)) :: qadh, qslp
+            real(dp), allocatable :: ex(:, :), ey(:, :), qx(:, :), qy(:, :), qux(:, :), quy(:, :)
+            logical, allocatable :: qadh(:, :), qslp(:, :)
             real(dp) :: c, scl
             integer :: cand
-            allocate (bx, by, bux, buy, mold=px)
+            allocate (ex, ey, qx, qy, qux, quy, bx, by, bux, buy, mold=px)
+            allocate (qadh, qslp, mold=adh)
             allocate (badh, bslp, mold=adh)
             where (contact)
                 dax = -wx; day = -wy
