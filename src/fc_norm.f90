@@ -445,9 +445,8 @@ contains
         !! u = A p.  Cost: four products with M and four with A.
         subroutine approach_start()
             real(dp) :: hmin, fr(4), jv(4), jbest, den, f0
-            real(dp), allocatable :: bp(:, :), bu(:, :)
             integer :: k
-            allocate (bp, bu, mold=h0)
+            ! the best candidate is kept in d and q (free until the iteration starts)
             hmin = minval(h0, mask=allowed)
             fr(1:3) = [1.0_dp, 0.75_dp, 0.5_dp]
             jbest = 0
@@ -463,11 +462,11 @@ contains
                 end if
                 call scaled_estimate(hmin + fr(k)*(delta - hmin), jv(k))
                 if (jv(k) < jbest) then
-                    jbest = jv(k); bp = p; bu = u
+                    jbest = jv(k); d = p; q = u
                 end if
             end do
             if (jbest < 0) then
-                p = bp; u = bu; have_u = .true.
+                p = d; u = q; have_u = .true.
             else
                 call estimate(delta, f0)   ! no candidate lowers the energy: the plain estimate
             end if

@@ -317,8 +317,7 @@ contains
         integer :: it, inner, nmoved
         logical :: changed, converged, check_now, fft_prec
         real(dp), allocatable :: hist(:)
-        real(dp), allocatable :: bx(:, :), by(:, :), bux(:, :), buy(:, :)  ! best cold-start candidate
-        logical, allocatable :: badh(:, :), bslp(:, :)
+        logical, allocatable :: badh(:, :), bslp(:, :)  ! subdivision of the best cold-start candidate
         real(dp) :: jbest
         axx = top%a_xx%kernel(0, 0); ayy = top%a_yy%kernel(0, 0)
         px = res%px; py = res%py
@@ -534,45 +533,45 @@ contains
         !! tangential problem minimises on |p_I| ≤ g_I) is kept.  Cost: one product with M
         !! and six with A.
         subroutine cold_start()
-            real(dp), allocatable :: ex(:, :), ey(:, :), qx(:, :), qy(:, :), qux(:, :), quy(:, :)
             logical, allocatable :: qadh(:, :), qslp(:, :)
             real(dp) :: c, scl
             integer :: cand
-            allocate (ex, ey, qx, qy, qux, quy, bx, by, bux, buy, mold=px)
-            allocate (qadh, qslp, mold=adh)
-            allocate (badh, bslp, mold=adh)
+            ! work arrays of the iteration, free until it starts, hold the candidates:
+            ! estimate (zx, zy), candidate 1 before its local step (vsx, vsy; u: qsx, qsy),
+            ! best so far (qax, qay; u: pox, poy)
+            allocate (badh, bslp, qadh, qslp, mold=adh)
             where (contact)
                 dax = -wx; day = -wy
             elsewhere
                 dax = 0; day = 0
             end where
-            call apply_block_inverse(top, dax, day, ex, ey)
+            call apply_block_inverse(top, dax, day, zx, zy)
             where (.not. contact)
-                ex = 0; ey = 0
+                zx = 0; zy = 0
             end where
-            call top%apply(ex, ey, ux, uy)
+            call top%apply(zx, zy, ux, uy)
             c = 1
-            if (sum(ex*ux + ey*uy) > 0) c = -sum(ex*wx + ey*wy)/sum(ex*ux + ey*uy)
+            if (sum(zx*ux + zy*uy) > 0) c = -sum(zx*wx + zy*wy)/sum(zx*ux + zy*uy)
             if (.not. (c > 0 .and. c < 1)) c = 1
             jbest = huge(1.0_dp)
             do cand = 1, 2
                 scl = 1
                 if (cand == 2) scl = c
-                px = scl*ex; py = scl*ey
+                px = scl*zx; py = scl*zy
                 call subdivide_start()
                 call top%apply(px, py, ux, uy)
                 sx = wx + ux; sy = wy + uy
                 if (cand == 1) then
-                    qx = px; qy = py; qux = ux; quy = uy; qadh = adh; qslp = slp
+                    vsx = px; vsy = py; qsx = ux; qsy = uy; qadh = adh; qslp = slp
                     call local_decision(.true.)
                     call keep()
-                    px = qx; py = qy; ux = qux; uy = quy; adh = qadh; slp = qslp
+                    px = vsx; py = vsy; ux = qsx; uy = qsy; adh = qadh; slp = qslp
                     sx = wx + ux; sy = wy + uy
                 end if
                 call local_decision(.false.)
                 call keep()
             end do
-            px = bx; py = by; adh = badh; slp = bslp; ux = bux; uy = buy
+            px = qax; py = qay; adh = badh; slp = bslp; ux = pox; uy = poy
             sx = wx + ux; sy = wy + uy
         end subroutine cold_start
 
@@ -581,7 +580,7 @@ contains
             real(dp) :: jv
             jv = sum(0.5_dp*(px*ux + py*uy) + px*wx + py*wy)
             if (jv < jbest) then
-                jbest = jv; bx = px; by = py; badh = adh; bslp = slp; bux = ux; buy = uy
+                jbest = jv; qax = px; qay = py; badh = adh; bslp = slp; pox = ux; poy = uy
             end if
         end subroutine keep
 
