@@ -8,7 +8,7 @@
 !! * `maxit = 0` rejected by the library and the driver;
 !! * BCCG's and NORM's stagnation guards (tol = 1e-300);
 !! * `contact_on_edge` on all four edges;
-!! * BCCG iteration counts on Hertz where the README advertises them (11–17).
+!! * BCCG iteration counts on Hertz where the README advertises them (7–11, bounds 17 and 14).
 module test_reliability
     use, intrinsic :: iso_c_binding, only: c_int
     use fc_kinds, only: dp, pi, msg_len, FC_CONVERGED, FC_NOT_CONVERGED
