@@ -42,7 +42,7 @@ module fc_norm
         integer :: inner_maxit = 0            !! NORM: CG steps per active-set iteration (0: until converged)
         logical :: precondition = .true.      !! BCCG: FFT-based preconditioner
         logical :: deflation = .false.        !! BCCG: coarse correction on the contact indicator (measured: no gain)
-        logical :: elastic_start = .true.     !! BCCG cold start: elastic estimate −M(h0 − t) (t: force bracket or energy-selected level)
+        logical :: elastic_start = .true.     !! BCCG cold start: estimate −M(h0 − t), t by force bracket / energy
         !> Reading of NORM's active-set step (thesis §2.3, §2.4.1) — '' (ours: warm-started
         !! CG, drop p < 0 and add e < 0 in one step); research alternatives for thesis Table 2.8
         !! (bench/norm_table28.f90): 'restart' (CG from p = 0), 'keep_negative' (dropped
