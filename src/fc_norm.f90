@@ -45,7 +45,7 @@ module fc_norm
         integer :: inner_maxit = 0            !! NORM: CG steps per active-set iteration (0: until converged)
         logical :: precondition = .true.      !! BCCG: FFT-based preconditioner
         logical :: deflation = .false.        !! BCCG: coarse correction on the contact indicator (measured: no gain)
-        logical :: elastic_start = .true.     !! BCCG cold start: elastic estimate −M(h0 − δ) on the penetration set
+        logical :: elastic_start = .true.     !! BCCG cold start: estimate −M(h0 − t), t by force bracket / energy
         !> Reading of NORM's active-set step (thesis §2.3, §2.4.1) — '' (ours: warm-started
         !! CG, drop p < 0 and add e < 0 in one step); research alternatives for thesis Table 2.8
         !! (bench/norm_table28.f90): 'restart' (CG from p = 0), 'keep_negative' (dropped
@@ -265,10 +265,11 @@ contains
         logical, dimension(size(h0, 1), size(h0, 2)) :: free, free_old, allowed
         real(dp) :: delta, area, alpha, beta, gz, gz_old, dq, hnorm, rnorm, r0, best, dden, eone, sone
         integer :: it, since_best, nfree, nclip, max_sparse
-        logical :: restart
+        logical :: restart, have_u
         real(dp) :: scale
         real(dp), allocatable :: hist(:)
         area = nop%grid%area()
+        have_u = .false.
         allowed = h0 < 0.5_dp*h_no_contact
         p = res%pn
         delta = delta_in
@@ -281,7 +282,7 @@ contains
             end if
             p = p*fn/(area*sum(p))
         end if
-        call nop%a_zz%apply(p, u)
+        if (.not. have_u) call nop%a_zz%apply(p, u)
         allocate (hist(settings%maxit))
         ! break-even between a direct column update (n flops each) and an FFT product
         max_sparse = max(8, 2*ceiling(log(4.0_dp*size(h0))/log(2.0_dp)))
@@ -410,7 +411,7 @@ contains
             real(dp) :: lo, hi, mid, hmin, hmax, f, flo, fhi
             integer :: k
             if (.not. force_mode) then
-                call estimate(delta, f)
+                call approach_start()
                 return
             end if
             ! bracket δ (the estimate's force is 0 at δ = min h0 and grows with δ), then a
@@ -437,6 +438,58 @@ contains
                 end if
             end do
         end subroutine elastic_start
+        !> Prescribed approach: the estimate on the penetration set {h0 < δ} is positive on
+        !! all of it, a far larger set than the contact area (Hertz: twice its area), and BCCG
+        !! then clips one ring of elements per iteration.  Instead, estimates e(t) from
+        !! shallower levels t = h_min + f·(δ − h_min), f = 1, 3/4, 1/2 and the vertex of the
+        !! parabola through them, each scaled by its energy-optimal factor
+        !! c = −eᵀ(h0 − δ)/eᵀAe, are compared by the energy ½pᵀAp + pᵀ(h0 − δ) (the
+        !! functional BCCG minimises over p ≥ 0), and the lowest is kept together with
+        !! u = A p.  Cost: four products with M and four with A.
+        subroutine approach_start()
+            real(dp) :: hmin, fr(4), jv(4), jbest, den, f0
+            integer :: k
+            ! the best candidate is kept in d and q (free until the iteration starts)
+            hmin = minval(h0, mask=allowed)
+            fr(1:3) = [1.0_dp, 0.75_dp, 0.5_dp]
+            jbest = 0
+            do k = 1, 4
+                if (k == 4) then
+                    ! vertex of the parabola through the three energies (equally spaced f),
+                    ! kept inside [1/4, 1]
+                    den = jv(1) - 2*jv(2) + jv(3)
+                    if (.not. (den > 0)) exit     ! not convex in f: keep the best of three
+                    fr(4) = fr(2) + 0.25_dp*(jv(3) - jv(1))/(2*den)
+                    fr(4) = min(1.0_dp, max(0.25_dp, fr(4)))
+                    if (minval(abs(fr(1:3) - fr(4))) < 0.05_dp) exit
+                end if
+                call scaled_estimate(hmin + fr(k)*(delta - hmin), jv(k))
+                if (jv(k) < jbest) then
+                    jbest = jv(k); d = p; q = u
+                end if
+            end do
+            if (jbest < 0) then
+                p = d; u = q; have_u = .true.
+            else
+                call estimate(delta, f0)   ! no candidate lowers the energy: the plain estimate
+            end if
+        end subroutine approach_start
+        !> p = c·e(t) and u = A p with the energy-optimal c; energy in `jv` (0 if e(t) is useless).
+        subroutine scaled_estimate(t, jv)
+            real(dp), intent(in) :: t
+            real(dp), intent(out) :: jv
+            real(dp) :: force, pau, pg, c
+            jv = 0
+            call estimate(t, force)
+            if (.not. force > 0) return
+            call nop%a_zz%apply(p, u)
+            pau = sum(p*u)
+            pg = sum(p*(h0 - delta), mask=allowed)
+            if (.not. (pau > 0 .and. pg < 0)) return
+            c = -pg/pau
+            p = c*p; u = c*u
+            jv = -0.5_dp*pg**2/pau
+        end subroutine scaled_estimate
         subroutine estimate(dlt, force)
             real(dp), intent(in) :: dlt
             real(dp), intent(out) :: force

@@ -282,7 +282,7 @@ contains
         load%normal%approach = 0.02_dp
         load%tangential%mu = 0.4_dp; load%tangential%xi = -0.00817_dp
         settings%normal%solver = nsolver; settings%normal%tol = 1e-10_dp
-        settings%tangential%solver = tsolver; settings%tangential%tol = 1e-10_dp
+        settings%tangential%solver = tsolver; settings%tangential%tol = 1e-12_dp
         call solve_contact(ops, grid, mat, h0, load, settings, res, stat, msg)
     end subroutine sphere_solve
 

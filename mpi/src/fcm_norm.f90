@@ -246,9 +246,10 @@ contains
         logical, allocatable, dimension(:, :) :: free, free_old, allowed
         real(dp) :: delta, area, alpha, beta, gz, gz_old, dq, hnorm, rnorm, best, dden, scale, r(4)
         integer :: it, since_best, nfree, nclip, nx, nyl, comm
-        logical :: restart
+        logical :: restart, have_u
         real(dp), allocatable :: hist(:)
         nx = size(h0, 1); nyl = size(h0, 2); comm = dop%lay%comm
+        have_u = .false.
         allocate (p(nx, nyl), u(nx, nyl), g(nx, nyl), z(nx, nyl), d(nx, nyl), q(nx, nyl))
         allocate (free(nx, nyl), free_old(nx, nyl), allowed(nx, nyl))
         area = dop%grid%area()
@@ -262,7 +263,7 @@ contains
             end if
             p = p*fn/(area*gsum1(sum(p)))
         end if
-        call apply_a(p, u)
+        if (.not. have_u) call apply_a(p, u)
         allocate (hist(settings%maxit))
         free_old = .false.
         d = 0; gz_old = 1; best = huge(1.0_dp); since_best = 0
@@ -399,7 +400,7 @@ contains
             real(dp) :: lo, hi, mid, hmin, hmax, f, flo, fhi, w(1)
             integer :: k, ierr
             if (.not. force_mode) then
-                call estimate(delta, f)
+                call approach_start()
                 return
             end if
             w(1) = minval(h0, mask=allowed)
@@ -429,6 +430,51 @@ contains
                 end if
             end do
         end subroutine elastic_start
+        !> The serial solver's prescribed-approach start (fc_norm): energy-scaled estimates
+        !! at levels f = 1, 3/4, 1/2 of the penetration and the parabola's vertex, the lowest
+        !! energy kept (in d, q with u = A p).  Same steps, global reductions.
+        subroutine approach_start()
+            real(dp) :: hmin, fr(4), jv(4), jbest, den, f0, w(1)
+            integer :: k, ierr
+            w(1) = minval(h0, mask=allowed)
+            call mpi_allreduce(MPI_IN_PLACE, w, 1, MPI_DOUBLE_PRECISION, MPI_MIN, comm, ierr)
+            hmin = w(1)
+            fr(1:3) = [1.0_dp, 0.75_dp, 0.5_dp]
+            jbest = 0
+            do k = 1, 4
+                if (k == 4) then
+                    den = jv(1) - 2*jv(2) + jv(3)
+                    if (.not. (den > 0)) exit
+                    fr(4) = fr(2) + 0.25_dp*(jv(3) - jv(1))/(2*den)
+                    fr(4) = min(1.0_dp, max(0.25_dp, fr(4)))
+                    if (minval(abs(fr(1:3) - fr(4))) < 0.05_dp) exit
+                end if
+                call scaled_estimate(hmin + fr(k)*(delta - hmin), jv(k))
+                if (jv(k) < jbest) then
+                    jbest = jv(k); d = p; q = u
+                end if
+            end do
+            if (jbest < 0) then
+                p = d; u = q; have_u = .true.
+            else
+                call estimate(delta, f0)
+            end if
+        end subroutine approach_start
+        subroutine scaled_estimate(t, jv)
+            real(dp), intent(in) :: t
+            real(dp), intent(out) :: jv
+            real(dp) :: force, pau, pg, c
+            jv = 0
+            call estimate(t, force)
+            if (.not. force > 0) return
+            call apply_a(p, u)
+            pau = gsum1(sum(p*u))
+            pg = gsum1(sum(p*(h0 - delta), mask=allowed))
+            if (.not. (pau > 0 .and. pg < 0)) return
+            c = -pg/pau
+            p = c*p; u = c*u
+            jv = -0.5_dp*pg**2/pau
+        end subroutine scaled_estimate
         subroutine estimate(dlt, force)
             real(dp), intent(in) :: dlt
             real(dp), intent(out) :: force
