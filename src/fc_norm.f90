@@ -34,6 +34,8 @@ module fc_norm
     use fc_influence
     use, intrinsic :: iso_c_binding, only: c_loc, c_associated
     use fc_errors, only: FC_ERR_VALUE
+    use fc_threads, only: omp_min_elements
+    use fc_vector_ops, only: vdot, vsum
     implicit none
     private
 
@@ -264,12 +266,17 @@ contains
         real(dp), dimension(size(h0, 1), size(h0, 2)) :: p, u, g, z, d, q, e0, aone
         logical, dimension(size(h0, 1), size(h0, 2)) :: free, free_old, allowed
         real(dp) :: delta, area, alpha, beta, gz, gz_old, dq, hnorm, rnorm, r0, best, dden, eone, sone
-        integer :: it, since_best, nfree, nclip, max_sparse
-        logical :: restart, have_u
+        real(dp) :: e0sum, hsq, rsq
+        integer :: it, since_best, nfree, nclip, max_sparse, npos, i, j, nx, ny
+        logical :: restart, par, have_u
         real(dp) :: scale
         real(dp), allocatable :: hist(:)
         area = nop%grid%area()
         have_u = .false.
+        nx = size(h0, 1); ny = size(h0, 2)
+        ! element loops below: OpenMP over columns on large grids (fc_threads), element order
+        ! otherwise; sums as the intrinsics compute them (same results serially)
+        par = nx*ny > omp_min_elements
         allowed = h0 < 0.5_dp*h_no_contact
         p = res%pn
         delta = delta_in
@@ -291,16 +298,42 @@ contains
         res%status = FC_NOT_CONVERGED
         res%outer_iterations = 0
         do it = 1, settings%maxit
-            e0 = h0 + u
+            ! e0 = h0 + u; force mode: δ = mean of e0 over p > 0
+            npos = 0; e0sum = 0
+            !$omp parallel do default(shared) private(i) reduction(+:npos, e0sum) schedule(static) if(par)
+            do j = 1, ny
+                do i = 1, nx
+                    e0(i, j) = h0(i, j) + u(i, j)
+                    if (p(i, j) > 0) then
+                        npos = npos + 1; e0sum = e0sum + e0(i, j)
+                    end if
+                end do
+            end do
+            !$omp end parallel do
             if (force_mode) then
-                if (count(p > 0) > 0) delta = sum(e0, mask=p > 0)/count(p > 0)
+                if (npos > 0) delta = e0sum/npos
             end if
-            g = e0 - delta
-            free = allowed .and. (p > 0 .or. g < 0)
-            nfree = count(free)
-            where (.not. free) g = 0
-            hnorm = sqrt(sum((h0 - delta)**2, mask=free))
-            rnorm = sqrt(sum(g**2))
+            ! gap g on the free set F = allowed ∩ (p > 0 ∪ g < 0), ‖h_F‖², ‖g‖², change of F
+            nfree = 0; hsq = 0; rsq = 0; restart = .false.
+            !$omp parallel do default(shared) private(i) reduction(+:nfree, hsq, rsq) reduction(.or.:restart) &
+            !$omp schedule(static) if(par)
+            do j = 1, ny
+                do i = 1, nx
+                    g(i, j) = e0(i, j) - delta
+                    free(i, j) = allowed(i, j) .and. (p(i, j) > 0 .or. g(i, j) < 0)
+                    if (free(i, j)) then
+                        nfree = nfree + 1
+                        hsq = hsq + (h0(i, j) - delta)**2
+                        rsq = rsq + g(i, j)**2
+                    else
+                        g(i, j) = 0
+                    end if
+                    restart = restart .or. (free(i, j) .neqv. free_old(i, j))
+                end do
+            end do
+            !$omp end parallel do
+            hnorm = sqrt(hsq)
+            rnorm = sqrt(rsq)
             if (nfree == 0 .or. hnorm <= 0) then
                 res%message = 'no element in contact'
                 res%status = FC_NOT_CONVERGED
@@ -332,13 +365,18 @@ contains
                 write (res%message, '(a,i0,a)') 'BCCG not converged in maxit = ', settings%maxit, ' iterations'
                 exit
             end if
-            restart = any(free .neqv. free_old)
             if (restart) res%outer_iterations = res%outer_iterations + 1
             ! preconditioned gradient z = P M P g (P: projection onto Σ_F = 0 in force mode)
             if (force_mode) call project_mean(g, free)
             if (settings%precondition) then
                 call nop%precond%apply(g, z)
-                where (.not. free) z = 0
+                !$omp parallel do default(shared) private(i) schedule(static) if(par)
+                do j = 1, ny
+                    do i = 1, nx
+                        if (.not. free(i, j)) z(i, j) = 0
+                    end do
+                end do
+                !$omp end parallel do
                 if (settings%deflation .and. .not. force_mode) then
                     ! coarse correction on the contact indicator: z += 1_F (1_Fᵀ g)/(1_Fᵀ A 1_F)
                     if (restart) then
@@ -357,42 +395,70 @@ contains
                 z = g
             end if
             if (force_mode) call project_mean(z, free)
-            gz = sum(g*z)
+            gz = vdot(g, z)
             if (restart .or. it == 1) then
-                d = -z
+                beta = 0
             else
                 beta = max(0.0_dp, gz/gz_old)
-                d = -z + beta*d
-                where (.not. free) d = 0
             end if
+            ! d = −z (restart) or −z + β d on F, 0 elsewhere
+            !$omp parallel do default(shared) private(i) schedule(static) if(par)
+            do j = 1, ny
+                do i = 1, nx
+                    if (restart .or. it == 1) then
+                        d(i, j) = -z(i, j)
+                    else if (free(i, j)) then
+                        d(i, j) = -z(i, j) + beta*d(i, j)
+                    else
+                        d(i, j) = 0
+                    end if
+                end do
+            end do
+            !$omp end parallel do
             free_old = free
             gz_old = gz
             call nop%a_zz%apply(d, q)
-            dq = sum(d*q)
+            dq = vdot(d, q)
             if (.not. (dq > 0)) then
                 res%status = FC_DIVERGED
                 res%message = 'BCCG: search direction with non-positive curvature'
                 exit
             end if
-            dden = sum(g*d)
+            dden = vdot(g, d)
             alpha = -dden/dq
-            p = p + alpha*d
-            u = u + alpha*q
-            nclip = count(p < 0)
+            nclip = 0
+            !$omp parallel do default(shared) private(i) reduction(+:nclip) schedule(static) if(par)
+            do j = 1, ny
+                do i = 1, nx
+                    p(i, j) = p(i, j) + alpha*d(i, j)
+                    u(i, j) = u(i, j) + alpha*q(i, j)
+                    if (p(i, j) < 0) nclip = nclip + 1
+                end do
+            end do
+            !$omp end parallel do
             if (nclip > 0) then
                 ! A·max(p,0) = A·p − A·min(p,0): few clipped elements are corrected column by
                 ! column (O(n) each), many by one more FFT product.
-                if (nclip <= max_sparse) then
-                    call subtract_sparse_columns(nop%a_zz, p, u)
-                    p = max(p, 0.0_dp)
-                else
-                    p = max(p, 0.0_dp)
-                    call nop%a_zz%apply(p, u)
-                end if
+                if (nclip <= max_sparse) call subtract_sparse_columns(nop%a_zz, p, u)
+                !$omp parallel do default(shared) private(i) schedule(static) if(par)
+                do j = 1, ny
+                    do i = 1, nx
+                        p(i, j) = max(p(i, j), 0.0_dp)
+                    end do
+                end do
+                !$omp end parallel do
+                if (nclip > max_sparse) call nop%a_zz%apply(p, u)
                 if (force_mode) then
-                    if (sum(p) > 0) then
-                        scale = fn/(area*sum(p))
-                        p = scale*p; u = scale*u     ! u = A p is linear in p
+                    scale = vsum(p)
+                    if (scale > 0) then
+                        scale = fn/(area*scale)
+                        !$omp parallel do default(shared) private(i) schedule(static) if(par)
+                        do j = 1, ny
+                            do i = 1, nx
+                                p(i, j) = scale*p(i, j); u(i, j) = scale*u(i, j)     ! u = A p is linear in p
+                            end do
+                        end do
+                        !$omp end parallel do
                     end if
                 end if
             end if
@@ -529,9 +595,11 @@ contains
         do l = 1, ny
             do k = 1, nx
                 if (p(k, l) < 0) then
+                    !$omp parallel do default(shared) schedule(static) if(nx*ny > omp_min_elements)
                     do j = 1, ny
                         u(:, j) = u(:, j) - p(k, l)*op%kernel(1 - k:nx - k, j - l)
                     end do
+                    !$omp end parallel do
                 end if
             end do
         end do

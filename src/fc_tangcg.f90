@@ -31,6 +31,7 @@ module fc_tangcg
     use fc_geometry, only: fc_grid
     use fc_influence
     use fc_tangcg_operator, only: fc_tangential_operator, build_tangential_operator, coupling_displacements
+    use fc_threads, only: omp_min_elements
     implicit none
     private
 
@@ -293,11 +294,19 @@ contains
     end subroutine tangential_summary
 
     !> Relative RMS change of the traction vector (eq. 4.49).
-    pure real(dp) function traction_change(px, py, qx, qy)
+    real(dp) function traction_change(px, py, qx, qy)
         real(dp), intent(in) :: px(:, :), py(:, :), qx(:, :), qy(:, :)
         real(dp) :: num, den
-        num = sum((px - qx)**2 + (py - qy)**2)
-        den = sum(px**2 + py**2)
+        integer :: i, j
+        num = 0; den = 0
+        !$omp parallel do default(shared) private(i) reduction(+:num, den) schedule(static) if(size(px) > omp_min_elements)
+        do j = 1, size(px, 2)
+            do i = 1, size(px, 1)
+                num = num + ((px(i, j) - qx(i, j))**2 + (py(i, j) - qy(i, j))**2)
+                den = den + (px(i, j)**2 + py(i, j)**2)
+            end do
+        end do
+        !$omp end parallel do
         if (den > 0) then
             traction_change = sqrt(num/den)
         else if (num > 0) then
@@ -317,13 +326,17 @@ contains
         real(dp), dimension(size(g, 1), size(g, 2)) :: px, py, sx, sy, ux, uy, dax, day, zx, zy, vax, vay, &
             vsx, vsy, qsx, qsy, qax, qay, pox, poy, dox, doy, mx, my, tnorm
         logical, dimension(size(g, 1), size(g, 2)) :: adh, slp
-        real(dp) :: axx, ayy, alpha, beta, zd_old, zd, denom, change
-        integer :: it, inner, nmoved
-        logical :: changed, converged, check_now, fft_prec
+        real(dp) :: axx, ayy, alpha, beta, zd_old, zd, denom, change, num, t
+        integer :: it, inner, nmoved, i, j, nx, ny
+        logical :: changed, converged, check_now, fft_prec, par
         real(dp), allocatable :: hist(:)
         logical, allocatable :: badh(:, :), bslp(:, :)  ! subdivision of the best cold-start candidate
         real(dp) :: jbest
         axx = top%a_xx%kernel(0, 0); ayy = top%a_yy%kernel(0, 0)
+        nx = size(g, 1); ny = size(g, 2)
+        ! the iteration's element loops: OpenMP over columns on large grids (fc_threads),
+        ! element order otherwise; sums as the intrinsics compute them (same results serially)
+        par = nx*ny > omp_min_elements
         px = res%px; py = res%py
         fft_prec = settings%precondition .and. settings%preconditioner == 'fft'
         if (fft_prec .and. .not. any(contact .and. (px /= 0 .or. py /= 0))) then
@@ -347,29 +360,45 @@ contains
         res%outer_iterations = 0
         change = huge(1.0_dp)
         do it = 1, settings%maxit
-            ! step 2: primary defect
-            where (adh)
-                dax = -sx; day = -sy
-            elsewhere (slp)
-                dax = -(px*sy - py*sx); day = 0
-            elsewhere
-                dax = 0; day = 0
-            end where
+            ! step 2: primary defect (and, for the FFT preconditioner, its adhesion part m)
+            !$omp parallel do default(shared) private(i) schedule(static) if(par)
+            do j = 1, ny
+                do i = 1, nx
+                    if (adh(i, j)) then
+                        dax(i, j) = -sx(i, j); day(i, j) = -sy(i, j)
+                    else if (slp(i, j)) then
+                        dax(i, j) = -(px(i, j)*sy(i, j) - py(i, j)*sx(i, j)); day(i, j) = 0
+                    else
+                        dax(i, j) = 0; day(i, j) = 0
+                    end if
+                    if (fft_prec) then
+                        if (adh(i, j)) then
+                            mx(i, j) = dax(i, j); my(i, j) = day(i, j)
+                        else
+                            mx(i, j) = 0; my(i, j) = 0
+                        end if
+                    end if
+                end do
+            end do
+            !$omp end parallel do
             ! step 3: preconditioner
             if (fft_prec) then
                 ! adhesion: block Toeplitz inverse of A (masked); slip: the inverse of the
                 ! reduced Jacobian's diagonal (as below, without the scaling to A^xx_II)
-                where (adh)
-                    mx = dax; my = day
-                elsewhere
-                    mx = 0; my = 0
-                end where
                 call apply_block_inverse(top, mx, my, zx, zy)
-                where (slp)
-                    zx = dax/(px**2*ayy + py**2*axx + max(0.0_dp, -(px*sx + py*sy))); zy = 0
-                elsewhere (.not. adh)
-                    zx = 0; zy = 0
-                end where
+                !$omp parallel do default(shared) private(i) schedule(static) if(par)
+                do j = 1, ny
+                    do i = 1, nx
+                        if (slp(i, j)) then
+                            zx(i, j) = dax(i, j)/(px(i, j)**2*ayy + py(i, j)**2*axx &
+                                + max(0.0_dp, -(px(i, j)*sx(i, j) + py(i, j)*sy(i, j))))
+                            zy(i, j) = 0
+                        else if (.not. adh(i, j)) then
+                            zx(i, j) = 0; zy(i, j) = 0
+                        end if
+                    end do
+                end do
+                !$omp end parallel do
             else if (settings%precondition) then
                 ! diagonal preconditioner, eq. (4.43): scale the diagonal to A^xx_II
                 where (adh)
@@ -397,34 +426,60 @@ contains
             if (.not. fft_prec) then
                 zx = mx*dax; zy = my*day
             end if
-            zd = sum(zx*dax + zy*day)
+            zd = 0; num = 0
+            !$omp parallel do default(shared) private(i) reduction(+:zd, num) schedule(static) if(par)
+            do j = 1, ny
+                do i = 1, nx
+                    zd = zd + (zx(i, j)*dax(i, j) + zy(i, j)*day(i, j))
+                    num = num + (zx(i, j)*(dax(i, j) - dox(i, j)) + zy(i, j)*(day(i, j) - doy(i, j)))
+                end do
+            end do
+            !$omp end parallel do
             ! step 4: search direction (Polak–Ribière, β ≥ 0; restart on a new subdivision)
-            if (changed) then
-                vax = zx; vay = zy
-            else
-                beta = max(0.0_dp, sum(zx*(dax - dox) + zy*(day - doy))/zd_old)
-                vax = zx + beta*vax; vay = zy + beta*vay
-            end if
-            dox = dax; doy = day; zd_old = zd
-            ! step 5: auxiliary direction
-            where (adh)
-                vsx = vax; vsy = vay
-            elsewhere (slp)
-                vsx = -vax*py; vsy = vax*px
-            elsewhere
-                vsx = 0; vsy = 0
-            end where
+            beta = 0
+            if (.not. changed) beta = max(0.0_dp, num/zd_old)
+            zd_old = zd
+            ! steps 4–5: search direction v_a, auxiliary direction v_s
+            !$omp parallel do default(shared) private(i) schedule(static) if(par)
+            do j = 1, ny
+                do i = 1, nx
+                    if (changed) then
+                        vax(i, j) = zx(i, j); vay(i, j) = zy(i, j)
+                    else
+                        vax(i, j) = zx(i, j) + beta*vax(i, j); vay(i, j) = zy(i, j) + beta*vay(i, j)
+                    end if
+                    dox(i, j) = dax(i, j); doy(i, j) = day(i, j)
+                    if (adh(i, j)) then
+                        vsx(i, j) = vax(i, j); vsy(i, j) = vay(i, j)
+                    else if (slp(i, j)) then
+                        vsx(i, j) = -vax(i, j)*py(i, j); vsy(i, j) = vax(i, j)*px(i, j)
+                    else
+                        vsx(i, j) = 0; vsy(i, j) = 0
+                    end if
+                end do
+            end do
+            !$omp end parallel do
             ! steps 6–7: change of slip and of the primary defect
             call top%apply(vsx, vsy, qsx, qsy)
-            where (adh)
-                qax = qsx; qay = qsy
-            elsewhere (slp)
-                qax = px*qsy - py*qsx + sy*vsx - sx*vsy; qay = 0
-            elsewhere
-                qax = 0; qay = 0
-            end where
+            ! step 8 (sums): denominator and numerator of the step length
+            denom = 0; num = 0
+            !$omp parallel do default(shared) private(i) reduction(+:denom, num) schedule(static) if(par)
+            do j = 1, ny
+                do i = 1, nx
+                    if (adh(i, j)) then
+                        qax(i, j) = qsx(i, j); qay(i, j) = qsy(i, j)
+                    else if (slp(i, j)) then
+                        qax(i, j) = px(i, j)*qsy(i, j) - py(i, j)*qsx(i, j) + sy(i, j)*vsx(i, j) - sx(i, j)*vsy(i, j)
+                        qay(i, j) = 0
+                    else
+                        qax(i, j) = 0; qay(i, j) = 0
+                    end if
+                    denom = denom + (qax(i, j)*vax(i, j) + qay(i, j)*vay(i, j))
+                    num = num + (dax(i, j)*vax(i, j) + day(i, j)*vay(i, j))
+                end do
+            end do
+            !$omp end parallel do
             ! step 8: step length
-            denom = sum(qax*vax + qay*vay)
             if (.not. (abs(denom) > 0)) then
                 if (zd == 0) then       ! nothing to do: the defect vanishes
                     change = 0
@@ -435,15 +490,21 @@ contains
                 end if
                 alpha = 0
             else
-                alpha = sum(dax*vax + day*vay)/denom
+                alpha = num/denom
             end if
             ! step 9: update and project slip tractions on the circle
-            pox = px; poy = py
-            px = px + alpha*vsx; py = py + alpha*vsy
-            where (slp)
-                tnorm = sqrt(px**2 + py**2)
-                px = g*px/tnorm; py = g*py/tnorm
-            end where
+            !$omp parallel do default(shared) private(i, t) schedule(static) if(par)
+            do j = 1, ny
+                do i = 1, nx
+                    pox(i, j) = px(i, j); poy(i, j) = py(i, j)
+                    px(i, j) = px(i, j) + alpha*vsx(i, j); py(i, j) = py(i, j) + alpha*vsy(i, j)
+                    if (slp(i, j)) then
+                        t = sqrt(px(i, j)**2 + py(i, j)**2)
+                        px(i, j) = g(i, j)*px(i, j)/t; py(i, j) = g(i, j)*py(i, j)/t
+                    end if
+                end do
+            end do
+            !$omp end parallel do
             change = traction_change(px, py, pox, poy)
             if (ieee_is_nan(change) .or. change > 1.0e12_dp) then
                 res%status = FC_DIVERGED
@@ -459,10 +520,17 @@ contains
             check_now = inner >= settings%inner_k .or. change < settings%tol
             if (check_now .and. any(slp)) then
                 call top%apply(px, py, ux, uy)
+                sx = wx + ux; sy = wy + uy
             else
-                ux = ux + alpha*qsx; uy = uy + alpha*qsy
+                !$omp parallel do default(shared) private(i) schedule(static) if(par)
+                do j = 1, ny
+                    do i = 1, nx
+                        ux(i, j) = ux(i, j) + alpha*qsx(i, j); uy(i, j) = uy(i, j) + alpha*qsy(i, j)
+                        sx(i, j) = wx(i, j) + ux(i, j); sy(i, j) = wy(i, j) + uy(i, j)
+                    end do
+                end do
+                !$omp end parallel do
             end if
-            sx = wx + ux; sy = wy + uy
             changed = .false.
             if (check_now) then
                 inner = 0
@@ -620,11 +688,22 @@ contains
         type(fc_tangential_operator), intent(inout) :: top
         real(dp), intent(in) :: dx(:, :), dy(:, :)
         real(dp), intent(out) :: zx(:, :), zy(:, :)
+        integer :: j
+        logical :: par
+        par = size(top%work) > omp_min_elements
         call top%a_xx%forward(dx, top%spec_x)
         call top%a_xx%forward(dy, top%spec_y)
-        top%work = top%spec_x*top%prec%mxx + top%spec_y*top%prec%mxy
+        !$omp parallel do default(shared) schedule(static) if(par)
+        do j = 1, size(top%work, 2)
+            top%work(:, j) = top%spec_x(:, j)*top%prec%mxx(:, j) + top%spec_y(:, j)*top%prec%mxy(:, j)
+        end do
+        !$omp end parallel do
         call top%a_xx%backward(top%work, zx)
-        top%work = top%spec_x*top%prec%mxy + top%spec_y*top%prec%myy
+        !$omp parallel do default(shared) schedule(static) if(par)
+        do j = 1, size(top%work, 2)
+            top%work(:, j) = top%spec_x(:, j)*top%prec%mxy(:, j) + top%spec_y(:, j)*top%prec%myy(:, j)
+        end do
+        !$omp end parallel do
         call top%a_xx%backward(top%work, zy)
     end subroutine apply_block_inverse
 

@@ -12,6 +12,7 @@
 module fc_tangprec
     use fc_kinds, only: dp
     use fc_fftw
+    use fc_threads, only: omp_min_elements
     implicit none
     private
 
@@ -58,17 +59,22 @@ contains
         !$omp end critical (fc_fftw_planner)
         ! largest eigenvalue over all frequencies, for the floor
         lmax = 0
+        !$omp parallel do default(shared) private(i, a, b, c) reduction(max:lmax) schedule(static) &
+        !$omp if(size(sxx) > omp_min_elements)
         do k = 1, my
             do i = 1, mx/2 + 1
                 a = real(sxx(i, k), dp); b = real(sxy(i, k), dp); c = real(syy(i, k), dp)
                 lmax = max(lmax, 0.5_dp*(a + c) + sqrt(0.25_dp*(a - c)**2 + b**2))
             end do
         end do
+        !$omp end parallel do
         floor_ = 1.0e-8_dp*lmax
         scale = 1/real(mx*my, dp)
         prec%nx = nx; prec%ny = ny
         if (allocated(prec%mxx)) deallocate (prec%mxx, prec%mxy, prec%myy)
         allocate (prec%mxx(mx/2 + 1, my), prec%mxy(mx/2 + 1, my), prec%myy(mx/2 + 1, my))
+        !$omp parallel do default(shared) private(i, a, b, c, tr, det, disc, l1, l2) schedule(static) &
+        !$omp if(size(sxx) > omp_min_elements)
         do k = 1, my
             do i = 1, mx/2 + 1
                 a = real(sxx(i, k), dp); b = real(sxy(i, k), dp); c = real(syy(i, k), dp)
@@ -86,6 +92,7 @@ contains
                 end if
             end do
         end do
+        !$omp end parallel do
     contains
         !> rbuf ← circulant of kernel k(−n…n) on the doubled grid; the wrap-around slot
         !! (offset ±n) holds k(n) for an even kernel, 0 for an odd one.

@@ -15,7 +15,9 @@
 !! thread and does nothing else.
 !!
 !! What runs in parallel: FFT products (FFTW), the influence-coefficient loops, the
-!! periodic kernel, the rows and columns of the distributed products (doc/parallel.md).
+!! periodic kernel, the rows and columns of the distributed products, and above
+!! [[omp_min_elements]] the element loops and vector operations of BCCG and TangCG
+!! (doc/parallel.md).
 module fc_threads
     use, intrinsic :: iso_c_binding, only: c_int
     use fc_kinds, only: FC_ERR_VALUE
@@ -27,6 +29,12 @@ module fc_threads
     !> Grids smaller than this (nx·ny) keep single-threaded FFT plans when the caller gives
     !! the grid size (the doubled-grid transforms are then below 1024² points).
     integer, parameter, public :: fftw_thread_min_elements = 512*512
+    !> Element loops and vector operations of the solvers (BCCG, TangCG, the FFT products'
+    !! spectral multiplications and copies) run on several threads only for arrays with more
+    !! elements than this; below it a parallel region costs more than the loop (measured with
+    !! bench/bench_omp_loops.f90, doc/parallel.md §5.3).  Below the threshold, and with one
+    !! thread, the loops run in element order, exactly as the serial code.
+    integer, parameter, public :: omp_min_elements = 32768
 
     interface
         integer(c_int) function fftw_init_threads() bind(C, name='fftw_init_threads')

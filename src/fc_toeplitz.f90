@@ -25,6 +25,7 @@ module fc_toeplitz
     use fc_kinds, only: dp
     use, intrinsic :: iso_c_binding, only: c_loc
     use fc_fftw
+    use fc_threads, only: omp_min_elements
     implicit none
     private
 
@@ -416,7 +417,7 @@ contains
         real(dp), intent(in) :: x(:, :)
         complex(dp), intent(out) :: spectrum(:, :)
         call transform_forward(self%fft, x)
-        spectrum = self%fft%cbuf
+        call copy_spectrum(self%fft%cbuf, spectrum)
     end subroutine bttb_forward
 
     !> y = IFFT(spectrum) restricted to the grid (spectrum already multiplied by symbols).
@@ -424,7 +425,7 @@ contains
         class(fc_bttb), intent(inout) :: self
         complex(dp), intent(in) :: spectrum(:, :)
         real(dp), intent(out) :: y(:, :)
-        self%fft%cbuf = spectrum
+        call copy_spectrum(spectrum, self%fft%cbuf)
         call transform_backward(self%fft, y)
         self%nproducts = self%nproducts + 1
     end subroutine bttb_backward
@@ -436,42 +437,61 @@ contains
         complex(dp), intent(inout) :: out(:, :)
         logical, intent(in), optional :: add
         logical :: acc
+        integer :: i, j
         acc = .false.
         if (present(add)) acc = add
-        select case (self%parity)
-        case (SYMBOL_EVEN)
-            if (acc) then
-                out = out + spectrum*self%rsymbol
-            else
-                out = spectrum*self%rsymbol
-            end if
-        case (SYMBOL_ODD)    ! (a + ib)·(i s) = −b s + i a s
-            if (acc) then
-                out = out + cmplx(-aimag(spectrum)*self%rsymbol, real(spectrum, dp)*self%rsymbol, dp)
-            else
-                out = cmplx(-aimag(spectrum)*self%rsymbol, real(spectrum, dp)*self%rsymbol, dp)
-            end if
-        case default
-            if (acc) then
-                out = out + spectrum*self%csymbol
-            else
-                out = spectrum*self%csymbol
-            end if
-        end select
+        ! column loops, threaded above omp_min_elements (the spectra have ~2·nx·ny entries)
+        !$omp parallel do default(shared) private(i) schedule(static) if(size(out) > omp_min_elements)
+        do j = 1, size(out, 2)
+            select case (self%parity)
+            case (SYMBOL_EVEN)
+                if (acc) then
+                    out(:, j) = out(:, j) + spectrum(:, j)*self%rsymbol(:, j)
+                else
+                    out(:, j) = spectrum(:, j)*self%rsymbol(:, j)
+                end if
+            case (SYMBOL_ODD)    ! (a + ib)·(i s) = −b s + i a s
+                if (acc) then
+                    do i = 1, size(out, 1)
+                        out(i, j) = out(i, j) + cmplx(-aimag(spectrum(i, j))*self%rsymbol(i, j), &
+                            real(spectrum(i, j), dp)*self%rsymbol(i, j), dp)
+                    end do
+                else
+                    do i = 1, size(out, 1)
+                        out(i, j) = cmplx(-aimag(spectrum(i, j))*self%rsymbol(i, j), &
+                            real(spectrum(i, j), dp)*self%rsymbol(i, j), dp)
+                    end do
+                end if
+            case default
+                if (acc) then
+                    out(:, j) = out(:, j) + spectrum(:, j)*self%csymbol(:, j)
+                else
+                    out(:, j) = spectrum(:, j)*self%csymbol(:, j)
+                end if
+            end select
+        end do
+        !$omp end parallel do
     end subroutine bttb_multiply
 
     !> c ← c · symbol.
     subroutine multiply_in_place(self, c)
         type(fc_bttb), intent(in) :: self
         complex(dp), intent(inout) :: c(:, :)
-        select case (self%parity)
-        case (SYMBOL_EVEN)
-            c = c*self%rsymbol
-        case (SYMBOL_ODD)
-            c = cmplx(-aimag(c)*self%rsymbol, real(c, dp)*self%rsymbol, dp)
-        case default
-            c = c*self%csymbol
-        end select
+        integer :: i, j
+        !$omp parallel do default(shared) private(i) schedule(static) if(size(c) > omp_min_elements)
+        do j = 1, size(c, 2)
+            select case (self%parity)
+            case (SYMBOL_EVEN)
+                c(:, j) = c(:, j)*self%rsymbol(:, j)
+            case (SYMBOL_ODD)
+                do i = 1, size(c, 1)
+                    c(i, j) = cmplx(-aimag(c(i, j))*self%rsymbol(i, j), real(c(i, j), dp)*self%rsymbol(i, j), dp)
+                end do
+            case default
+                c(:, j) = c(:, j)*self%csymbol(:, j)
+            end select
+        end do
+        !$omp end parallel do
     end subroutine multiply_in_place
 
     !> out = sa·A + sb·B for two blocks of one grid (one pass when both symbols are real).
@@ -479,8 +499,13 @@ contains
         type(fc_bttb), intent(in) :: a, b
         complex(dp), intent(in) :: sa(:, :), sb(:, :)
         complex(dp), intent(out) :: out(:, :)
+        integer :: j
         if (a%parity == SYMBOL_EVEN .and. b%parity == SYMBOL_EVEN) then
-            out = sa*a%rsymbol + sb*b%rsymbol
+            !$omp parallel do default(shared) schedule(static) if(size(out) > omp_min_elements)
+            do j = 1, size(out, 2)
+                out(:, j) = sa(:, j)*a%rsymbol(:, j) + sb(:, j)*b%rsymbol(:, j)
+            end do
+            !$omp end parallel do
         else
             call a%multiply(sa, out)
             call b%multiply(sb, out, add=.true.)
@@ -491,21 +516,27 @@ contains
     subroutine transform_forward(w, x)
         type(fc_fft_plans), intent(inout) :: w
         real(dp), intent(in) :: x(:, :)
-        integer :: nx, ny
+        integer :: nx, ny, j
+        logical :: par
         nx = w%nx; ny = w%ny
+        par = size(w%rbuf) > omp_min_elements
+        ! x into the real buffer with its zero padding in x (my = ny when not split; the
+        ! split passes never read columns beyond ny)
+        !$omp parallel do default(shared) schedule(static) if(par)
+        do j = 1, ny
+            w%rbuf(1:nx, j) = x(:, j)
+            if (w%mx > nx) w%rbuf(nx + 1:, j) = 0
+        end do
+        !$omp end parallel do
         if (w%split) then
-            w%rbuf(1:nx, 1:ny) = x
-            w%rbuf(nx + 1:, 1:ny) = 0
             call fftw_execute_dft_r2c(w%plan_x_fwd, w%rbuf, w%cbuf)
-            w%cbuf(:, ny + 1:) = 0
+            !$omp parallel do default(shared) schedule(static) if(par)
+            do j = ny + 1, w%my
+                w%cbuf(:, j) = 0
+            end do
+            !$omp end parallel do
             call fftw_execute_dft(w%plan_y_fwd, w%cbuf, w%cbuf)
         else
-            if (w%mx == nx) then
-                w%rbuf = x
-            else
-                w%rbuf(1:nx, :) = x
-                w%rbuf(nx + 1:, :) = 0
-            end if
             call fftw_execute_dft_r2c(w%plan_fwd, w%rbuf, w%cbuf)
         end if
     end subroutine transform_forward
@@ -514,14 +545,31 @@ contains
     subroutine transform_backward(w, y)
         type(fc_fft_plans), intent(inout) :: w
         real(dp), intent(out) :: y(:, :)
+        integer :: j
         if (w%split) then
             call fftw_execute_dft(w%plan_y_bwd, w%cbuf, w%cbuf)
             call fftw_execute_dft_c2r(w%plan_x_bwd, w%cbuf, w%rbuf)
         else
             call fftw_execute_dft_c2r(w%plan_bwd, w%cbuf, w%rbuf)
         end if
-        y = w%rbuf(1:w%nx, 1:w%ny)
+        !$omp parallel do default(shared) schedule(static) if(size(w%rbuf) > omp_min_elements)
+        do j = 1, w%ny
+            y(:, j) = w%rbuf(1:w%nx, j)
+        end do
+        !$omp end parallel do
     end subroutine transform_backward
+
+    !> b ← a for two spectra of the same shape (threaded column copy).
+    subroutine copy_spectrum(a, b)
+        complex(dp), intent(in) :: a(:, :)
+        complex(dp), intent(out) :: b(:, :)
+        integer :: j
+        !$omp parallel do default(shared) schedule(static) if(size(a) > omp_min_elements)
+        do j = 1, size(a, 2)
+            b(:, j) = a(:, j)
+        end do
+        !$omp end parallel do
+    end subroutine copy_spectrum
 
     !> y = A x by the direct O(n²) sum over the stored coefficients: the test oracle.
     subroutine bttb_apply_direct(self, x, y)

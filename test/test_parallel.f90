@@ -9,7 +9,9 @@ module test_parallel
     use fc_influence, only: fc_material, combine_material
     use fc_norm, only: fc_normal_operator, fc_normal_settings, fc_normal_result, build_normal_operator, solve_normal
     use fc_periodic, only: build_periodic_normal_operator
-    use fc_threads, only: set_thread_count, fc_thread_count, check_thread_count, fc_openmp_enabled
+    use fc_threads, only: set_thread_count, fc_thread_count, check_thread_count, fc_openmp_enabled, omp_min_elements
+    use fc_tangcg, only: fc_tangential_operator, fc_tangential_settings, fc_tangential_result, build_tangential_operator, &
+        solve_tangential
     use fc_driver, only: run_driver
     use, intrinsic :: iso_c_binding, only: c_int, c_double
     use fc_legacy, only: fc_init, fc_finalize, fc_set_material, fc_set_grid, fc_set_gap_quadratic, fc_set_gap_array, &
@@ -26,6 +28,7 @@ contains
         type(unittest_type), allocatable, intent(out) :: tests(:)
         tests = [ &
             new_unittest('threads_same_result', test_threads_same), &
+            new_unittest('threads_same_result_cattaneo', test_threads_same_cattaneo), &
             new_unittest('threads_count_bounds', test_thread_bounds), &
             new_unittest('periodic_wavy_full_contact', test_wavy), &
             new_unittest('periodic_operator_is_circulant', test_circulant), &
@@ -78,6 +81,60 @@ contains
             call set_thread_count(nt0)
         end if
     end subroutine test_threads_same
+
+    !> The Cattaneo sphere of thesis Table 4.1 case 4 (R = 50, G = 200, ν = 0.42, Fn = 9.1954,
+    !! μ = 0.4) on 192×176 — above omp_min_elements, so that BCCG's and TangCG's element
+    !! loops, reductions and spectral products run on 2 threads (FFTW plans too) — solved
+    !! with 1 and with 2 threads.  Two threads add the partial sums of the inner products in
+    !! another order: each product differs by rounding (relative ~1e−16·√n), and CG carries
+    !! such perturbations to the iterates amplified at most by the iteration's condition
+    !! (here ≲ 1e3).  Same iteration counts and slip/adhesion split; pressures and
+    !! tractions to 1e−10 of their maxima (measured: ≲ 1e−13).
+    subroutine test_threads_same_cattaneo(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_material) :: mat
+        type(fc_grid) :: grid
+        type(fc_normal_operator) :: nop
+        type(fc_normal_settings) :: set
+        type(fc_normal_result) :: n1, n2
+        type(fc_tangential_operator) :: top
+        type(fc_tangential_settings) :: ts
+        type(fc_tangential_result) :: t1, t2
+        integer :: stat, nt0, nt
+        character(len=256) :: em
+        real(dp) :: tmax
+        nt0 = fc_thread_count()
+        mat%g1 = 200; mat%g2 = 200; mat%nu1 = 0.42_dp; mat%nu2 = 0.42_dp
+        call combine_material(mat, stat, em)
+        call make_grid(grid, 192, 176, -1.2857_dp, 1.2857_dp, -1.2857_dp, 1.2857_dp, stat, em)
+        call check(error, grid%nx*grid%ny > omp_min_elements, 'grid above the threshold of the threaded loops')
+        if (allocated(error)) return
+        do nt = 1, 2
+            call set_thread_count(nt)
+            call build_normal_operator(nop, mat, grid)
+            call build_tangential_operator(top, mat, grid)
+            if (nt == 1) then
+                call solve_normal(nop, quadratic_gap(grid, 50.0_dp, 50.0_dp), set, n1, stat, em, fn=9.1954_dp)
+                call solve_tangential(top, n1%pn, 0.4_dp, ts, t1, stat, em, 0.0021_dp, 0.0010_dp, 0.003_dp)
+            else
+                call solve_normal(nop, quadratic_gap(grid, 50.0_dp, 50.0_dp), set, n2, stat, em, fn=9.1954_dp)
+                ! the same pressure for both tangential solves: only TangCG's threads differ
+                call solve_tangential(top, n1%pn, 0.4_dp, ts, t2, stat, em, 0.0021_dp, 0.0010_dp, 0.003_dp)
+            end if
+        end do
+        call set_thread_count(nt0)
+        call check(error, n1%status == FC_CONVERGED .and. n2%status == FC_CONVERGED, 'BCCG converges with 1 and 2 threads')
+        call check(error, n1%iterations == n2%iterations, 'BCCG: same iteration count')
+        call check(error, maxval(abs(n1%pn - n2%pn)), 0.0_dp, 'BCCG 1 vs 2 threads: pressure', abs=1e-10_dp*n1%pmax)
+        call check(error, t1%status == FC_CONVERGED .and. t2%status == FC_CONVERGED, 'TangCG converges with 1 and 2 threads')
+        call check(error, t1%iterations == t2%iterations, 'TangCG: same iteration count')
+        call check(error, t1%nslip == t2%nslip .and. t1%nadh == t2%nadh, 'TangCG: same slip and adhesion areas')
+        tmax = 0.4_dp*n1%pmax
+        call check(error, max(maxval(abs(t1%px - t2%px)), maxval(abs(t1%py - t2%py))), 0.0_dp, &
+            'TangCG 1 vs 2 threads: tractions', abs=1e-10_dp*tmax)
+        write (*, '(a,2es10.2)') '    threads_same_result_cattaneo: max |dp|/pmax, max |dpt|/(mu pmax) = ', &
+            maxval(abs(n1%pn - n2%pn))/n1%pmax, max(maxval(abs(t1%px - t2%px)), maxval(abs(t1%py - t2%py)))/tmax
+    end subroutine test_threads_same_cattaneo
 
     subroutine test_thread_bounds(error)
         type(error_type), allocatable, intent(out) :: error
