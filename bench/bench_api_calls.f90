@@ -9,9 +9,12 @@
 !!
 !! Part `overhead`: 60×50, `--calls` calls with tiny creepage changes (ξ·(1 + 1e-4·sin k));
 !! per call the wall time of fc_calculate against the solvers' own time (normal + tangential
-!! solve as they report it); the difference is the API's per-call overhead.
+!! solve as they report it); the difference is the API's per-call overhead.  It runs first,
+!! in a fresh process heap (see doc/legacy_api.md on glibc's heap trimming).
 !!
 !!   fpm run --profile release fastcontact-bench-api-calls [-- --calls N] [--overhead-only] [--out FILE]
+!!   ... -- --single G E    one effort row in its own process (G 1: 60×50, 2: 240×200; E 0/1),
+!!                          printed only: for alternating runs in fresh processes
 !!
 !! Writes doc/bench_api_calls.csv (default) and prints the rows.
 program bench_api_calls
@@ -25,11 +28,13 @@ program bench_api_calls
     real(dp), parameter :: l = 1.2857_dp, fn0 = 9.1954_dp, xi0 = 0.0021_dp, eta0 = 0.0010_dp, phi0 = 0.003_dp
     integer :: ncalls, ncalls_grid(2), g, e, unit, iarg, ios
     logical :: overhead_only
+    integer :: only_grid, only_effort
     character(len=512) :: out_file, arg
     real(dp) :: first(0:1), per_call(0:1), itn(0:1), itt(0:1), be
 
     ncalls = 1000
     overhead_only = .false.
+    only_grid = 0; only_effort = -1
     out_file = 'doc/bench_api_calls.csv'
     iarg = 1
     do while (iarg <= command_argument_count())
@@ -45,6 +50,18 @@ program bench_api_calls
             iarg = iarg + 1; call get_command_argument(iarg, out_file)
         case ('--overhead-only')
             overhead_only = .true.
+        case ('--single')
+            ! one effort row in this process: --single G E (G = 1: 60x50, 2: 240x200; E = 0, 1)
+            iarg = iarg + 1; call get_command_argument(iarg, arg)
+            read (arg, *, iostat=ios) only_grid
+            if (ios /= 0 .or. only_grid < 1 .or. only_grid > 2) then
+                write (*, '(a)') 'fastcontact-bench-api-calls: --single G E needs G = 1 or 2'; error stop 2
+            end if
+            iarg = iarg + 1; call get_command_argument(iarg, arg)
+            read (arg, *, iostat=ios) only_effort
+            if (ios /= 0 .or. only_effort < 0 .or. only_effort > 1) then
+                write (*, '(a)') 'fastcontact-bench-api-calls: --single G E needs E = 0 or 1'; error stop 2
+            end if
         case default
             write (*, '(a)') 'usage: fastcontact-bench-api-calls [--calls N] [--overhead-only] [--out FILE]'; error stop 2
         end select
@@ -59,6 +76,16 @@ program bench_api_calls
     write (unit, '(a)') 'part,grid,effort,calls,first_call_s,per_call_ms,normal_it_per_call,tangential_it_per_call,'// &
         'break_even_calls,call_us,solve_us,overhead_us,overhead_pct'
     write (*, '(a)') 'part      grid     effort calls  first[s]  ms/call  it_n  it_t  break-even'
+    if (only_grid > 0) then
+        g = only_grid; e = only_effort
+        call effort_run(grids(1, g), grids(2, g), e, ncalls_grid(g), first(e), per_call(e), itn(e), itt(e))
+        write (*, '(a,i4,a,i4,i6,i7,f10.4,f9.3,2f6.1)') 'effort   ', grids(1, g), 'x', grids(2, g), e, ncalls_grid(g), &
+            first(e), 1000*per_call(e), itn(e), itt(e)
+        close (unit, status='delete')
+        stop
+    end if
+    ! first, in a fresh heap: earlier large allocations change glibc's trimming thresholds
+    call overhead_run(60, 50, ncalls)
     do g = 1, merge(0, 2, overhead_only)
         do e = 0, 1
             call effort_run(grids(1, g), grids(2, g), e, ncalls_grid(g), first(e), per_call(e), itn(e), itt(e))
@@ -74,7 +101,6 @@ program bench_api_calls
                 first(e), 1000*per_call(e), itn(e), itt(e), merge(be, -1.0_dp, e == 1)
         end do
     end do
-    call overhead_run(60, 50, ncalls)
     close (unit)
     write (*, '(a)') 'wrote '//trim(out_file)
 
