@@ -618,6 +618,7 @@ contains
         s%has_result = .false.
         call set_thread_count(s%threads)
         if (s%fft_effort == 1) call measure_plans(s)
+        if (s%heap_cells /= s%grid%nx*s%grid%ny) call keep_work_arrays(s)
         ! --- the solve: operators reused while grid spacing and material match; the previous
         !     state (warm start, u', p') advances only when every stage converged.  The
         !     quadratic gap is evaluated again only when the grid or the radii change.
@@ -644,6 +645,25 @@ contains
                 trim(s%result%tangential%message))
         end if
     end subroutine calculate
+
+    !> Let the C heap keep the solvers' per-call work arrays.  The solvers allocate some 30
+    !! arrays of nx·ny reals per call and free them on return; glibc returns freed memory at
+    !! the top of its heap to the system once it exceeds a threshold (128 KB by default) and
+    !! the next call faults it in again — about half of the per-call time outside the
+    !! solvers at 60×50 (doc/legacy_api.md).  glibc raises that threshold to the size of any
+    !! freed block it had to map separately (up to 32 MB), so one block of the working-set
+    !! size, allocated and freed once per grid size, stops the round trips.  With another
+    !! allocator this costs one allocation per grid and changes nothing.
+    subroutine keep_work_arrays(s)
+        type(legacy_state), intent(inout) :: s
+        real(dp), allocatable :: block(:)
+        integer(i8) :: words
+        words = max(32768_i8, min(4194304_i8, 48_i8*s%grid%nx*s%grid%ny))   ! 256 KB … 32 MB
+        allocate (block(words))
+        block(1) = 0                        ! one page touched: the block is real
+        deallocate (block)
+        s%heap_cells = s%grid%nx*s%grid%ny
+    end subroutine keep_work_arrays
 
     !> FFTW_MEASURE plans for the handle's grid shape, once per shape; operators built on
     !! estimated plans are dropped so that they are rebuilt on the measured ones.
