@@ -30,6 +30,12 @@
 !! the finest grid = 1, halved per coarser level; the defect after a cycle is reused by
 !! the next one, so a V(1,1)-cycle costs 5 products on the finest grid, V(1,0)/V(0,1) 3
 !! (as counted in the thesis, §3.5.2).
+!!
+!! The products, coefficients and the Toeplitz inverse are [[fc_mg2d_ops]]'s: per level one
+!! in-place FFT plan pair shared by A and M, made with the hierarchy together with the work
+!! arrays, so that the cycles allocate nothing (doc/multigrid.md, "Performance at 2^20").
+!! Size: ~670 lines; the solvers and the two spectral analyses share the private level
+!! type and cycle routines, so they stay in one module.
 module fc_mg2d
     use fc_kinds
     use fc_geometry, only: fc_grid, make_grid
