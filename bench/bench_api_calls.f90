@@ -101,10 +101,10 @@ contains
             if (per_call(0) > per_call(1)) be = (first(1) - first(0))/(per_call(0) - per_call(1))
             do e = 0, 1
                 write (unit, '(a,i0,a,i0,a,i0,a,i0,a,f0.4,a,f0.4,a,f0.2,a,f0.2,a,f0.0,a)') 'effort,', grids(1, g), 'x', &
-                    grids(2, g), ',', e, ',', ncalls_grid(g), ',', first(e), ',', 1000*per_call(e), ',', itn(e), ',', itt(e), ',', &
-                    merge(be, -1.0_dp, e == 1), ',,,,'
-                write (*, '(a,i4,a,i4,i6,i7,f10.4,f9.3,2f6.1,f12.0)') 'effort   ', grids(1, g), 'x', grids(2, g), e, ncalls_grid(g), &
-                    first(e), 1000*per_call(e), itn(e), itt(e), merge(be, -1.0_dp, e == 1)
+                    grids(2, g), ',', e, ',', ncalls_grid(g), ',', first(e), ',', 1000*per_call(e), ',', itn(e), ',', &
+                    itt(e), ',', merge(be, -1.0_dp, e == 1), ',,,,'
+                write (*, '(a,i4,a,i4,i6,i7,f10.4,f9.3,2f6.1,f12.0)') 'effort   ', grids(1, g), 'x', grids(2, g), e, &
+                    ncalls_grid(g), first(e), 1000*per_call(e), itn(e), itt(e), merge(be, -1.0_dp, e == 1)
             end do
         end do
         close (unit)
