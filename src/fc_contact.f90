@@ -522,12 +522,17 @@ contains
         !! direction; without this a converged start loses its subdivision to rounding.
         subroutine lift_slip_start(pn)
             real(dp), intent(in) :: pn(:, :)
-            real(dp), allocatable :: mag(:, :)
-            mag = hypot(pxs, pys)
-            where (state%el == EL_SLIP .and. mag > 0 .and. pn > 0)
-                pxs = (1 + 1e-10_dp)*load%tangential%mu*pn*pxs/mag
-                pys = (1 + 1e-10_dp)*load%tangential%mu*pn*pys/mag
-            end where
+            real(dp) :: mag
+            integer :: i, j
+            do j = 1, size(pn, 2)                 ! |p| only where needed: slip elements
+                do i = 1, size(pn, 1)
+                    if (state%el(i, j) /= EL_SLIP .or. .not. pn(i, j) > 0) cycle
+                    mag = hypot(pxs(i, j), pys(i, j))
+                    if (.not. mag > 0) cycle
+                    pxs(i, j) = (1 + 1e-10_dp)*load%tangential%mu*pn(i, j)*pxs(i, j)/mag
+                    pys(i, j) = (1 + 1e-10_dp)*load%tangential%mu*pn(i, j)*pys(i, j)/mag
+                end do
+            end do
         end subroutine lift_slip_start
 
         subroutine advance_state(st)

@@ -21,8 +21,8 @@
 !! grid size/spacing and the material are unchanged; the previous solution warm-starts the
 !! next call and, in the transient modes, is the previous state (u', p') of the step.
 !!
-!! Size (~840 lines): one bind(C) routine with its argument checks per entry of the
-!! documented API (30 entries), kept together so that this module, include/fc_legacy.h and
+!! Size (~850 lines): one bind(C) routine with its argument checks per entry of the
+!! documented API (31 entries), kept together so that this module, include/fc_legacy.h and
 !! doc/legacy_api.md list the same surface.  The handles live in [[fc_legacy_registry]];
 !! every calculation goes through the library's orchestrator [[solve_contact]].
 !! Fortran-77 callers link through [[fc_legacy_f77]].
@@ -42,6 +42,7 @@ module fc_legacy
     use fc_icfile, only: fc_ic_set
     use fc_icfile_load, only: load_influence_source
     use fc_threads, only: set_thread_count, max_threads_allowed
+    use fc_fft_effort, only: prime_fft_plans
     implicit none
     private
 
@@ -53,7 +54,7 @@ module fc_legacy
     public :: fc_get_tractions, fc_get_slip, fc_get_gap, fc_get_status_array, fc_get_iterations
     public :: fc_get_rebuilds, fc_get_grid_size, fc_get_error_message, fc_get_nhandles
     public :: fc_set_influence_file
-    public :: fc_set_periodic, fc_set_threads
+    public :: fc_set_periodic, fc_set_threads, fc_set_fft_effort
     public :: shift_along_x
     public :: FCL_OK, FCL_INVALID_HANDLE, FCL_ORDER, FCL_INVALID_VALUE, FCL_NOT_CONVERGED, FCL_DIVERGED
     public :: FCL_ARRAY_SIZE, FCL_INTERNAL, FCL_FROM_REST, FCL_CONTINUE, FCL_ROLLING
@@ -509,6 +510,24 @@ contains
         s%prev%warm_start = warm_start == 1
     end subroutine fc_set_reuse
 
+    !> FFT planning effort: 0 = FFTW_ESTIMATE (default, no planning cost), 1 = FFTW_MEASURE
+    !! for this handle's grid, measured once per grid shape at the next calculation (the
+    !! operators are then rebuilt on the measured plans).  Pays only over many calls on one
+    !! grid: break-even and gains in doc/legacy_api.md.
+    subroutine fc_set_fft_effort(handle, effort, ierr) bind(C, name='fc_set_fft_effort')
+        integer(c_int), intent(in) :: handle
+        integer(c_int), intent(in) :: effort   !! 0 or 1
+        integer(c_int), intent(out) :: ierr
+        type(legacy_state), pointer :: s
+        call lookup(handle, 'fc_set_fft_effort', s, ierr)
+        if (ierr /= FCL_OK) return
+        if (effort /= 0 .and. effort /= 1) then
+            call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_fft_effort: effort = '//fmt_int(effort)// &
+                ' must be 0 (estimate) or 1 (measure)'); return
+        end if
+        s%fft_effort = effort
+    end subroutine fc_set_fft_effort
+
     !> Periodic half-space (1) or not (0, default): the grid is one cell of a surface repeated
     !! in x and y (even nx, ny; normal contact with a prescribed force).
     subroutine fc_set_periodic(handle, periodic, ierr) bind(C, name='fc_set_periodic')
@@ -570,9 +589,9 @@ contains
     subroutine calculate(s, ierr)
         type(legacy_state), intent(inout) :: s
         integer(c_int), intent(out) :: ierr
-        real(dp), allocatable :: h0(:, :)
         integer :: stat
         character(len=msg_len) :: msg
+        real(dp) :: key(8)
         ierr = FCL_OK
         ! --- required data ---
         if (.not. s%has_material) then
@@ -599,14 +618,21 @@ contains
         end if
         s%has_result = .false.
         call set_thread_count(s%threads)
-        if (s%gap_kind == GAP_QUADRATIC) then
-            h0 = quadratic_gap(s%grid, s%rx, s%ry)
-        else
-            h0 = s%h0
-        end if
+        if (s%fft_effort == 1) call measure_plans(s)
+        if (s%heap_cells /= s%grid%nx*s%grid%ny) call keep_work_arrays(s)
         ! --- the solve: operators reused while grid spacing and material match; the previous
-        !     state (warm start, u', p') advances only when every stage converged
-        call solve_contact(s%ops, s%grid, s%mat, h0, s%load, s%settings, s%result, stat, msg, state=s%prev)
+        !     state (warm start, u', p') advances only when every stage converged.  The
+        !     quadratic gap is evaluated again only when the grid or the radii change.
+        if (s%gap_kind == GAP_QUADRATIC) then
+            key = [real(s%grid%nx, dp), real(s%grid%ny, dp), s%grid%xmin, s%grid%xmax, s%grid%ymin, s%grid%ymax, s%rx, s%ry]
+            if (.not. allocated(s%hq) .or. any(key /= s%hq_key)) then
+                s%hq = quadratic_gap(s%grid, s%rx, s%ry)
+                s%hq_key = key
+            end if
+            call solve_contact(s%ops, s%grid, s%mat, s%hq, s%load, s%settings, s%result, stat, msg, state=s%prev)
+        else
+            call solve_contact(s%ops, s%grid, s%mat, s%h0, s%load, s%settings, s%result, stat, msg, state=s%prev)
+        end if
         if (stat /= 0) then
             call fail(s, ierr, flat_code(stat), 'fc_calculate: '//trim(msg)); return
         end if
@@ -620,6 +646,37 @@ contains
                 trim(s%result%tangential%message))
         end if
     end subroutine calculate
+
+    !> Let the C heap keep the solvers' per-call work arrays.  The solvers allocate some 30
+    !! arrays of nx·ny reals per call and free them on return; glibc returns freed memory at
+    !! the top of its heap to the system once it exceeds a threshold (128 KB by default) and
+    !! the next call faults it in again — about half of the per-call time outside the
+    !! solvers at 60×50 (doc/legacy_api.md).  glibc raises that threshold to the size of any
+    !! freed block it had to map separately (up to 32 MB), so one block of the working-set
+    !! size, allocated and freed once per grid size, stops the round trips.  With another
+    !! allocator this costs one allocation per grid and changes nothing.
+    subroutine keep_work_arrays(s)
+        type(legacy_state), intent(inout) :: s
+        real(dp), allocatable :: block(:)
+        integer(i8) :: words
+        words = max(32768_i8, min(4194304_i8, 48_i8*s%grid%nx*s%grid%ny))   ! 256 KB … 32 MB
+        allocate (block(words))
+        block(1) = 0                        ! one page touched: the block is real
+        deallocate (block)
+        s%heap_cells = s%grid%nx*s%grid%ny
+    end subroutine keep_work_arrays
+
+    !> FFTW_MEASURE plans for the handle's grid shape, once per shape; operators built on
+    !! estimated plans are dropped so that they are rebuilt on the measured ones.
+    subroutine measure_plans(s)
+        type(legacy_state), intent(inout) :: s
+        if (s%fft_primed(1) == s%grid%nx .and. s%fft_primed(2) == s%grid%ny .and. &
+            (s%fft_primed(3) == 1 .eqv. s%ops%periodic)) return
+        call prime_fft_plans(s%grid%nx, s%grid%ny, s%ops%periodic)
+        s%fft_primed = [s%grid%nx, s%grid%ny, merge(1, 0, s%ops%periodic)]
+        call s%ops%normal%destroy()
+        call s%ops%tangential%destroy()
+    end subroutine measure_plans
 
     ! =====================================================================================
     ! results

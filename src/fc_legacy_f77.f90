@@ -127,6 +127,12 @@ contains
         call fc_set_reuse(handle, reuse_operators, warm_start, ierr)
     end subroutine fc_set_reuse_f77
 
+    subroutine fc_set_fft_effort_f77(handle, effort, ierr) bind(C, name='fc_set_fft_effort_')
+        integer(c_int), intent(in) :: handle, effort
+        integer(c_int), intent(out) :: ierr
+        call fc_set_fft_effort(handle, effort, ierr)
+    end subroutine fc_set_fft_effort_f77
+
     subroutine fc_set_periodic_f77(handle, periodic, ierr) bind(C, name='fc_set_periodic_')
         integer(c_int), intent(in) :: handle, periodic
         integer(c_int), intent(out) :: ierr

@@ -47,6 +47,8 @@ module fc_legacy_registry
         integer :: gap_kind = GAP_NONE
         real(dp), allocatable :: h0(:, :)          !! undeformed distance (GAP_ARRAY)
         real(dp) :: rx = 0, ry = 0                 !! radii (GAP_QUADRATIC)
+        real(dp), allocatable :: hq(:, :)          !! GAP_QUADRATIC evaluated on the grid (cache)
+        real(dp) :: hq_key(8) = -huge(1.0_dp)      !! nx, ny, xmin, xmax, ymin, ymax, rx, ry of hq
         type(fc_contact_loading) :: load           !! normal and tangential loading, transient mode
         type(fc_contact_settings) :: settings      !! solver choice and tolerances
         ! --- reusable operators and previous state (warm start, u' and p' of transient steps) ---
@@ -55,6 +57,9 @@ module fc_legacy_registry
         integer :: calculations = 0
         integer :: threads = 0                     !! threads of the solves (0: OMP_NUM_THREADS, else 1)
         logical :: busy = .false.                  !! fc_calculate running (guards against a second caller)
+        integer :: fft_effort = 0                  !! 0: FFTW_ESTIMATE, 1: FFTW_MEASURE (fc_set_fft_effort)
+        integer :: fft_primed(3) = -1              !! nx, ny, periodic of the last measured plans
+        integer :: heap_cells = -1                 !! nx·ny for which the heap was told to keep work arrays
         ! --- result of the last calculation ---
         logical :: has_result = .false.
         type(fc_contact_result) :: result

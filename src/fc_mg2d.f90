@@ -31,14 +31,16 @@
 !! the next one, so a V(1,1)-cycle costs 5 products on the finest grid, V(1,0)/V(0,1) 3
 !! (as counted in the thesis, §3.5.2).
 !!
-!! Size (~660 lines): the model problems, the level hierarchy, the two smoothers, the
-!! V-cycle and the spectral-radius diagnostics of thesis ch. 3 form one 1D-strip solver whose
-!! parts share the private level types; split it when a second strip solver needs them.
+!! The products, coefficients and the Toeplitz inverse are [[fc_mg2d_ops]]'s: per level one
+!! in-place FFT plan pair shared by A and M, made with the hierarchy together with the work
+!! arrays, so that the cycles allocate nothing (doc/multigrid.md, "Performance at 2^20").
+!! Size: ~670 lines; the solvers and the two spectral analyses share the private level
+!! type and cycle routines, so they stay in one module.
 module fc_mg2d
     use fc_kinds
     use fc_geometry, only: fc_grid, make_grid
     use fc_influence
-    use fc_fftw
+    use fc_mg2d_ops, only: strip_fft, strip_kernel, strip_toeplitz_inverse
     use fc_lapack, only: solve_spd, eigenvalues_general
     implicit none
     private
@@ -78,19 +80,25 @@ module fc_mg2d
         real(dp), allocatable :: history(:)  !! relative defect before each cycle (0…k)
     end type fc_mg2d_result
 
-    !> One level of the strip hierarchy.
+    !> One level of the strip hierarchy, with its plans and work arrays (made once per
+    !! solve; the cycles allocate nothing).
     type :: strip_level
         integer :: n = 0
         type(fc_grid) :: grid
-        type(fc_bttb) :: a                 !! A (full potential strip)
-        type(fc_bttb) :: m                 !! Toeplitz M ≈ A⁻¹
-        real(dp) :: gamma = 0              !! min row sum of M (eq. 3.19)
-        logical, allocatable :: con(:, :)  !! contact strips on this level
-        real(dp), allocatable :: shift(:, :)   !! RSM: sum(M_r) − γ on con
-        real(dp), allocatable :: w(:, :)   !! SD: Ā Z (n×2)
-        real(dp), allocatable :: z(:, :)   !! SD: Z (n×2)
-        real(dp) :: einv(2, 2) = 0         !! SD: E⁻¹
-        real(dp) :: cost = 1               !! n_level/n_finest
+        type(strip_fft) :: fft                 !! plans and buffer shared by A and M
+        real(dp), allocatable :: ka(:)         !! A's coefficients a(0:n−1)
+        real(dp), allocatable :: sa(:), sm(:)  !! symbols of A and M (0:n)
+        real(dp) :: gamma = 0                  !! min row sum of M (eq. 3.19)
+        logical, allocatable :: con(:)         !! contact strips on this level
+        logical :: all_con = .true.            !! every element in contact (MP1, MP2)
+        real(dp), allocatable :: shift(:)      !! RSM: sum(M_r) − γ on con
+        real(dp), allocatable :: w(:, :)       !! SD: Ā Z (n×2)
+        real(dp), allocatable :: z(:, :)       !! SD: Z (n×2)
+        real(dp) :: einv(2, 2) = 0             !! SD: E⁻¹
+        real(dp) :: cost = 1                   !! n_level/n_finest
+        real(dp), allocatable :: r(:), x(:), d(:), t(:)   !! right-hand side, iterate, defect, scratch
+        integer, allocatable :: idx(:)         !! coarsest level: elements in contact
+        real(dp), allocatable :: ac(:, :), acw(:, :), bc(:, :)  !! coarsest level: A_r, its copy, rhs
     end type strip_level
 
     type :: strip_hierarchy
@@ -100,7 +108,7 @@ module fc_mg2d
     end type strip_hierarchy
 
     public :: strip_model_problem, solve_strip_mg, solve_strip_fft_rsm, mg2d_spectral_radius
-    public :: strip_toeplitz_inverse, strip_smoother_radius
+    public :: strip_toeplitz_inverse, strip_smoother_radius  ! strip_toeplitz_inverse from fc_mg2d_ops
 
 contains
 
@@ -146,47 +154,6 @@ contains
         where (.not. prob%contact) prob%rhs = 0
     end subroutine strip_model_problem
 
-    !> Coefficients m(−(n−1):n−1) of the Toeplitz M ≈ A⁻¹ (thesis §3.3.1): A's coefficients
-    !! a_{−(n−1)…n−1} form a (2n−1)-circulant, its symbol is inverted pointwise and the
-    !! inverse circulant's coefficients for offsets |d| ≤ n−1 are M's (equivalently: the
-    !! centre column of the inverse of the circulant, "m = IFFT(FFT(u)./FFT(a))").
-    !! Not [[inverse_toeplitz_from_kernel]]: that 2D construction embeds A in a 2n-circulant
-    !! whose wrap-around slot holds the coefficient at offset n and floors the symbol at 1e−8;
-    !! this is the thesis' (2n−1)-circulant, whose smoothing and convergence factors ch. 3
-    !! reports.  The two give different M (not a round-off difference), so each keeps its own.
-    subroutine strip_toeplitz_inverse(n, a, m, min_symbol)
-        integer, intent(in) :: n                         !! grid size
-        real(dp), intent(in) :: a(-(n - 1):n - 1)        !! A's coefficients
-        real(dp), intent(out) :: m(-(n - 1):n - 1)       !! M's coefficients
-        real(dp), intent(out), optional :: min_symbol    !! smallest symbol / largest
-        integer :: nn, d
-        real(dp), allocatable :: rbuf(:, :)
-        complex(dp), allocatable :: cbuf(:, :)
-        type(c_ptr) :: pf, pb
-        real(dp) :: smax
-        nn = 2*n - 1
-        allocate (rbuf(nn, 1), cbuf(nn/2 + 1, 1))
-        !$omp critical (fc_fftw_planner)
-        pf = fftw_plan_dft_r2c_2d(1_c_int, int(nn, c_int), rbuf, cbuf, FFTW_ESTIMATE)
-        pb = fftw_plan_dft_c2r_2d(1_c_int, int(nn, c_int), cbuf, rbuf, FFTW_ESTIMATE)
-        !$omp end critical (fc_fftw_planner)
-        do d = -(n - 1), n - 1
-            rbuf(modulo(d, nn) + 1, 1) = a(d)
-        end do
-        call fftw_execute_dft_r2c(pf, rbuf, cbuf)
-        smax = maxval(real(cbuf, dp))
-        if (present(min_symbol)) min_symbol = minval(real(cbuf, dp))/smax
-        cbuf = 1/cmplx(max(real(cbuf, dp), 1.0e-12_dp*smax), 0.0_dp, dp)/real(nn, dp)
-        call fftw_execute_dft_c2r(pb, cbuf, rbuf)
-        do d = -(n - 1), n - 1
-            m(d) = rbuf(modulo(d, nn) + 1, 1)
-        end do
-        !$omp critical (fc_fftw_planner)
-        call fftw_destroy_plan(pf)
-        call fftw_destroy_plan(pb)
-        !$omp end critical (fc_fftw_planner)
-    end subroutine strip_toeplitz_inverse
-
     ! ---- hierarchy -------------------------------------------------------------------------
 
     subroutine build_hierarchy(prob, settings, nlev_max, hier, stat, errmsg)
@@ -224,42 +191,50 @@ contains
                 call make_grid(lv%grid, sizes(l), 1, prob%grid%xmin, prob%grid%xmax, prob%grid%ymin, prob%grid%ymax, &
                     stat, errmsg)
                 if (stat /= 0) return
-                allocate (lv%con(sizes(l), 1))
+                allocate (lv%con(sizes(l)))
                 if (l == nlev) then
-                    lv%con(:, 1) = prob%contact
+                    lv%con = prob%contact
                 else
                     do i = 1, sizes(l)
-                        lv%con(i, 1) = any(hier%lev(l + 1)%con(2*i - 1:2*i, 1))
+                        lv%con(i) = hier%lev(l + 1)%con(2*i - 1) .or. hier%lev(l + 1)%con(2*i)
                     end do
                 end if
+                lv%all_con = all(lv%con)
                 call build_level(prob, settings, lv)
+                if (l == 1 .and. nlev_max > 1) call build_coarsest(lv)
             end associate
         end do
     end subroutine build_hierarchy
 
-    !> A, M, γ, the RSM shift and the SD matrices of one level.
+    !> A, M, γ, the RSM shift, the SD matrices and the work arrays of one level.
     subroutine build_level(prob, settings, lv)
         type(fc_strip_problem), intent(in) :: prob
         type(fc_mg2d_settings), intent(in) :: settings
         type(strip_level), intent(inout) :: lv
-        real(dp), allocatable :: kern(:, :), mk(:, :), ones(:, :), rs(:, :), t(:, :)
+        real(dp), allocatable :: ae(:), mk(:), ms(:)
         real(dp) :: e(2, 2), det
         integer :: n, j
         n = lv%n
-        call ic_kernel(prob%block, prob%material, lv%grid, kern)
-        call build_bttb_from_kernel(lv%a, kern, n, 1)
-        allocate (mk(-(n - 1):n - 1, 0:0))
-        call strip_toeplitz_inverse(n, kern(:, 0), mk(:, 0))
-        call build_bttb_from_kernel(lv%m, mk, n, 1)
-        allocate (ones(n, 1), rs(n, 1), t(n, 1))
-        ones = 1
-        call lv%m%apply(ones, rs)
-        lv%gamma = minval(rs)                                ! eq. (3.19), full potential strip
-        where (.not. lv%con) ones = 0
-        call lv%m%apply(ones, rs)
-        allocate (lv%shift(n, 1))
+        allocate (lv%ka(0:n - 1), lv%sa(0:n), lv%sm(0:n), ae(-(n - 1):n - 1), mk(-(n - 1):n - 1), ms(0:n - 1))
+        allocate (lv%r(n), lv%x(n), lv%d(n), lv%t(n), lv%shift(n))
+        call lv%fft%init(n)
+        call strip_kernel(prob%block, prob%material, lv%grid, lv%ka)
+        ae(0:n - 1) = lv%ka
+        ae(-(n - 1):-1) = lv%ka(n - 1:1:-1)
+        call strip_toeplitz_inverse(n, ae, mk)
+        ms(0) = mk(0)
+        ms(1:n - 1) = (mk(1:n - 1) + mk(-1:-(n - 1):-1))/2     ! even part (M is symmetric)
+        call lv%fft%symbol(lv%ka, lv%sa)
+        call lv%fft%symbol(ms, lv%sm)
+        ! row sums of M by a sliding window over its coefficients (O(n))
+        call toeplitz_row_sums(ms, lv%t)
+        lv%gamma = minval(lv%t)                              ! eq. (3.19), full potential strip
+        if (.not. lv%all_con) then
+            lv%d = merge(1.0_dp, 0.0_dp, lv%con)
+            call lv%fft%product(lv%sm, lv%d, lv%t)
+        end if
         where (lv%con)
-            lv%shift = rs - lv%gamma                         ! eq. (3.21): sum(M_r) − γ
+            lv%shift = lv%t - lv%gamma                       ! eq. (3.21): sum(M_r) − γ
         elsewhere
             lv%shift = 0
         end where
@@ -267,14 +242,14 @@ contains
             allocate (lv%z(n, 2), lv%w(n, 2))
             lv%z = 0
             lv%z(1:n/2, 1) = 1; lv%z(n/2 + 1:n, 2) = 1
-            lv%z(:, 1) = merge(lv%z(:, 1), 0.0_dp, lv%con(:, 1))
-            lv%z(:, 2) = merge(lv%z(:, 2), 0.0_dp, lv%con(:, 1))
+            lv%z(:, 1) = merge(lv%z(:, 1), 0.0_dp, lv%con)
+            lv%z(:, 2) = merge(lv%z(:, 2), 0.0_dp, lv%con)
             do j = 1, 2
-                call lv%a%apply(lv%z(:, j:j), t)
-                where (.not. lv%con) t = 0
-                call lv%m%apply(t, rs)
-                where (.not. lv%con) rs = 0
-                lv%w(:, j) = rs(:, 1)
+                call lv%fft%product(lv%sa, lv%z(:, j), lv%t)
+                where (.not. lv%con) lv%t = 0
+                call lv%fft%product(lv%sm, lv%t, lv%d)
+                where (.not. lv%con) lv%d = 0
+                lv%w(:, j) = lv%d
             end do
             e = matmul(transpose(lv%z), lv%w)
             det = e(1, 1)*e(2, 2) - e(1, 2)*e(2, 1)
@@ -284,15 +259,50 @@ contains
                 lv%einv = 0
             end if
         end if
+        lv%r = 0; lv%x = 0; lv%d = 0; lv%t = 0
     end subroutine build_level
+
+    !> rs(i) = Σ_{j=1..n} m(|i−j|) for the symmetric Toeplitz matrix of coefficients m(0:n−1):
+    !! a window sliding by one offset per row, summed with compensation (Kahan) so that
+    !! the n updates add no more than a few roundings.
+    pure subroutine toeplitz_row_sums(m, rs)
+        real(dp), intent(in) :: m(0:)
+        real(dp), intent(out) :: rs(:)
+        real(dp) :: s, c, y, t
+        integer :: n, i
+        n = size(rs)
+        s = 0; c = 0
+        do i = n - 1, 0, -1                ! row 1: offsets 0, −1, …, −(n−1)
+            y = m(i) - c; t = s + y; c = (t - s) - y; s = t
+        end do
+        rs(1) = s
+        do i = 2, n                        ! row i gains offset i−1, loses offset −(n−i+1)
+            y = m(i - 1) - c; t = s + y; c = (t - s) - y; s = t
+            y = -m(n - i + 1) - c; t = s + y; c = (t - s) - y; s = t
+            rs(i) = s
+        end do
+    end subroutine toeplitz_row_sums
+
+    !> Dense A_r on the coarsest level's contact elements (solved directly each cycle).
+    subroutine build_coarsest(lv)
+        type(strip_level), intent(inout) :: lv
+        integer :: nc, i, j
+        nc = count(lv%con)
+        lv%idx = pack([(i, i=1, lv%n)], lv%con)
+        allocate (lv%ac(nc, nc), lv%acw(nc, nc), lv%bc(nc, 1))
+        do j = 1, nc
+            do i = 1, nc
+                lv%ac(i, j) = lv%ka(abs(lv%idx(i) - lv%idx(j)))
+            end do
+        end do
+    end subroutine build_coarsest
 
     subroutine destroy_hierarchy(hier)
         type(strip_hierarchy), intent(inout) :: hier
         integer :: l
         if (.not. allocated(hier%lev)) return
         do l = 1, size(hier%lev)
-            call hier%lev(l)%a%destroy()
-            call hier%lev(l)%m%destroy()
+            call hier%lev(l)%fft%destroy()
         end do
         deallocate (hier%lev)
         hier%nlev = 0
@@ -300,117 +310,109 @@ contains
 
     ! ---- operators -----------------------------------------------------------------------
 
-    !> d ← rhs − A_r p on the contact strips (0 elsewhere); one product.
-    subroutine defect(hier, l, rhs, p, d)
+    !> d ← r − A_r x on the contact strips of level l (0 elsewhere); one product.
+    subroutine defect(hier, l)
         type(strip_hierarchy), intent(inout) :: hier
         integer, intent(in) :: l
-        real(dp), intent(in) :: rhs(:, :), p(:, :)
-        real(dp), intent(out) :: d(:, :)
-        call hier%lev(l)%a%apply(p, d)
-        hier%work = hier%work + hier%lev(l)%cost
-        where (hier%lev(l)%con)
-            d = rhs - d
-        elsewhere
-            d = 0
-        end where
+        integer :: i
+        associate (lv => hier%lev(l))
+            call lv%fft%product(lv%sa, lv%x, lv%d)
+            hier%work = hier%work + lv%cost
+            if (lv%all_con) then
+                do i = 1, lv%n
+                    lv%d(i) = lv%r(i) - lv%d(i)
+                end do
+            else
+                do i = 1, lv%n
+                    lv%d(i) = merge(lv%r(i) - lv%d(i), 0.0_dp, lv%con(i))
+                end do
+            end if
+        end associate
     end subroutine defect
 
-    !> p ← p + S d for the chosen smoother (one product with M).
-    subroutine smooth_step(hier, l, smoother, d, p)
+    !> x ← x + S d on level l for the chosen smoother (one product with M).
+    subroutine smooth_step(hier, l, smoother)
         type(strip_hierarchy), intent(inout) :: hier
         integer, intent(in) :: l
         character(len=*), intent(in) :: smoother
-        real(dp), intent(in) :: d(:, :)
-        real(dp), intent(inout) :: p(:, :)
-        real(dp), allocatable :: md(:, :)
         real(dp) :: c(2)
-        allocate (md(size(p, 1), size(p, 2)))
+        integer :: i
         associate (lv => hier%lev(l))
-            call lv%m%apply(d, md)
+            call lv%fft%product(lv%sm, lv%d, lv%t)
             hier%work = hier%work + lv%cost
-            where (.not. lv%con) md = 0
             select case (smoother)
             case ('fft-rsm')
-                md = md - lv%shift*d
+                do i = 1, lv%n
+                    if (lv%con(i)) lv%x(i) = lv%x(i) + (lv%t(i) - lv%shift(i)*lv%d(i))
+                end do
             case ('fft-sd')
                 ! P y = y − Ā Z E⁻¹ Zᵀ y  (eq. 3.14 with precomputed Ā Z)
-                c = matmul(lv%einv, matmul(transpose(lv%z), md(:, 1)))
-                md(:, 1) = md(:, 1) - matmul(lv%w, c)
+                where (.not. lv%con) lv%t = 0
+                c = matmul(lv%einv, matmul(transpose(lv%z), lv%t))
+                lv%t = lv%t - matmul(lv%w, c)
+                where (lv%con) lv%x = lv%x + lv%t
+            case default
+                where (lv%con) lv%x = lv%x + lv%t
             end select
-            where (lv%con) p = p + md
         end associate
     end subroutine smooth_step
 
-    !> Direct solve A_r v = d on the coarsest level (dposv); v = 0 off the strips.
-    subroutine coarse_solve(lv, d, v, stat, errmsg)
-        type(strip_level), intent(in) :: lv
-        real(dp), intent(in) :: d(:, :)
-        real(dp), intent(out) :: v(:, :)
+    !> Direct solve A_r v = d on the coarsest level (dposv), x ← x + v; v = 0 off the strips.
+    subroutine coarse_solve(lv, stat, errmsg)
+        type(strip_level), intent(inout) :: lv
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
-        integer, allocatable :: idx(:)
-        real(dp), allocatable :: a(:, :), b(:, :)
-        integer :: nc, i, j
         stat = 0; errmsg = ''
-        v = 0
-        nc = count(lv%con)
-        if (nc == 0) return
-        idx = pack([(i, i=1, lv%n)], lv%con(:, 1))
-        allocate (a(nc, nc), b(nc, 1))
-        do j = 1, nc
-            do i = 1, nc
-                a(i, j) = lv%a%kernel(idx(i) - idx(j), 0)
-            end do
-            b(j, 1) = d(idx(j), 1)
-        end do
-        call solve_spd(a, b, stat, errmsg)
+        if (size(lv%idx) == 0) return
+        lv%acw = lv%ac
+        lv%bc(:, 1) = lv%d(lv%idx)
+        call solve_spd(lv%acw, lv%bc, stat, errmsg)
         if (stat /= 0) then
             errmsg = 'strip2d coarsest-grid solve: '//trim(errmsg); return
         end if
-        v(idx, 1) = b(:, 1)
+        lv%x(lv%idx) = lv%x(lv%idx) + lv%bc(:, 1)
     end subroutine coarse_solve
 
-    !> One V(ν1,ν2)-cycle for A_r p = rhs on level l.  On entry d is the defect of p, on exit
-    !! the defect of the new p (so the caller's stopping test and the next cycle reuse it).
-    recursive subroutine vcycle(hier, l, settings, rhs, p, d, stat, errmsg)
+    !> One V(ν1,ν2)-cycle for A_r x = r on level l (the level's own arrays).  On entry d is
+    !! the defect of x, on exit the defect of the new x (so the caller's stopping test and
+    !! the next cycle reuse it).
+    recursive subroutine vcycle(hier, l, settings, stat, errmsg)
         type(strip_hierarchy), intent(inout) :: hier
         integer, intent(in) :: l
         type(fc_mg2d_settings), intent(in) :: settings
-        real(dp), intent(in) :: rhs(:, :)
-        real(dp), intent(inout) :: p(:, :), d(:, :)
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
-        real(dp), allocatable :: dc(:, :), pc(:, :), dd(:, :)
-        integer :: k, nc, i
+        integer :: k, i
         stat = 0; errmsg = ''
         if (l == 1) then
-            allocate (pc(size(p, 1), 1))
-            call coarse_solve(hier%lev(1), d, pc, stat, errmsg)
+            call coarse_solve(hier%lev(1), stat, errmsg)
             if (stat /= 0) return
-            p = p + pc
-            d = 0
+            hier%lev(1)%d = 0
             return
         end if
         do k = 1, settings%nu1
-            call smooth_step(hier, l, settings%smoother, d, p)
-            call defect(hier, l, rhs, p, d)
+            call smooth_step(hier, l, settings%smoother)
+            call defect(hier, l)
         end do
-        nc = hier%lev(l - 1)%n
-        allocate (dc(nc, 1), pc(nc, 1), dd(nc, 1))
-        do i = 1, nc
-            dc(i, 1) = 0.5_dp*(d(2*i - 1, 1) + d(2*i, 1))          ! eq. (3.12)
-        end do
-        where (.not. hier%lev(l - 1)%con) dc = 0
-        pc = 0; dd = dc
-        call vcycle(hier, l - 1, settings, dc, pc, dd, stat, errmsg)
+        associate (fine => hier%lev(l), coarse => hier%lev(l - 1))
+            do i = 1, coarse%n                                      ! eq. (3.12)
+                coarse%r(i) = merge(0.5_dp*(fine%d(2*i - 1) + fine%d(2*i)), 0.0_dp, coarse%con(i))
+            end do
+            coarse%x = 0
+            coarse%d = coarse%r
+        end associate
+        call vcycle(hier, l - 1, settings, stat, errmsg)
         if (stat /= 0) return
-        do i = 1, nc                                                ! eq. (3.13)
-            where (hier%lev(l)%con(2*i - 1:2*i, 1)) p(2*i - 1:2*i, 1) = p(2*i - 1:2*i, 1) + pc(i, 1)
-        end do
-        call defect(hier, l, rhs, p, d)
+        associate (fine => hier%lev(l), coarse => hier%lev(l - 1))
+            do i = 1, coarse%n                                      ! eq. (3.13)
+                if (fine%con(2*i - 1)) fine%x(2*i - 1) = fine%x(2*i - 1) + coarse%x(i)
+                if (fine%con(2*i)) fine%x(2*i) = fine%x(2*i) + coarse%x(i)
+            end do
+        end associate
+        call defect(hier, l)
         do k = 1, settings%nu2
-            call smooth_step(hier, l, settings%smoother, d, p)
-            call defect(hier, l, rhs, p, d)
+            call smooth_step(hier, l, settings%smoother)
+            call defect(hier, l)
         end do
     end subroutine vcycle
 
@@ -454,8 +456,8 @@ contains
     !! zero off the strips.
     subroutine initial_guess(settings, con, p)
         type(fc_mg2d_settings), intent(in) :: settings
-        logical, intent(in) :: con(:, :)
-        real(dp), intent(out) :: p(:, :)
+        logical, intent(in) :: con(:)
+        real(dp), intent(out) :: p(:)
         integer(i8) :: state
         integer :: i
         p = 0
@@ -463,7 +465,7 @@ contains
         state = max(1_i8, mod(int(abs(settings%seed), i8), 2147483646_i8) + 1)
         do i = 1, size(p, 1)
             state = mod(48271_i8*state, 2147483647_i8)
-            p(i, 1) = real(state, dp)/2147483647.0_dp
+            p(i) = real(state, dp)/2147483647.0_dp
         end do
         where (.not. con) p = 0
     end subroutine initial_guess
@@ -500,7 +502,6 @@ contains
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
         type(strip_hierarchy) :: hier
-        real(dp), allocatable :: p(:, :), d(:, :), rhs(:, :)
         real(dp) :: unorm, d0, dn
         integer :: k, n, t0, t1, rate, vstat
         character(len=msg_len) :: vmsg
@@ -515,17 +516,19 @@ contains
         if (stat /= 0) return
         n = prob%grid%nx
         res%levels = hier%nlev
-        allocate (p(n, 1), d(n, 1), rhs(n, 1), res%history(0:settings%maxit))
-        rhs(:, 1) = merge(prob%rhs, 0.0_dp, prob%contact)
-        unorm = sqrt(sum(rhs**2))
-        if (.not. (unorm > 0)) then
-            stat = FC_ERR_VALUE; errmsg = 'strip2d: right-hand side is zero on the contact strips'
-            call destroy_hierarchy(hier); return
-        end if
-        call initial_guess(settings, hier%lev(hier%nlev)%con, p)
+        allocate (res%history(0:settings%maxit))
+        associate (fine => hier%lev(hier%nlev))
+            fine%r = merge(prob%rhs, 0.0_dp, prob%contact)
+            unorm = sqrt(sum(fine%r**2))
+            if (.not. (unorm > 0)) then
+                stat = FC_ERR_VALUE; errmsg = 'strip2d: right-hand side is zero on the contact strips'
+                call destroy_hierarchy(hier); return
+            end if
+            call initial_guess(settings, fine%con, fine%x)
+        end associate
         hier%work = 0
-        call defect(hier, hier%nlev, rhs, p, d)
-        d0 = sqrt(sum(d**2))
+        call defect(hier, hier%nlev)
+        d0 = sqrt(sum(hier%lev(hier%nlev)%d**2))
         res%history(0) = d0/unorm
         res%status = FC_NOT_CONVERGED
         write (res%message, '(a,i0,a)') 'not converged in maxit = ', settings%maxit, ' iterations'
@@ -535,15 +538,15 @@ contains
                 res%status = FC_CONVERGED; res%message = 'converged'; exit
             end if
             if (multigrid) then
-                call vcycle(hier, hier%nlev, settings, rhs, p, d, vstat, vmsg)
+                call vcycle(hier, hier%nlev, settings, vstat, vmsg)
                 if (vstat /= 0) then
                     res%status = FC_ERROR; res%message = vmsg; exit
                 end if
             else
-                call smooth_step(hier, 1, 'fft-rsm', d, p)
-                call defect(hier, 1, rhs, p, d)
+                call smooth_step(hier, 1, 'fft-rsm')
+                call defect(hier, 1)
             end if
-            dn = sqrt(sum(d**2))
+            dn = sqrt(sum(hier%lev(hier%nlev)%d**2))
             res%iterations = k
             res%history(k) = dn/unorm
             if (dn /= dn .or. dn > 1.0e6_dp*d0) then
@@ -563,7 +566,7 @@ contains
         if (res%status == FC_DIVERGED .or. res%status == FC_ERROR) then
             allocate (res%p(n)); res%p = 0       ! never hand back a diverged iterate as a result
         else
-            res%p = p(:, 1)
+            res%p = hier%lev(hier%nlev)%x
         end if
         call destroy_hierarchy(hier)
         call system_clock(t1)
@@ -592,7 +595,7 @@ contains
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
         type(strip_hierarchy) :: hier
-        real(dp), allocatable :: t(:, :), p(:, :), d(:, :), zero(:, :)
+        real(dp), allocatable :: t(:, :)
         integer :: n, j
         rho = -1
         call check_input(prob, settings, stat, errmsg)
@@ -603,17 +606,19 @@ contains
         end if
         call build_hierarchy(prob, settings, 64, hier, stat, errmsg)
         if (stat /= 0) return
-        allocate (t(n, n), p(n, 1), d(n, 1), zero(n, 1))
-        zero = 0
+        allocate (t(n, n))
+        hier%lev(hier%nlev)%r = 0
         do j = 1, n
-            p = 0; p(j, 1) = 1
-            where (.not. hier%lev(hier%nlev)%con) p = 0
-            call defect(hier, hier%nlev, zero, p, d)
-            call vcycle(hier, hier%nlev, settings, zero, p, d, stat, errmsg)
+            associate (fine => hier%lev(hier%nlev))
+                fine%x = 0
+                if (fine%con(j)) fine%x(j) = 1
+            end associate
+            call defect(hier, hier%nlev)
+            call vcycle(hier, hier%nlev, settings, stat, errmsg)
             if (stat /= 0) then
                 call destroy_hierarchy(hier); return
             end if
-            t(:, j) = p(:, 1)
+            t(:, j) = hier%lev(hier%nlev)%x
         end do
         call destroy_hierarchy(hier)
         call radius_of(t, rho, stat, errmsg)
@@ -629,7 +634,7 @@ contains
         character(len=*), intent(out) :: errmsg
         type(strip_hierarchy) :: hier
         type(fc_mg2d_settings) :: s
-        real(dp), allocatable :: t(:, :), p(:, :), d(:, :), zero(:, :)
+        real(dp), allocatable :: t(:, :)
         integer :: n, j
         rho = -1
         s%smoother = smoother
@@ -640,14 +645,15 @@ contains
             stat = FC_ERR_VALUE; write (errmsg, '(a,i0,a)') 'strip_smoother_radius: n = ', n, ' > 1024'; return
         end if
         call build_hierarchy(prob, s, 1, hier, stat, errmsg)
-        allocate (t(n, n), p(n, 1), d(n, 1), zero(n, 1))
-        zero = 0
+        if (stat /= 0) return
+        allocate (t(n, n))
+        hier%lev(1)%r = 0
         do j = 1, n
-            p = 0; p(j, 1) = 1
-            where (.not. hier%lev(1)%con) p = 0
-            call defect(hier, 1, zero, p, d)
-            call smooth_step(hier, 1, smoother, d, p)
-            t(:, j) = p(:, 1)
+            hier%lev(1)%x = 0
+            if (hier%lev(1)%con(j)) hier%lev(1)%x(j) = 1
+            call defect(hier, 1)
+            call smooth_step(hier, 1, smoother)
+            t(:, j) = hier%lev(1)%x
         end do
         call destroy_hierarchy(hier)
         call radius_of(t, rho, stat, errmsg)

@@ -126,10 +126,11 @@ contains
         end if
         allocate (wx(nx, ny), wy(nx, ny), g(nx, ny))
         do j = 1, ny
-            do i = 1, nx
-                wx(i, j) = xi - phi*top%grid%y(j)
-                wy(i, j) = eta + phi*top%grid%x(i)
-            end do
+            wx(:, j) = xi - phi*top%grid%y(j)
+        end do
+        wy(:, 1) = eta + phi*top%grid%x([(i, i=1, nx)])
+        do j = 2, ny
+            wy(:, j) = wy(:, 1)
         end do
         if (present(ux_prev)) wx = wx - ux_prev
         if (present(uy_prev)) wy = wy - uy_prev
@@ -279,13 +280,13 @@ contains
         type(fc_grid), intent(in) :: grid
         type(fc_tangential_result), intent(inout) :: res
         integer :: i, j
+        real(dp) :: xc(grid%nx)
         res%fx = sum(res%px)*grid%area()
         res%fy = sum(res%py)*grid%area()
+        xc = grid%x([(i, i=1, grid%nx)])
         res%mz = 0
         do j = 1, grid%ny
-            do i = 1, grid%nx
-                res%mz = res%mz + (grid%x(i)*res%py(i, j) - grid%y(j)*res%px(i, j))
-            end do
+            res%mz = res%mz + (dot_product(xc, res%py(:, j)) - grid%y(j)*sum(res%px(:, j)))
         end do
         res%mz = res%mz*grid%area()
         res%nadh = count(res%state == EL_ADHESION)

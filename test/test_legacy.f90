@@ -34,6 +34,8 @@ contains
             new_unittest('driver_equals_flat_api', test_driver_equal), &
             new_unittest('warm_start_and_reuse', test_warm_start), &
             new_unittest('rebuild_each_call_same_result', test_no_reuse), &
+            new_unittest('fft_effort_measure_same_result', test_fft_effort), &
+            new_unittest('quadratic_gap_follows_new_radii', test_gap_radii), &
             new_unittest('hysteresis_load_unload_reload', test_hysteresis), &
             new_unittest('continue_zero_increment_keeps_state', test_continue_still), &
             new_unittest('rolling_shift_and_steady_state', test_rolling), &
@@ -414,6 +416,60 @@ contains
         call check(error, fx(1) == fx(2) .and. fx(2) == fx(3), 'identical results without reuse')
         call fc_finalize(h, ierr)
     end subroutine test_no_reuse
+
+    !> fc_set_fft_effort(h, 1): the measured plans give the same forces as the estimated
+    !! ones to round-off (1e−10 relative; the CG iterations see only FFT rounding), the
+    !! operators are rebuilt once when the effort is switched on; effort 2 is refused.
+    subroutine test_fft_effort(error)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: h(0:1), ierr, e, nb, tb, nc, itn(0:1), itt(0:1)
+        real(dp) :: fn(0:1), fx(0:1), fy(0:1), mz
+        do e = 0, 1
+            call cattaneo_handle(h(e), 16, 12, 1e-10_dp)
+            call fc_set_fft_effort(h(e), e, ierr)
+            call check(error, ierr == 0, 'fc_set_fft_effort accepted')
+            call fc_set_shifts(h(e), case_xi(4), case_eta(4), case_phi(4), ierr)
+            call fc_calculate(h(e), ierr)
+            call check(error, ierr == 0, 'calculate')
+            call fc_get_forces(h(e), fn(e), fx(e), fy(e), mz, ierr)
+            call fc_get_iterations(h(e), itn(e), itt(e), ierr)
+        end do
+        call check(error, fn(1), fn(0), 'Fn measured = estimated', rel=1e-10_dp)
+        call check(error, fx(1), fx(0), 'Fx measured = estimated', rel=1e-10_dp)
+        call check(error, fy(1), fy(0), 'Fy measured = estimated', rel=1e-10_dp)
+        call check(error, abs(itt(1) - itt(0)) <= 1, 'same TangCG iterations (±1)')
+        ! switching the effort on after a calculation rebuilds the operators once
+        call fc_set_fft_effort(h(0), 1, ierr)
+        call fc_calculate(h(0), ierr)
+        call fc_calculate(h(0), ierr)
+        call fc_get_rebuilds(h(0), nb, tb, nc, ierr)
+        call check(error, nb == 2 .and. tb == 2 .and. nc == 3, 'one rebuild after switching to measured plans')
+        call fc_set_fft_effort(h(0), 2, ierr)
+        call check(error, ierr == FCL_INVALID_VALUE, 'effort 2 refused')
+        call check(error, index(last_message(h(0)), 'effort = 2') > 0, 'message names the value')
+        call fc_finalize(h(0), ierr); call fc_finalize(h(1), ierr)
+    end subroutine test_fft_effort
+
+    !> The quadratic gap is cached per grid and radii: new radii after a calculation give the
+    !! result of a fresh handle with those radii (approach for the same force).
+    subroutine test_gap_radii(error)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: h, h2, ierr
+        real(dp) :: d1, d2, d0
+        call cattaneo_handle(h, 16, 12, 1e-10_dp)
+        call fc_calculate(h, ierr)
+        call fc_get_approach(h, d0, ierr)
+        call fc_set_gap_quadratic(h, 30.0_dp, 30.0_dp, ierr)
+        call fc_calculate(h, ierr)
+        call fc_get_approach(h, d1, ierr)
+        call cattaneo_handle(h2, 16, 12, 1e-10_dp)
+        call fc_set_gap_quadratic(h2, 30.0_dp, 30.0_dp, ierr)
+        call fc_calculate(h2, ierr)
+        call fc_get_approach(h2, d2, ierr)
+        call check(error, abs(d1 - d0) > 1e-3_dp*abs(d0), 'new radii change the approach')
+        call check(error, d1, d2, 'approach = fresh handle with the new radii', rel=1e-8_dp)
+        call fc_finalize(h, ierr); call fc_finalize(h2, ierr)
+    end subroutine test_gap_radii
 
     !> Load–shift–unload–reload with the normal force fixed (transient mode 1, prescribed
     !! Fx): Q/μFn = 0.25, 0.5, 0.75 (loading), 0.5, 0, −0.5, −0.75 (unloading), −0.25, 0.75
