@@ -120,6 +120,11 @@ contains
             stat = 1; errmsg = "solver: rolling = '"//trim(settings%solver)//"' is not one of 'gmres', 'march', 'steadygs'"
             return
         end if
+        if (settings%preconditioner /= 'fft' .and. settings%preconditioner /= 'runsum') then
+            stat = 1; errmsg = "solver: rolling preconditioner = '"//trim(settings%preconditioner)// &
+                "' is not one of 'fft', 'runsum'"
+            return
+        end if
         if (settings%solver == 'march' .and. muk /= load%mu) then
             stat = 1; errmsg = "solver: rolling = 'march' needs mu_kinetic = mu (the transient step has one mu)"
             return
@@ -298,9 +303,9 @@ contains
         logical, dimension(size(gs, 1), size(gs, 2)) :: adh, slp
         real(dp), allocatable :: vb(:, :, :, :), hess(:, :), cs(:), sn(:), gvec(:), yv(:), hist(:)
         real(dp), allocatable :: wkx(:, :), wky(:, :), qsx(:, :), qsy(:, :), zx(:, :), zy(:, :)
-        real(dp) :: dxx, dyy, axx, gdx, yscale, change, dnorm, beta, rnorm, tol_in, h, tmp
+        real(dp) :: dxx, dyy, axx, gdx, yscale, change, dnorm, beta, rnorm, tol_in, h, tmp, pscale, eta_k, dnorm_prev
         integer :: it_total, newton, k, kk, nit, idle
-        logical :: changed, converged, stagnated
+        logical :: changed, converged, stagnated, fft_prec, fft_prev, warm
         real(dp), parameter :: bound_slack = 1.0e-12_dp  !! relative slack on |p|² > g²
         integer, parameter :: max_idle = 20               !! Newton steps without a Krylov step
         nx = size(gs, 1); ny = size(gs, 2)
@@ -310,6 +315,10 @@ contains
         allocate (hist(max(1, settings%maxit)))
         call steady_diagonal(top, dxx, dyy)
         axx = top%a_xx%kernel(0, 0); yscale = axx/top%a_yy%kernel(0, 0); gdx = top%grid%dx
+        ! 'fft': the preconditioned adhesion rows are tractions (M ≈ A⁻¹), 'runsum': displacements
+        ! scaled to A^xx_II; slip rows follow the same measure
+        changed = .false.; dnorm_prev = 1; fft_prec = .false.
+        warm = any(contact .and. (res%px /= 0 .or. res%py /= 0))
         px = res%px; py = res%py
         adh = contact; slp = .false.
         ! a warm start whose traction reaches the kinetic bound starts in slip (1e−8 slack
@@ -341,10 +350,20 @@ contains
             elsewhere
                 ex = 0; ey = 0
             end where
+            ! the FFT block inverse costs as much as a product per Krylov iteration: measured,
+            ! it pays where the adhesion area is nearly the whole contact (≥ 90 %), not in
+            ! partial slip; and not in the first step of a cold start, whose all-adhesion
+            ! subdivision is a guess (a more accurate full-adhesion step moved too many
+            ! elements to slip, and they came back one layer per Newton step)
+            fft_prev = fft_prec
+            fft_prec = settings%preconditioner == 'fft' .and. top%prec%built() .and. &
+                count(adh) >= 0.9_dp*count(contact) .and. (newton > 1 .or. warm)
+            pscale = axx
+            if (fft_prec) pscale = 1
             ! slip rows of the left preconditioner: TangCG's diagonal scaling (thesis eq. 4.43
             ! with the steady diagonal) to the measure A^xx_II of the adhesion rows
             where (slp)
-                mx = axx/(px**2*dyy + py**2*dxx + max(0.0_dp, -(px*sx + py*sy)))
+                mx = pscale/(px**2*dyy + py**2*dxx + max(0.0_dp, -(px*sx + py*sy)))
             elsewhere
                 mx = 0
             end where
@@ -355,10 +374,17 @@ contains
             else
                 ! inexact Newton with an absolute floor tied to the outer tolerance: a residual
                 ! worth a traction error of 0.3·tol needs no further Krylov work
-                tol_in = max(settings%forcing*dnorm, 0.3_dp*settings%tol*axx*sqrt(sum(px**2 + py**2)))
+                ! forcing term: constant, or once the subdivision has settled (no change in the
+                ! last step, same preconditioner) Eisenstat–Walker's superlinear choice
+                ! 0.9·(‖d_k‖/‖d_{k−1}‖)², floored at 1e−3
+                eta_k = settings%forcing
+                if (settings%adaptive_forcing .and. .not. changed .and. newton > 1 .and. (fft_prec .eqv. fft_prev)) &
+                    eta_k = max(1.0e-3_dp, min(settings%forcing, 0.9_dp*(dnorm/dnorm_prev)**2))
+                tol_in = max(eta_k*dnorm, 0.3_dp*settings%tol*pscale*sqrt(sum(px**2 + py**2)))
                 call gmres(nit)
             end if
             it_total = it_total + nit
+            dnorm_prev = dnorm
             ! update: adhesion tractions, slip angles (rotation on the circle)
             pox = px; poy = py
             where (adh)
@@ -439,26 +465,55 @@ contains
 
         !> Left preconditioner P, in place.  Adhesion: along each run of consecutive adhesion
         !! elements in x, the sum from the run's front (leading side) down to the element,
-        !! times δx — it turns the steady adhesion rows (u_I − u_{I+x})/δx into
-        !! u_I − u_front+x, an SPD-like shift operator minus one value per run; y rows scaled
-        !! by A^xx_II/A^yy_II.  Slip: the diagonal scaling in mx.
+        !! times δx — the exact inverse of the convective difference on the run, it turns the
+        !! steady adhesion rows (u_I − u_{I+x})/δx into u_I − u_front+x, TangCG's shift
+        !! operator A minus one value per run.  Then 'fft': TangCG's FFT block inverse of A
+        !! (fc_tangprec) on the adhesion area (masked), so that P·J ≈ I − M·(one value per
+        !! run); 'runsum': y rows scaled by A^xx_II/A^yy_II.  Slip: the diagonal scaling in mx.
         subroutine precondition(rx, ry)
             real(dp), intent(inout) :: rx(:, :), ry(:, :)
             integer :: i, j
-            real(dp) :: accx, accy
+            real(dp) :: accx, accy, ys
+            ys = yscale
+            if (fft_prec) ys = 1
             do j = 1, ny
                 accx = 0; accy = 0
                 do i = nx, 1, -1
                     if (adh(i, j)) then
                         accx = accx + rx(i, j)*gdx; accy = accy + ry(i, j)*gdx
-                        rx(i, j) = accx; ry(i, j) = accy*yscale
+                        rx(i, j) = accx; ry(i, j) = accy*ys
                     else
                         accx = 0; accy = 0
                         rx(i, j) = mx(i, j)*rx(i, j); ry(i, j) = 0
                     end if
                 end do
             end do
+            if (fft_prec) then
+                where (adh)
+                    zx = rx; zy = ry
+                elsewhere
+                    zx = 0; zy = 0
+                end where
+                call block_inverse(zx, zy, qsx, qsy)
+                where (adh)
+                    rx = qsx; ry = qsy
+                end where
+            end if
         end subroutine precondition
+
+        !> (zx, zy) = M (dx, dy), M TangCG's FFT block inverse of A (top%prec): two forward
+        !! and two inverse transforms on the operator's buffers.
+        subroutine block_inverse(dx, dy, rzx, rzy)
+            real(dp), intent(in) :: dx(:, :), dy(:, :)
+            real(dp), intent(out) :: rzx(:, :), rzy(:, :)
+            call top%a_xx%forward(dx, top%spec_x)
+            call top%a_xx%forward(dy, top%spec_y)
+            top%work = top%spec_x*top%prec%mxx + top%spec_y*top%prec%mxy
+            call top%a_xx%backward(top%work, rzx)
+            top%work = top%spec_x*top%prec%mxy + top%spec_y*top%prec%myy
+            call top%a_xx%backward(top%work, rzy)
+            top%nproducts = top%nproducts + 1   ! as costly as a product: counted with them
+        end subroutine block_inverse
 
         !> q = P·J·v for a direction v in primary variables, into (qx, qy).
         subroutine jacobian_product(vx, vy, qx, qy)

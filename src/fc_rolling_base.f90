@@ -16,6 +16,12 @@ module fc_rolling_base
         integer :: maxit = 2000                !! GMRES: Krylov iterations in all; SteadyGS: sweeps
         integer :: restart = 40                !! GMRES restart length
         real(dp) :: forcing = 0.1_dp           !! GMRES: relative residual reduction per Newton step
+        !> GMRES left preconditioner of the adhesion rows: 'fft' (run sums along x, then TangCG's
+        !! FFT block inverse of A on the adhesion area) or 'runsum' (run sums, diagonal scaling)
+        character(len=8) :: preconditioner = 'fft'
+        !> GMRES: Eisenstat–Walker's superlinear forcing term once the subdivision has settled
+        !! (.false.: the constant `forcing` throughout)
+        logical :: adaptive_forcing = .true.
     end type fc_rolling_settings
 
     !> Loading of a steady rolling problem.
