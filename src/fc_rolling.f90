@@ -21,9 +21,13 @@
 !!   costs O(n_c·n).  The simple, trusted reference.
 !! * Newton–GMRES (`'gmres'`): TangCG's active set (tractions in adhesion, angles in slip,
 !!   elements moved between the areas after each Newton step) with the non-symmetric
-!!   Jacobian solved by restarted GMRES, right-preconditioned by TangCG's diagonal scaling
-!!   (thesis eq. 4.43 with the steady operator's diagonal).  Every Krylov step costs one
-!!   FFT product of the tangential operator.
+!!   Jacobian solved by restarted GMRES, left-preconditioned: adhesion rows summed along
+!!   each run of adhesion in x (the exact inverse of the convective difference there),
+!!   then, when adhesion covers ≥ 90 % of the contact, TangCG's FFT block inverse of A
+!!   (`preconditioner = 'fft'`); slip rows by TangCG's diagonal scaling (thesis eq. 4.43
+!!   with the steady operator's diagonal).  Every Krylov step costs one FFT product of the
+!!   tangential operator (two with the block inverse).  Forcing term constant until the
+!!   subdivision settles, then Eisenstat–Walker's superlinear choice.
 !!
 !! Stopping criterion as TangCG's (thesis eq. 4.49): relative RMS traction change of the last
 !! Newton step / sweep below `tol` with an unchanged subdivision.
@@ -270,25 +274,6 @@ contains
             resid = [out%fx - load%fx, out%fy - load%fy]
         end subroutine evaluate
     end subroutine solve_rolling_loading
-
-    !> Forces, moment and element counts.
-    subroutine rolling_summary(grid, res)
-        type(fc_grid), intent(in) :: grid
-        type(fc_tangential_result), intent(inout) :: res
-        integer :: i, j
-        res%fx = sum(res%px)*grid%area()
-        res%fy = sum(res%py)*grid%area()
-        res%mz = 0
-        do j = 1, grid%ny
-            do i = 1, grid%nx
-                res%mz = res%mz + (grid%x(i)*res%py(i, j) - grid%y(j)*res%px(i, j))
-            end do
-        end do
-        res%mz = res%mz*grid%area()
-        res%nadh = count(res%state == EL_ADHESION)
-        res%nslip = count(res%state == EL_SLIP)
-        res%ncon = res%nadh + res%nslip
-    end subroutine rolling_summary
 
     !> Newton–GMRES with TangCG's active set and variables.
     subroutine run_newton_gmres(top, contact, gs, gk, wx, wy, settings, res)

@@ -5,7 +5,7 @@
 module fc_rolling_base
     use fc_kinds
     use fc_geometry, only: fc_grid
-    use fc_tangcg, only: fc_tangential_operator, fc_tangential_result
+    use fc_tangcg, only: fc_tangential_operator, fc_tangential_result, EL_ADHESION, EL_SLIP
     implicit none
     private
 
@@ -47,7 +47,7 @@ module fc_rolling_base
         logical :: fastsim = .false.       !! steady: Kalker's simplified theory on the Hertz ellipse, no grid
     end type fc_rolling_case
 
-    public :: convective_difference, rigid_creepage, traction_change, steady_diagonal, finish
+    public :: convective_difference, rigid_creepage, traction_change, steady_diagonal, finish, rolling_summary
 
 contains
 
@@ -120,5 +120,24 @@ contains
         end if
         res%residual = change
     end subroutine finish
+
+    !> Forces, moment and element counts.
+    subroutine rolling_summary(grid, res)
+        type(fc_grid), intent(in) :: grid
+        type(fc_tangential_result), intent(inout) :: res
+        integer :: i, j
+        res%fx = sum(res%px)*grid%area()
+        res%fy = sum(res%py)*grid%area()
+        res%mz = 0
+        do j = 1, grid%ny
+            do i = 1, grid%nx
+                res%mz = res%mz + (grid%x(i)*res%py(i, j) - grid%y(j)*res%px(i, j))
+            end do
+        end do
+        res%mz = res%mz*grid%area()
+        res%nadh = count(res%state == EL_ADHESION)
+        res%nslip = count(res%state == EL_SLIP)
+        res%ncon = res%nadh + res%nslip
+    end subroutine rolling_summary
 
 end module fc_rolling_base
