@@ -363,7 +363,8 @@ contains
                 ! last step, same preconditioner) Eisenstat–Walker's superlinear choice
                 ! 0.9·(‖d_k‖/‖d_{k−1}‖)², floored at 1e−3
                 eta_k = settings%forcing
-                if (settings%adaptive_forcing .and. .not. changed .and. newton > 1 .and. (fft_prec .eqv. fft_prev)) &
+                if (settings%adaptive_forcing .and. .not. changed .and. newton > 1 .and. dnorm_prev > 0 .and. &
+                    (fft_prec .eqv. fft_prev)) &
                     eta_k = max(1.0e-3_dp, min(settings%forcing, 0.9_dp*(dnorm/dnorm_prev)**2))
                 tol_in = max(eta_k*dnorm, 0.3_dp*settings%tol*pscale*sqrt(sum(px**2 + py**2)))
                 call gmres(nit)
@@ -500,28 +501,43 @@ contains
             top%nproducts = top%nproducts + 1   ! as costly as a product: counted with them
         end subroutine block_inverse
 
-        !> q = P·J·v for a direction v in primary variables, into (qx, qy).
+        !> q = P·J·v for a direction v in primary variables, into (qx, qy).  One pass builds
+        !! the traction direction, one the convective difference and the rows (the hot loop of
+        !! the solver: no array temporaries).
         subroutine jacobian_product(vx, vy, qx, qy)
             real(dp), intent(in) :: vx(:, :), vy(:, :)
             real(dp), intent(out) :: qx(:, :), qy(:, :)
-            zx = vx; zy = vy
-            where (adh)
-                wkx = zx; wky = zy
-            elsewhere (slp)
-                wkx = -zx*py; wky = zx*px
-            elsewhere
-                wkx = 0; wky = 0
-            end where
+            integer :: i, j
+            real(dp) :: cxv, cyv
+            do j = 1, ny
+                do i = 1, nx
+                    if (adh(i, j)) then
+                        wkx(i, j) = vx(i, j); wky(i, j) = vy(i, j)
+                    else if (slp(i, j)) then
+                        wkx(i, j) = -vx(i, j)*py(i, j); wky(i, j) = vx(i, j)*px(i, j)
+                    else
+                        wkx(i, j) = 0; wky(i, j) = 0
+                    end if
+                end do
+            end do
             call top%apply(wkx, wky, qsx, qsy)
-            call convective_difference(qsx, top%grid%dx, cx)
-            call convective_difference(qsy, top%grid%dx, cy)
-            where (adh)
-                qx = cx; qy = cy
-            elsewhere (slp)
-                qx = px*cy - py*cx + sy*wkx - sx*wky; qy = 0
-            elsewhere
-                qx = 0; qy = 0
-            end where
+            do j = 1, ny
+                do i = 1, nx
+                    ! convective difference (f_i − f_{i+1})/δx, f_{nx+1} = 0
+                    if (i < nx) then
+                        cxv = (qsx(i, j) - qsx(i + 1, j))/gdx; cyv = (qsy(i, j) - qsy(i + 1, j))/gdx
+                    else
+                        cxv = qsx(i, j)/gdx; cyv = qsy(i, j)/gdx
+                    end if
+                    if (adh(i, j)) then
+                        qx(i, j) = cxv; qy(i, j) = cyv
+                    else if (slp(i, j)) then
+                        qx(i, j) = px(i, j)*cyv - py(i, j)*cxv + sy(i, j)*wkx(i, j) - sx(i, j)*wky(i, j); qy(i, j) = 0
+                    else
+                        qx(i, j) = 0; qy(i, j) = 0
+                    end if
+                end do
+            end do
             call precondition(qx, qy)
         end subroutine jacobian_product
 
@@ -541,7 +557,7 @@ contains
                     call jacobian_product(solx, soly, vb(:, :, 1, 1), vb(:, :, 2, 1))
                     vb(:, :, 1, 1) = ex - vb(:, :, 1, 1); vb(:, :, 2, 1) = ey - vb(:, :, 2, 1)
                 end if
-                beta = sqrt(sum(vb(:, :, :, 1)**2))
+                beta = sqrt(dot(vb(:, :, :, 1), vb(:, :, :, 1), 2*nx*ny))
                 if (beta <= tol_in .or. beta == 0) exit
                 vb(:, :, :, 1) = vb(:, :, :, 1)/beta
                 gvec = 0; gvec(1) = beta
@@ -552,11 +568,11 @@ contains
                     kk = k
                     call jacobian_product(vb(:, :, 1, k), vb(:, :, 2, k), vb(:, :, 1, k + 1), vb(:, :, 2, k + 1))
                     do j = 1, k      ! modified Gram–Schmidt
-                        h = sum(vb(:, :, :, j)*vb(:, :, :, k + 1))
+                        h = dot(vb(:, :, :, j), vb(:, :, :, k + 1), 2*nx*ny)
                         hess(j, k) = h
                         vb(:, :, :, k + 1) = vb(:, :, :, k + 1) - h*vb(:, :, :, j)
                     end do
-                    hess(k + 1, k) = sqrt(sum(vb(:, :, :, k + 1)**2))
+                    hess(k + 1, k) = sqrt(dot(vb(:, :, :, k + 1), vb(:, :, :, k + 1), 2*nx*ny))
                     if (hess(k + 1, k) > 0) vb(:, :, :, k + 1) = vb(:, :, :, k + 1)/hess(k + 1, k)
                     do j = 1, k - 1   ! previous Givens rotations
                         tmp = cs(j)*hess(j, k) + sn(j)*hess(j + 1, k)
