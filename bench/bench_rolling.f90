@@ -27,6 +27,11 @@
 !!   --gs N     the reference 'march' on the first N grids only (default 2)
 !!   --case C   only case C of the seven
 !!   --forcing F  Newton–GMRES forcing term (default 0.1)
+!!   --prec P     Newton–GMRES preconditioner 'fft' (default) or 'runsum' (the earlier one)
+!!   --const-forcing  constant forcing term (the earlier rule; default: Eisenstat–Walker once settled)
+!!   --only S     run only solver S ('tangcg', 'gmres' or 'none': set-up only), for whole-process timing
+!!   --first G    start at grid G (1..4; with --grids N: grids G..N)
+!!   --repeat R   solve each case R times (the row shows the last solve, seconds summed)
 program fastcontact_bench_rolling
     use fc_kinds, only: dp, status_name
     use fc_geometry, only: fc_grid, make_grid, quadratic_gap
@@ -57,6 +62,10 @@ program fastcontact_bench_rolling
     integer :: stat, ig, c, ngrids, ngs, u, k, only_case
     character(len=256) :: msg, arg, outfile
     character(len=16) :: mode
+    character(len=8) :: prec = 'fft', only = ''
+    logical :: ew = .true.
+    integer :: nrep = 1, irep, gfirst = 1
+    real(dp) :: tacc
     real(dp) :: tsum(3, 4), msum(3, 4), unk(4), forcing
     ngrids = 3; ngs = 2; outfile = ''; mode = 'perf'; only_case = 0; forcing = 0.1_dp
     tsum = 0; msum = 0; unk = 0
@@ -70,6 +79,11 @@ program fastcontact_bench_rolling
         case ('--kalker', '--fastsim', '--curve'); mode = arg(3:)
         case ('--case'); k = k + 1; call get_command_argument(k, arg); read (arg, *) only_case
         case ('--forcing'); k = k + 1; call get_command_argument(k, arg); read (arg, *) forcing
+        case ('--prec'); k = k + 1; call get_command_argument(k, arg); prec = arg(1:8)
+        case ('--const-forcing'); ew = .false.
+        case ('--first'); k = k + 1; call get_command_argument(k, arg); read (arg, *) gfirst
+        case ('--only'); k = k + 1; call get_command_argument(k, arg); only = arg(1:8)
+        case ('--repeat'); k = k + 1; call get_command_argument(k, arg); read (arg, *) nrep
         case default; write (*, '(a)') 'usage: fastcontact-bench-rolling [--grids N] [--gs N] [--out FILE]'; stop 2
         end select
         k = k + 1
@@ -88,7 +102,7 @@ program fastcontact_bench_rolling
     write (u, '(a)') 'case,solver,nx,ny,ncon,nslip,iterations,matvecs,status,fx,fy,mz,seconds'
     mat%g1 = 200; mat%g2 = 200; mat%nu1 = 0.42_dp; mat%nu2 = 0.42_dp
     call combine_material(mat, stat, msg)
-    do ig = 1, ngrids
+    do ig = max(1, gfirst), ngrids
         call make_grid(grid, gx(ig), gy(ig), -1.2857_dp, 1.2857_dp, -1.2857_dp, 1.2857_dp, stat, msg)
         call build_normal_operator(nop, mat, grid)
         ns%tol = 1e-8_dp
@@ -97,12 +111,26 @@ program fastcontact_bench_rolling
         call build_tangential_operator(top, mat, grid)
         do c = 1, 7
             if (only_case > 0 .and. c /= only_case) cycle
-            call solve_tangential(top, nr%pn, 0.4_dp, ts, tr, stat, msg, xi(c), eta(c), phi(c))
-            call row('tangcg-shift', 1)
+            if (only == '' .or. only == 'tangcg') then
+                tacc = 0
+                do irep = 1, nrep
+                    call solve_tangential(top, nr%pn, 0.4_dp, ts, tr, stat, msg, xi(c), eta(c), phi(c))
+                    tacc = tacc + tr%cpu_seconds
+                end do
+                tr%cpu_seconds = tacc
+                call row('tangcg-shift', 1)
+            end if
             rl%mu = 0.4_dp; rl%xi = xi(c); rl%eta = eta(c); rl%phi = phi(c)
-            rs%solver = 'gmres'; rs%forcing = forcing
-            call solve_rolling(top, nr%pn, rl, rs, tr, stat, msg)
-            call row('gmres', 2)
+            rs%solver = 'gmres'; rs%forcing = forcing; rs%preconditioner = prec; rs%adaptive_forcing = ew
+            if (only == '' .or. only == 'gmres') then
+                tacc = 0
+                do irep = 1, nrep
+                    call solve_rolling(top, nr%pn, rl, rs, tr, stat, msg)
+                    tacc = tacc + tr%cpu_seconds
+                end do
+                tr%cpu_seconds = tacc
+                call row('gmres', 2)
+            end if
             if (ig <= ngs) then
                 rs%solver = 'march'; rs%maxit = 5000
                 call solve_rolling(top, nr%pn, rl, rs, tr, stat, msg)
@@ -284,7 +312,7 @@ contains
             do k2 = 1, 20
                 val = 0.006_dp*(k2 - 1)/19.0_dp
                 rl = fc_rolling_loading(); rl%mu = 0.4_dp; rl%xi = val; rl%eta = 0.001_dp; rl%phi = 0.003_dp
-                rs = fc_rolling_settings(); rs%forcing = forcing
+                rs = fc_rolling_settings(); rs%forcing = forcing; rs%preconditioner = prec; rs%adaptive_forcing = ew
                 call solve_rolling(top, nr%pn, rl, rs, tr, stat, msg, pxw, pyw)
                 pxw = tr%px; pyw = tr%py
                 warm = warm + tr%cpu_seconds

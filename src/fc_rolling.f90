@@ -21,9 +21,13 @@
 !!   costs O(n_c·n).  The simple, trusted reference.
 !! * Newton–GMRES (`'gmres'`): TangCG's active set (tractions in adhesion, angles in slip,
 !!   elements moved between the areas after each Newton step) with the non-symmetric
-!!   Jacobian solved by restarted GMRES, right-preconditioned by TangCG's diagonal scaling
-!!   (thesis eq. 4.43 with the steady operator's diagonal).  Every Krylov step costs one
-!!   FFT product of the tangential operator.
+!!   Jacobian solved by restarted GMRES, left-preconditioned: adhesion rows summed along
+!!   each run of adhesion in x (the exact inverse of the convective difference there),
+!!   then, when adhesion covers ≥ 90 % of the contact, TangCG's FFT block inverse of A
+!!   (`preconditioner = 'fft'`); slip rows by TangCG's diagonal scaling (thesis eq. 4.43
+!!   with the steady operator's diagonal).  Every Krylov step costs one FFT product of the
+!!   tangential operator (two with the block inverse).  Forcing term constant until the
+!!   subdivision settles, then Eisenstat–Walker's superlinear choice.
 !!
 !! Stopping criterion as TangCG's (thesis eq. 4.49): relative RMS traction change of the last
 !! Newton step / sweep below `tol` with an unchanged subdivision.
@@ -119,6 +123,11 @@ contains
         if (settings%solver /= 'gmres' .and. settings%solver /= 'steadygs' .and. settings%solver /= 'march') then
             stat = FC_ERR_VALUE
             errmsg = "solver: rolling = '"//trim(settings%solver)//"' is not one of 'gmres', 'march', 'steadygs'"
+            return
+        end if
+        if (settings%preconditioner /= 'fft' .and. settings%preconditioner /= 'runsum') then
+            stat = 1; errmsg = "solver: rolling preconditioner = '"//trim(settings%preconditioner)// &
+                "' is not one of 'fft', 'runsum'"
             return
         end if
         if (settings%solver == 'march' .and. muk /= load%mu) then
@@ -267,25 +276,6 @@ contains
         end subroutine evaluate
     end subroutine solve_rolling_loading
 
-    !> Forces, moment and element counts.
-    subroutine rolling_summary(grid, res)
-        type(fc_grid), intent(in) :: grid
-        type(fc_tangential_result), intent(inout) :: res
-        integer :: i, j
-        res%fx = sum(res%px)*grid%area()
-        res%fy = sum(res%py)*grid%area()
-        res%mz = 0
-        do j = 1, grid%ny
-            do i = 1, grid%nx
-                res%mz = res%mz + (grid%x(i)*res%py(i, j) - grid%y(j)*res%px(i, j))
-            end do
-        end do
-        res%mz = res%mz*grid%area()
-        res%nadh = count(res%state == EL_ADHESION)
-        res%nslip = count(res%state == EL_SLIP)
-        res%ncon = res%nadh + res%nslip
-    end subroutine rolling_summary
-
     !> Newton–GMRES with TangCG's active set and variables.
     subroutine run_newton_gmres(top, contact, gs, gk, wx, wy, settings, res)
         type(fc_tangential_operator), intent(inout) :: top
@@ -299,9 +289,9 @@ contains
         logical, dimension(size(gs, 1), size(gs, 2)) :: adh, slp
         real(dp), allocatable :: vb(:, :, :, :), hess(:, :), cs(:), sn(:), gvec(:), yv(:), hist(:)
         real(dp), allocatable :: wkx(:, :), wky(:, :), qsx(:, :), qsy(:, :), zx(:, :), zy(:, :)
-        real(dp) :: dxx, dyy, axx, gdx, yscale, change, dnorm, beta, rnorm, tol_in, h, tmp
+        real(dp) :: dxx, dyy, axx, gdx, yscale, change, dnorm, beta, rnorm, tol_in, h, tmp, pscale, eta_k, dnorm_prev
         integer :: it_total, newton, k, kk, nit, idle
-        logical :: changed, converged, stagnated
+        logical :: changed, converged, stagnated, fft_prec, fft_prev, warm
         real(dp), parameter :: bound_slack = 1.0e-12_dp  !! relative slack on |p|² > g²
         integer, parameter :: max_idle = 20               !! Newton steps without a Krylov step
         nx = size(gs, 1); ny = size(gs, 2)
@@ -311,6 +301,10 @@ contains
         allocate (hist(max(1, settings%maxit)))
         call steady_diagonal(top, dxx, dyy)
         axx = top%a_xx%kernel(0, 0); yscale = axx/top%a_yy%kernel(0, 0); gdx = top%grid%dx
+        ! 'fft': the preconditioned adhesion rows are tractions (M ≈ A⁻¹), 'runsum': displacements
+        ! scaled to A^xx_II; slip rows follow the same measure
+        changed = .false.; dnorm_prev = 1; fft_prec = .false.
+        warm = any(contact .and. (res%px /= 0 .or. res%py /= 0))
         px = res%px; py = res%py
         adh = contact; slp = .false.
         ! a warm start whose traction reaches the kinetic bound starts in slip (1e−8 slack
@@ -342,10 +336,20 @@ contains
             elsewhere
                 ex = 0; ey = 0
             end where
+            ! the FFT block inverse costs as much as a product per Krylov iteration: measured,
+            ! it pays where the adhesion area is nearly the whole contact (≥ 90 %), not in
+            ! partial slip; and not in the first step of a cold start, whose all-adhesion
+            ! subdivision is a guess (a more accurate full-adhesion step moved too many
+            ! elements to slip, and they came back one layer per Newton step)
+            fft_prev = fft_prec
+            fft_prec = settings%preconditioner == 'fft' .and. top%prec%built() .and. &
+                count(adh) >= 0.9_dp*count(contact) .and. (newton > 1 .or. warm)
+            pscale = axx
+            if (fft_prec) pscale = 1
             ! slip rows of the left preconditioner: TangCG's diagonal scaling (thesis eq. 4.43
             ! with the steady diagonal) to the measure A^xx_II of the adhesion rows
             where (slp)
-                mx = axx/(px**2*dyy + py**2*dxx + max(0.0_dp, -(px*sx + py*sy)))
+                mx = pscale/(px**2*dyy + py**2*dxx + max(0.0_dp, -(px*sx + py*sy)))
             elsewhere
                 mx = 0
             end where
@@ -356,10 +360,18 @@ contains
             else
                 ! inexact Newton with an absolute floor tied to the outer tolerance: a residual
                 ! worth a traction error of 0.3·tol needs no further Krylov work
-                tol_in = max(settings%forcing*dnorm, 0.3_dp*settings%tol*axx*sqrt(sum(px**2 + py**2)))
+                ! forcing term: constant, or once the subdivision has settled (no change in the
+                ! last step, same preconditioner) Eisenstat–Walker's superlinear choice
+                ! 0.9·(‖d_k‖/‖d_{k−1}‖)², floored at 1e−3
+                eta_k = settings%forcing
+                if (settings%adaptive_forcing .and. .not. changed .and. newton > 1 .and. dnorm_prev > 0 .and. &
+                    (fft_prec .eqv. fft_prev)) &
+                    eta_k = max(1.0e-3_dp, min(settings%forcing, 0.9_dp*(dnorm/dnorm_prev)**2))
+                tol_in = max(eta_k*dnorm, 0.3_dp*settings%tol*pscale*sqrt(sum(px**2 + py**2)))
                 call gmres(nit)
             end if
             it_total = it_total + nit
+            dnorm_prev = dnorm
             ! update: adhesion tractions, slip angles (rotation on the circle)
             pox = px; poy = py
             where (adh)
@@ -440,49 +452,93 @@ contains
 
         !> Left preconditioner P, in place.  Adhesion: along each run of consecutive adhesion
         !! elements in x, the sum from the run's front (leading side) down to the element,
-        !! times δx — it turns the steady adhesion rows (u_I − u_{I+x})/δx into
-        !! u_I − u_front+x, an SPD-like shift operator minus one value per run; y rows scaled
-        !! by A^xx_II/A^yy_II.  Slip: the diagonal scaling in mx.
+        !! times δx — the exact inverse of the convective difference on the run, it turns the
+        !! steady adhesion rows (u_I − u_{I+x})/δx into u_I − u_front+x, TangCG's shift
+        !! operator A minus one value per run.  Then 'fft': TangCG's FFT block inverse of A
+        !! (fc_tangprec) on the adhesion area (masked), so that P·J ≈ I − M·(one value per
+        !! run); 'runsum': y rows scaled by A^xx_II/A^yy_II.  Slip: the diagonal scaling in mx.
         subroutine precondition(rx, ry)
             real(dp), intent(inout) :: rx(:, :), ry(:, :)
             integer :: i, j
-            real(dp) :: accx, accy
+            real(dp) :: accx, accy, ys
+            ys = yscale
+            if (fft_prec) ys = 1
             do j = 1, ny
                 accx = 0; accy = 0
                 do i = nx, 1, -1
                     if (adh(i, j)) then
                         accx = accx + rx(i, j)*gdx; accy = accy + ry(i, j)*gdx
-                        rx(i, j) = accx; ry(i, j) = accy*yscale
+                        rx(i, j) = accx; ry(i, j) = accy*ys
                     else
                         accx = 0; accy = 0
                         rx(i, j) = mx(i, j)*rx(i, j); ry(i, j) = 0
                     end if
                 end do
             end do
+            if (fft_prec) then
+                where (adh)
+                    zx = rx; zy = ry
+                elsewhere
+                    zx = 0; zy = 0
+                end where
+                call block_inverse(zx, zy, qsx, qsy)
+                where (adh)
+                    rx = qsx; ry = qsy
+                end where
+            end if
         end subroutine precondition
 
-        !> q = P·J·v for a direction v in primary variables, into (qx, qy).
+        !> (zx, zy) = M (dx, dy), M TangCG's FFT block inverse of A (top%prec): two forward
+        !! and two inverse transforms on the operator's buffers.
+        subroutine block_inverse(dx, dy, rzx, rzy)
+            real(dp), intent(in) :: dx(:, :), dy(:, :)
+            real(dp), intent(out) :: rzx(:, :), rzy(:, :)
+            call top%a_xx%forward(dx, top%spec_x)
+            call top%a_xx%forward(dy, top%spec_y)
+            top%work = top%spec_x*top%prec%mxx + top%spec_y*top%prec%mxy
+            call top%a_xx%backward(top%work, rzx)
+            top%work = top%spec_x*top%prec%mxy + top%spec_y*top%prec%myy
+            call top%a_xx%backward(top%work, rzy)
+            top%nproducts = top%nproducts + 1   ! as costly as a product: counted with them
+        end subroutine block_inverse
+
+        !> q = P·J·v for a direction v in primary variables, into (qx, qy).  One pass builds
+        !! the traction direction, one the convective difference and the rows (the hot loop of
+        !! the solver: no array temporaries).
         subroutine jacobian_product(vx, vy, qx, qy)
             real(dp), intent(in) :: vx(:, :), vy(:, :)
             real(dp), intent(out) :: qx(:, :), qy(:, :)
-            zx = vx; zy = vy
-            where (adh)
-                wkx = zx; wky = zy
-            elsewhere (slp)
-                wkx = -zx*py; wky = zx*px
-            elsewhere
-                wkx = 0; wky = 0
-            end where
+            integer :: i, j
+            real(dp) :: cxv, cyv
+            do j = 1, ny
+                do i = 1, nx
+                    if (adh(i, j)) then
+                        wkx(i, j) = vx(i, j); wky(i, j) = vy(i, j)
+                    else if (slp(i, j)) then
+                        wkx(i, j) = -vx(i, j)*py(i, j); wky(i, j) = vx(i, j)*px(i, j)
+                    else
+                        wkx(i, j) = 0; wky(i, j) = 0
+                    end if
+                end do
+            end do
             call top%apply(wkx, wky, qsx, qsy)
-            call convective_difference(qsx, top%grid%dx, cx)
-            call convective_difference(qsy, top%grid%dx, cy)
-            where (adh)
-                qx = cx; qy = cy
-            elsewhere (slp)
-                qx = px*cy - py*cx + sy*wkx - sx*wky; qy = 0
-            elsewhere
-                qx = 0; qy = 0
-            end where
+            do j = 1, ny
+                do i = 1, nx
+                    ! convective difference (f_i − f_{i+1})/δx, f_{nx+1} = 0
+                    if (i < nx) then
+                        cxv = (qsx(i, j) - qsx(i + 1, j))/gdx; cyv = (qsy(i, j) - qsy(i + 1, j))/gdx
+                    else
+                        cxv = qsx(i, j)/gdx; cyv = qsy(i, j)/gdx
+                    end if
+                    if (adh(i, j)) then
+                        qx(i, j) = cxv; qy(i, j) = cyv
+                    else if (slp(i, j)) then
+                        qx(i, j) = px(i, j)*cyv - py(i, j)*cxv + sy(i, j)*wkx(i, j) - sx(i, j)*wky(i, j); qy(i, j) = 0
+                    else
+                        qx(i, j) = 0; qy(i, j) = 0
+                    end if
+                end do
+            end do
             call precondition(qx, qy)
         end subroutine jacobian_product
 
@@ -502,7 +558,7 @@ contains
                     call jacobian_product(solx, soly, vb(:, :, 1, 1), vb(:, :, 2, 1))
                     vb(:, :, 1, 1) = ex - vb(:, :, 1, 1); vb(:, :, 2, 1) = ey - vb(:, :, 2, 1)
                 end if
-                beta = sqrt(sum(vb(:, :, :, 1)**2))
+                beta = sqrt(dot(vb(:, :, :, 1), vb(:, :, :, 1), 2*nx*ny))
                 if (beta <= tol_in .or. beta == 0) exit
                 vb(:, :, :, 1) = vb(:, :, :, 1)/beta
                 gvec = 0; gvec(1) = beta
@@ -513,11 +569,11 @@ contains
                     kk = k
                     call jacobian_product(vb(:, :, 1, k), vb(:, :, 2, k), vb(:, :, 1, k + 1), vb(:, :, 2, k + 1))
                     do j = 1, k      ! modified Gram–Schmidt
-                        h = sum(vb(:, :, :, j)*vb(:, :, :, k + 1))
+                        h = dot(vb(:, :, :, j), vb(:, :, :, k + 1), 2*nx*ny)
                         hess(j, k) = h
                         vb(:, :, :, k + 1) = vb(:, :, :, k + 1) - h*vb(:, :, :, j)
                     end do
-                    hess(k + 1, k) = sqrt(sum(vb(:, :, :, k + 1)**2))
+                    hess(k + 1, k) = sqrt(dot(vb(:, :, :, k + 1), vb(:, :, :, k + 1), 2*nx*ny))
                     if (hess(k + 1, k) > 0) vb(:, :, :, k + 1) = vb(:, :, :, k + 1)/hess(k + 1, k)
                     do j = 1, k - 1   ! previous Givens rotations
                         tmp = cs(j)*hess(j, k) + sn(j)*hess(j + 1, k)

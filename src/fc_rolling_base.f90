@@ -5,7 +5,7 @@
 module fc_rolling_base
     use fc_kinds
     use fc_geometry, only: fc_grid
-    use fc_tangcg, only: fc_tangential_operator, fc_tangential_result
+    use fc_tangcg, only: fc_tangential_operator, fc_tangential_result, EL_ADHESION, EL_SLIP
     implicit none
     private
 
@@ -16,6 +16,12 @@ module fc_rolling_base
         integer :: maxit = 2000                !! GMRES: Krylov iterations in all; SteadyGS: sweeps
         integer :: restart = 40                !! GMRES restart length
         real(dp) :: forcing = 0.1_dp           !! GMRES: relative residual reduction per Newton step
+        !> GMRES left preconditioner of the adhesion rows: 'fft' (run sums along x, then TangCG's
+        !! FFT block inverse of A on the adhesion area) or 'runsum' (run sums, diagonal scaling)
+        character(len=8) :: preconditioner = 'fft'
+        !> GMRES: Eisenstat–Walker's superlinear forcing term once the subdivision has settled
+        !! (.false.: the constant `forcing` throughout)
+        logical :: adaptive_forcing = .true.
     end type fc_rolling_settings
 
     !> Loading of a steady rolling problem.
@@ -41,7 +47,7 @@ module fc_rolling_base
         logical :: fastsim = .false.       !! steady: Kalker's simplified theory on the Hertz ellipse, no grid
     end type fc_rolling_case
 
-    public :: convective_difference, rigid_creepage, traction_change, steady_diagonal, finish
+    public :: convective_difference, rigid_creepage, traction_change, steady_diagonal, finish, rolling_summary, dot
 
 contains
 
@@ -114,5 +120,46 @@ contains
         end if
         res%residual = change
     end subroutine finish
+
+    !> Forces, moment and element counts.
+    subroutine rolling_summary(grid, res)
+        type(fc_grid), intent(in) :: grid
+        type(fc_tangential_result), intent(inout) :: res
+        integer :: i, j
+        res%fx = sum(res%px)*grid%area()
+        res%fy = sum(res%py)*grid%area()
+        res%mz = 0
+        do j = 1, grid%ny
+            do i = 1, grid%nx
+                res%mz = res%mz + (grid%x(i)*res%py(i, j) - grid%y(j)*res%px(i, j))
+            end do
+        end do
+        res%mz = res%mz*grid%area()
+        res%nadh = count(res%state == EL_ADHESION)
+        res%nslip = count(res%state == EL_SLIP)
+        res%ncon = res%nadh + res%nslip
+    end subroutine rolling_summary
+
+    !> Dot product of two contiguous vectors with four partial sums: the Krylov solver's
+    !! Gram–Schmidt is dominated by its dot products, and a single running sum serialises
+    !! on the addition latency.
+    pure real(dp) function dot(a, b, n)
+        integer, intent(in) :: n
+        real(dp), intent(in) :: a(n), b(n)
+        real(dp) :: s1, s2, s3, s4
+        integer :: i, m
+        s1 = 0; s2 = 0; s3 = 0; s4 = 0
+        m = n - mod(n, 4)
+        do i = 1, m, 4
+            s1 = s1 + a(i)*b(i)
+            s2 = s2 + a(i + 1)*b(i + 1)
+            s3 = s3 + a(i + 2)*b(i + 2)
+            s4 = s4 + a(i + 3)*b(i + 3)
+        end do
+        do i = m + 1, n
+            s1 = s1 + a(i)*b(i)
+        end do
+        dot = (s1 + s2) + (s3 + s4)
+    end function dot
 
 end module fc_rolling_base
