@@ -56,7 +56,8 @@ module fc_auto
     use fc_fmg, only: fc_quadratic_surface, fc_punch_rough_surface, fc_wavy_surface
     use fc_icfile, only: fc_ic_set
     use fc_icfile_load, only: load_influence_source
-    use fc_errors, only: FC_ERR_VALUE, FC_ERR_UNSUPPORTED, FC_ERR_NO_CONTACT, FC_ERR_FRICTION_BOUND
+    use fc_errors, only: FC_ERR_VALUE, FC_ERR_UNSUPPORTED, FC_ERR_NO_CONTACT, FC_ERR_FRICTION_BOUND, &
+        FC_ERR_IC_FILE, FC_ERR_MODEL_RANGE
     use fc_strings, only: fmt_int, fmt_real
     use fc_scene, only: fc_case, case_setup, is_tangential, is_line_contact
     use fc_case_result, only: fc_level, fc_auto_outcome
@@ -616,7 +617,7 @@ contains
         call fastsim(out%hertz%a, out%hertz%b, out%hertz%fn, s%tangential%mu, out%material%g, out%material%nu, &
                      s%tangential%xi, s%tangential%eta, s%tangential%phi, 200, 200, fr, stat, errmsg)
         if (stat /= 0) then
-            stat = FC_ERR_VALUE; return
+            stat = FC_ERR_MODEL_RANGE; return
         end if
         out%fx = fr%fx; out%fy = fr%fy; out%mz = fr%mz
         call add(out%reductions, "model = 'fastsim': elliptic Hertz and Kalker's simplified theory (FASTSIM), no grid")
@@ -681,10 +682,10 @@ contains
         call load_influence_source(s%ic_file, s%ic_file2, s%material%g1, s%material%nu1, s%material%g2, &
             s%material%nu2, ic, stat, errmsg)
         if (stat /= 0) then
-            stat = FC_ERR_VALUE; errmsg = "ic_file = '"//trim(s%ic_file)//"': "//trim(errmsg); return
+            stat = FC_ERR_IC_FILE; return
         end if
         call set_influence_coefficients(ops, ic, stat, errmsg)
-        if (stat /= 0) stat = FC_ERR_VALUE
+        if (stat /= 0) stat = FC_ERR_IC_FILE
     end subroutine use_ic_file
 
 end module fc_auto

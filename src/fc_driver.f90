@@ -36,7 +36,7 @@ module fc_driver
     use fc_scene, only: fc_case
     use fc_strings, only: fmt_int, fmt_real
     use fc_errors, only: FC_ERR_VALUE, FC_ERR_FRICTION_BOUND, FC_ERR_NO_CONTACT, FC_ERR_GEOMETRY, FC_ERR_IO, FC_ERR_ALLOC, &
-        FC_ERR_GRID
+        FC_ERR_GRID, FC_ERR_IC_FILE, FC_ERR_MODEL_RANGE
     use fc_output, only: fc_case_summary, write_case_json, write_case_csv, write_case_npy, write_case_report
     use fc_auto, only: fc_auto_outcome, solve_case_auto
     implicit none
@@ -597,6 +597,16 @@ contains
             errmsg = '&geometry '//trim(errmsg)
         case (FC_ERR_ALLOC)
             errmsg = '&grid '//trim(errmsg)
+        case (FC_ERR_IC_FILE)
+            if (len_trim(state%ic_file2) > 0) then
+                errmsg = "&material ic_file = '"//trim(state%ic_file)//"', ic_file2 = '"//trim(state%ic_file2)// &
+                    "': "//trim(errmsg)
+            else
+                errmsg = "&material ic_file = '"//trim(state%ic_file)//"': "//trim(errmsg)
+            end if
+        case (FC_ERR_MODEL_RANGE)
+            errmsg = "&solver model = '"//trim(state%model)//"' with &geometry rx = "//fmt_real(state%rx)//', ry = '// &
+                fmt_real(state%ry)//': '//trim(errmsg)
         case (FC_ERR_GRID)
             errmsg = '&grid nx = '//fmt_int(auto%grid%nx)//', ny = '//fmt_int(auto%grid%ny)// &
                 " with &solver normal = '"//trim(state%normal_solver)//"': "//trim(errmsg)//"; or use normal = 'bccg'"

@@ -34,6 +34,8 @@ module fc_kinds
     integer, parameter, public :: FC_ERR_ALLOC = 9          !! memory allocation failed
     integer, parameter, public :: FC_ERR_INTERNAL = 10      !! unexpected internal error
     integer, parameter, public :: FC_ERR_GEOMETRY = 11      !! the geometry cannot touch on this grid
+    integer, parameter, public :: FC_ERR_IC_FILE = 12       !! an influence-coefficient file cannot be used
+    integer, parameter, public :: FC_ERR_MODEL_RANGE = 13   !! the case lies outside a simplified model's range
 
 
     public :: status_name, check_iteration_settings
