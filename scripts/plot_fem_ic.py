@@ -21,7 +21,8 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DOC = os.path.join(ROOT, "doc")
 
 
-NAMES = {"hex": "Mesh1 nested boxes", "tensor": "tensor hexahedra", "prism": "Mesh2 prism"}
+NAMES = {"hex": "Mesh1 nested boxes", "tensor": "tensor hexahedra", "prism": "Mesh2 extruded prisms",
+         "tprism": "tensor prisms"}
 
 
 def rows(name):
@@ -40,10 +41,10 @@ def coef_chart():
     for (mesh, order, integ, f), rs in sorted(groups.items()):
         rs.sort(key=lambda r: float(r["l_over_hc"]))
         kind = "quadratic" if order == "2" else "linear"
-        if order == "2" and mesh != "prism":
+        if order == "2" and mesh in ("hex", "tensor"):
             kind += " (C3D20R)" if integ == "reduced" else " (C3D20)"
         ax.loglog([float(r["l_over_hc"]) for r in rs], [max(float(r["err_origin"]), 1e-5) for r in rs],
-                  "o-" if mesh == "hex" else ("s--" if mesh == "tensor" else "^:"),
+                  {"hex": "o-", "tensor": "s--", "prism": "v-", "tprism": "^:"}[mesh],
                   label=f"{NAMES[mesh]}, {kind}, f = {float(f):g}")
     ax.axhline(0.01, ls="--", c="k", lw=0.8, label="target eq. 5.12")
     ax.set_xlabel("L / h_c")
@@ -66,7 +67,7 @@ def cost_chart():
             cost = float(r["ccx_cpu_s"]) + float(r["solve_s"])
             err = abs(float(r[key]))
             ref = abs(float(r[key + "_halfspace"]))
-            mk = {"hex": "o", "tensor": "s", "prism": "^"}[r["mesh"]]
+            mk = {"hex": "o", "tensor": "s", "prism": "v", "tprism": "^"}[r["mesh"]]
             integ = "R" if r["integration"] == "reduced" else ""
             ax.loglog(cost, max(err, 1e-7), mk,
                       label=f"{r['grid']}² {NAMES[r['mesh']]} {integ} f={r['stretch']} L={float(r['L_mm']):g}")

@@ -17,6 +17,7 @@ module fc_fem_ic
     use fc_kinds, only: dp, msg_len
     use fc_fem_mesh
     use fc_fem_shell
+    use fc_fem_extruded
     use fc_icfile, only: fc_ic_set, ic_set_allocate, hash_text
     implicit none
     private
@@ -87,6 +88,7 @@ contains
         type(fc_fem_top), intent(out), optional :: top_out
         type(fc_fem_top) :: top
         type(fc_fem_mesh_t) :: mesh
+        type(fc_fem_extruded_t) :: ext
         real(dp), allocatable :: uz(:, :, :), ux(:, :, :), uy(:, :, :)
         character(len=:), allocatable :: dir
         logical :: made_dir, need_y
@@ -109,6 +111,10 @@ contains
         if (top%shell) then
             call build_shell_mesh(p, nx, ny, dx, dy, top%sh, stat, errmsg); if (stat /= 0) return
             info%nodes = top%sh%nnodes; info%elements = top%sh%nelems; info%domain = top%sh%domain
+        else if (p%mesh == 'prism') then
+            call build_extruded_mesh(p, nx, ny, dx, dy, ext, stat, errmsg); if (stat /= 0) return
+            call extruded_top(ext, mesh)
+            info%nodes = ext%nnodes; info%elements = ext%nelems; info%domain = ext%domain
         else
             call build_fem_mesh(p, nx, ny, dx, dy, mesh, stat, errmsg); if (stat /= 0) return
             info%nodes = mesh%nnodes; info%elements = mesh%nelems; info%domain = mesh%domain
@@ -117,7 +123,7 @@ contains
         call make_workdir(p, fem_model_hash(p, g, nu, nx, ny, dx, dy), dir, made_dir, stat, errmsg)
         if (stat /= 0) return
         info%workdir = dir
-        need_y = (.not. top%shell .and. mesh%prism) .or. abs(dx - dy) > 1.0e-12_dp*max(dx, dy)
+        need_y = p%mesh == 'prism' .or. p%mesh == 'tprism' .or. abs(dx - dy) > 1.0e-12_dp*max(dx, dy)
         call run_case(FEM_LOAD_Z, 'job_z', uz); if (stat /= 0) return
         if (p%normal_only) then
             allocate (ux, uy, mold=uz); ux = 0; uy = 0
@@ -155,6 +161,8 @@ contains
             real(dp), allocatable :: v(:, :)
             if (top%shell) then
                 call write_shell_deck(dir//'/'//job//'.inp', p, top%sh, load_dir, g, nu, dx, dy, stat, errmsg)
+            else if (p%mesh == 'prism') then
+                call write_extruded_deck(dir//'/'//job//'.inp', p, ext, load_dir, g, nu, dx, dy, stat, errmsg)
             else
                 call write_fem_deck(dir//'/'//job//'.inp', p, mesh, load_dir, g, nu, dx, dy, stat, errmsg)
             end if

@@ -26,7 +26,7 @@ module fc_fem_mesh
 
     !> Parameters of the FE model (`&fem` group); 0 means "automatic" where stated.
     type, public :: fc_fem_params
-        character(len=8) :: mesh = 'hex'          !! 'hex' (Mesh1, nested boxes), 'tensor' (tensor-product hexahedra) or 'prism' (Mesh2)
+        character(len=8) :: mesh = 'hex'          !! 'hex' (Mesh1, nested boxes), 'prism' (Mesh2, extruded), 'tensor' or 'tprism' (tensor products)
         integer :: order = 2                      !! element order: 2 quadratic (default), 1 linear
         character(len=16) :: load = 'constant'    !! 'constant' (piecewise constant) or 'bilinear' (tent)
         real(dp) :: l_over_hc = 0                 !! domain size L/h_c (0: automatic, see doc/numerical_ic.md)
@@ -78,16 +78,16 @@ contains
         integer :: k
         if (p%l_over_hc == 0) then
             select case (p%mesh)
-            case ('prism'); p%l_over_hc = max(80.0_dp, 50.0_dp*max(nx, ny))
+            case ('prism', 'tprism'); p%l_over_hc = max(80.0_dp, 50.0_dp*max(nx, ny))
             case ('tensor'); p%l_over_hc = max(80.0_dp, 400.0_dp*max(nx, ny))
             case default; p%l_over_hc = min(1.0e7_dp, max(80.0_dp, 4.0e4_dp*max(nx, ny)))
             end select
         end if
         if (p%stretch == 0) then
             p%stretch = 1.2_dp
-            if (p%mesh == 'prism') p%stretch = 1.5_dp
+            if (p%mesh == 'prism' .or. p%mesh == 'tprism') p%stretch = 1.5_dp
             do k = 1, size(candidates)
-                if (p%mesh == 'hex') exit   ! 3m² elements per layer: the thesis' f is cheap
+                if (p%mesh == 'hex' .or. p%mesh == 'prism') exit   ! nested boxes/squares: the thesis' f is cheap
                 if (model_nodes(p, nx, ny, dx, dy) <= auto_nodes) exit
                 if (candidates(k) > p%stretch) p%stretch = candidates(k)
             end do
@@ -95,7 +95,7 @@ contains
         if (p%stretch_far == 0) p%stretch_far = p%stretch
         if (len_trim(p%integration) == 0) then
             p%integration = 'full'
-            if (p%mesh /= 'prism' .and. p%order == 2) p%integration = 'reduced'
+            if ((p%mesh == 'hex' .or. p%mesh == 'tensor') .and. p%order == 2) p%integration = 'reduced'
         end if
     end subroutine fem_defaults
 
@@ -125,7 +125,7 @@ contains
         if (q%order == 2) then
             count = count + int(ncx, i8)*(ncy + 1)*(ncz + 1) + int(ncx + 1, i8)*ncy*(ncz + 1) + &
                 int(ncx + 1, i8)*(ncy + 1)*ncz
-            if (q%mesh == 'prism') count = count + int(ncx + 1, i8)*ncy*ncz
+            if (q%mesh == 'tprism') count = count + int(ncx + 1, i8)*ncy*ncz
         end if
     end function model_nodes
 
@@ -146,13 +146,13 @@ contains
         character(len=*), intent(out) :: errmsg
         real(dp) :: m, l
         stat = 1
-        if (p%mesh /= 'hex' .and. p%mesh /= 'prism' .and. p%mesh /= 'tensor') then
-            errmsg = "fem: mesh = '"//trim(p%mesh)//"' must be 'hex', 'tensor' or 'prism'"; return
+        if (p%mesh /= 'hex' .and. p%mesh /= 'prism' .and. p%mesh /= 'tensor' .and. p%mesh /= 'tprism') then
+            errmsg = "fem: mesh = '"//trim(p%mesh)//"' must be 'hex', 'prism', 'tensor' or 'tprism'"; return
         end if
         if (p%integration /= 'full' .and. p%integration /= 'reduced') then
             errmsg = "fem: integration = '"//trim(p%integration)//"' must be 'full' or 'reduced'"; return
         end if
-        if (p%integration == 'reduced' .and. (p%mesh == 'prism' .or. p%order /= 2)) then
+        if (p%integration == 'reduced' .and. (p%mesh == 'prism' .or. p%mesh == 'tprism' .or. p%order /= 2)) then
             errmsg = "fem: integration = 'reduced' needs quadratic hexahedra (mesh = 'hex' or 'tensor', order = 2)"; return
         end if
         if (p%order /= 1 .and. p%order /= 2) then
@@ -271,7 +271,7 @@ contains
         call graded_axis(l, min(dx, dy)/p%hc_over_hs, m, p%stretch, near, p%stretch_far, mesh%zs, stat, errmsg)
         if (stat /= 0) return
         mesh%nxc = ubound(mesh%xs, 1); mesh%nyc = ubound(mesh%ys, 1); mesh%nzc = ubound(mesh%zs, 1)
-        mesh%prism = p%mesh == 'prism'
+        mesh%prism = p%mesh == 'tprism'
         mesh%order = p%order
         ! count first so that an oversized model is refused before allocating it
         count = int(mesh%nxc + 1, i8)*(mesh%nyc + 1)*(mesh%nzc + 1)

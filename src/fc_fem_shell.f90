@@ -40,7 +40,7 @@ module fc_fem_shell
         real(dp) :: domain = 0                      !! L [mm]
     end type fc_fem_shell_t
 
-    public :: build_shell_mesh, write_shell_deck, shell_surface_value, shell_top_nodes
+    public :: build_shell_mesh, write_shell_deck, shell_surface_value, shell_top_nodes, box_levels
 
 contains
 
@@ -53,7 +53,7 @@ contains
         type(fc_fem_shell_t), intent(out) :: mesh
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
-        real(dp) :: tmp(0:max_cells_axis + 1), h, lmax, smax, near
+        real(dp) :: lmax, smax, near
         integer :: n, m, i, j, k, q, nn
         integer(i8) :: count
         stat = 1
@@ -64,34 +64,9 @@ contains
         lmax = max(mesh%lx, mesh%ly)
         smax = mesh%domain/lmax
         near = max((nx + 1)*dx, (ny + 1)*dy)/lmax
-        ! scales of the layer boundaries: thickness h_s·f^k (in cube units 1/m)
-        tmp(0) = 1; n = 0; h = 1.0_dp/m
-        do while (tmp(n) < smax)
-            if (tmp(n) < near) then
-                h = h*p%stretch
-            else
-                h = h*p%stretch_far
-            end if
-            if (n >= max_cells_axis) then
-                write (errmsg, '(a,i0,a)') 'fem: the shell mesh needs more than ', max_cells_axis, &
-                    ' layers; raise stretch or lower l_over_hc or hc_over_hs'
-                return
-            end if
-            n = n + 1
-            tmp(n) = tmp(n - 1) + h
-        end do
-        tmp(n) = smax
-        if (n > 1) then
-            if (tmp(n) - tmp(n - 1) < 0.5_dp*(tmp(n - 1) - tmp(n - 2))) then
-                n = n - 1; tmp(n) = smax
-            end if
-        end if
+        call box_levels(p, m, smax, near, mesh%sigma, n, stat, errmsg); if (stat /= 0) return
         mesh%nl = n
-        allocate (mesh%sigma(0:2*n))
-        do k = 0, n
-            mesh%sigma(2*k) = tmp(k)
-            if (k > 0) mesh%sigma(2*k - 1) = (tmp(k - 1) + tmp(k))/2
-        end do
+        stat = 1
         ! count before allocating: (2m+1)³ lattice in the cube, 3(2m)²+3(2m)+1 surface points per level
         count = int(2*m + 1, i8)**3 + int(2*n, i8)*(3_i8*(2*m)**2 + 3_i8*(2*m) + 1)
         if (count > 4*max_nodes) then
@@ -144,6 +119,49 @@ contains
             end if
         end function exists
     end subroutine build_shell_mesh
+
+    !> Scales σ(0:2n) of the half-levels of n nested boxes around a cube of m cells per edge
+    !! (σ(0) = 1 the cube, σ(2n) = smax; odd q: the radial mid-points): layer k is h_s·f^k
+    !! thick (in cube units 1/m), f = stretch inside `near`, stretch_far beyond; the last layer
+    !! is merged with its neighbour if it is less than half as thick.
+    subroutine box_levels(p, m, smax, near, sigma, n, stat, errmsg)
+        type(fc_fem_params), intent(in) :: p
+        integer, intent(in) :: m
+        real(dp), intent(in) :: smax, near
+        real(dp), allocatable, intent(out) :: sigma(:)
+        integer, intent(out) :: n, stat
+        character(len=*), intent(out) :: errmsg
+        real(dp) :: tmp(0:max_cells_axis + 1), h
+        integer :: k
+        stat = 1
+        tmp(0) = 1; n = 0; h = 1.0_dp/m
+        do while (tmp(n) < smax)
+            if (tmp(n) < near) then
+                h = h*p%stretch
+            else
+                h = h*p%stretch_far
+            end if
+            if (n >= max_cells_axis) then
+                write (errmsg, '(a,i0,a)') 'fem: the mesh needs more than ', max_cells_axis, &
+                    ' layers; raise stretch or lower l_over_hc or hc_over_hs'
+                return
+            end if
+            n = n + 1
+            tmp(n) = tmp(n - 1) + h
+        end do
+        tmp(n) = smax
+        if (n > 1) then
+            if (tmp(n) - tmp(n - 1) < 0.5_dp*(tmp(n - 1) - tmp(n - 2))) then
+                n = n - 1; tmp(n) = smax
+            end if
+        end if
+        allocate (sigma(0:2*n))
+        do k = 0, n
+            sigma(2*k) = tmp(k)
+            if (k > 0) sigma(2*k - 1) = (tmp(k - 1) + tmp(k))/2
+        end do
+        stat = 0; errmsg = ''
+    end subroutine box_levels
 
     !> Node number at half-level q (0: the cube) and lattice (i, j, k).
     pure integer function node_id(mesh, q, i, j, k) result(id)

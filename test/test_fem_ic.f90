@@ -11,6 +11,7 @@ module test_fem_ic
         FEM_LOAD_Z, FEM_LOAD_X
     use fc_fem_ic, only: compute_fem_ic, fc_fem_info
     use fc_fem_shell, only: fc_fem_shell_t, build_shell_mesh, write_shell_deck
+    use fc_fem_extruded, only: fc_fem_extruded_t, build_extruded_mesh, write_extruded_deck
     use fc_icfile_load, only: load_influence_source
     use fc_geometry, only: quadratic_gap
     use fc_contact
@@ -197,7 +198,8 @@ contains
 
     !> The equivalent nodal forces of the deck add up to the load on the quarter cell:
     !! dx·dy/4 for the unit constant traction and for the tent (volume dx·dy over the whole
-    !! support, a quarter of it modelled), Mesh1 and Mesh2, quadratic and linear; normal
+    !! support, a quarter of it modelled), every mesh (nested boxes, extruded prisms, tensor
+    !! hexahedra and prisms), quadratic and linear; normal
     !! loads point into the body (−z), x loads along +x.
     subroutine test_nodal_forces(error)
         type(error_type), allocatable, intent(out) :: error
@@ -209,11 +211,14 @@ contains
         character(len=256) :: line
         logical :: in_cload
         type(fc_fem_shell_t) :: shell
-        character(len=8), parameter :: meshes(6) = ['tensor', 'prism ', 'tensor', 'tensor', 'hex   ', 'hex   ']
-        character(len=8), parameter :: loads(6) = ['constant', 'constant', 'bilinear', 'constant', 'bilinear', 'constant']
-        integer, parameter :: orders(6) = [2, 2, 2, 1, 2, 1]
+        type(fc_fem_extruded_t) :: ext
+        character(len=8), parameter :: meshes(8) = ['tensor', 'tprism', 'tensor', 'tensor', 'hex   ', 'hex   ', &
+            'prism ', 'prism ']
+        character(len=8), parameter :: loads(8) = ['constant', 'constant', 'bilinear', 'constant', 'bilinear', 'constant', &
+            'constant', 'bilinear']
+        integer, parameter :: orders(8) = [2, 2, 2, 1, 2, 1, 2, 1]
         dx = 0.3_dp; dy = 0.2_dp
-        do k = 1, 6
+        do k = 1, 8
             p = fc_fem_params()
             p%mesh = meshes(k); p%load = loads(k); p%order = orders(k); p%stretch = 2
             call fem_defaults(p, 4, 4, dx, dy)
@@ -223,6 +228,11 @@ contains
                 call build_shell_mesh(p, 4, 4, dx, dy, shell, stat, msg)
                 call check(error, stat == 0, msg); if (allocated(error)) return
                 call write_shell_deck('test_fem_ic_deck.inp', p, shell, merge(FEM_LOAD_Z, FEM_LOAD_X, loads(k) /= 'bilinear'), &
+                    200.0_dp, 0.3_dp, dx, dy, stat, msg)
+            else if (p%mesh == 'prism') then
+                call build_extruded_mesh(p, 4, 4, dx, dy, ext, stat, msg)
+                call check(error, stat == 0, msg); if (allocated(error)) return
+                call write_extruded_deck('test_fem_ic_deck.inp', p, ext, merge(FEM_LOAD_Z, FEM_LOAD_X, loads(k) /= 'bilinear'), &
                     200.0_dp, 0.3_dp, dx, dy, stat, msg)
             else
                 call build_fem_mesh(p, 4, 4, dx, dy, mesh, stat, msg)
