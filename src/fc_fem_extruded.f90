@@ -13,7 +13,7 @@
 !! odd tangential index is the mid-point of a layer quadrilateral's diagonal (the edge shared
 !! by its two triangles), placed at the straight diagonal's mid-point.
 module fc_fem_extruded
-    use fc_kinds, only: dp, i8
+    use fc_kinds, only: dp, i8, FC_ERR_VALUE, FC_ERR_IO
     use fc_fem_mesh, only: fc_fem_params, fc_fem_mesh_t, top_face_forces, write_deck_physics, fem_domain, &
         graded_axis, max_nodes, lattice_coord
     use fc_fem_shell, only: box_levels
@@ -55,7 +55,7 @@ contains
         mesh%nxc = ubound(mesh%xs, 1)
         call box_levels(p, m, mesh%domain/mesh%ly, near/mesh%ly, mesh%sigma, mesh%nl, stat, errmsg)
         if (stat /= 0) return
-        stat = 1
+        stat = FC_ERR_VALUE
         count = int(2*mesh%nxc + 1, i8)*((2*m + 1)**2 + int(2*mesh%nl, i8)*(4*m + 1))
         if (count > 4*max_nodes) then
             write (errmsg, '(a,i0,a)') 'fem: the prism mesh would have more than ', 4*max_nodes, &
@@ -184,7 +184,7 @@ contains
         m = mesh%m
         open (newunit=u, file=path, status='replace', action='write', iostat=ios, iomsg=iomsg)
         if (ios /= 0) then
-            stat = 1; errmsg = 'fem: cannot write the CalculiX deck '//trim(path)//': '//trim(iomsg); return
+            stat = FC_ERR_IO; errmsg = 'fem: cannot write the CalculiX deck '//trim(path)//': '//trim(iomsg); return
         end if
         write (u, '(a)') '** fastcontact influence-coefficient model (Mesh2: extruded prisms), generated'
         write (u, '(a)') '*NODE, NSET=NALL'
@@ -235,7 +235,7 @@ contains
         end if
         close (u, iostat=ios, iomsg=iomsg)
         if (ios /= 0) then
-            stat = 1; errmsg = 'fem: cannot write the CalculiX deck '//trim(path)//': '//trim(iomsg); return
+            stat = FC_ERR_IO; errmsg = 'fem: cannot write the CalculiX deck '//trim(path)//': '//trim(iomsg); return
         end if
         stat = 0; errmsg = ''
     contains

@@ -21,7 +21,7 @@
 !! σ(q) (odd q: the radial mid-edge nodes).  Quadratic: serendipity nodes (at most one odd
 !! lattice index); linear: even indices only.
 module fc_fem_shell
-    use fc_kinds, only: dp, i8
+    use fc_kinds, only: dp, i8, FC_ERR_VALUE, FC_ERR_IO
     use fc_fem_mesh, only: fc_fem_params, face_shape, face_lattice, top_face_forces, write_deck_physics, hex_type, &
         fem_domain, max_cells_axis, max_nodes
     implicit none
@@ -56,7 +56,7 @@ contains
         real(dp) :: lmax, smax, near
         integer :: n, m, i, j, k, q, nn
         integer(i8) :: count
-        stat = 1
+        stat = FC_ERR_VALUE
         m = nint(p%cube_over_hc*p%hc_over_hs)
         mesh%m = m; mesh%order = p%order
         mesh%lx = m*dx/p%hc_over_hs; mesh%ly = m*dy/p%hc_over_hs; mesh%lz = m*min(dx, dy)/p%hc_over_hs
@@ -66,7 +66,7 @@ contains
         near = max((nx + 1)*dx, (ny + 1)*dy)/lmax
         call box_levels(p, m, smax, near, mesh%sigma, n, stat, errmsg); if (stat /= 0) return
         mesh%nl = n
-        stat = 1
+        stat = FC_ERR_VALUE
         ! count before allocating: (2m+1)³ lattice in the cube, 3(2m)²+3(2m)+1 surface points per level
         count = int(2*m + 1, i8)**3 + int(2*n, i8)*(3_i8*(2*m)**2 + 3_i8*(2*m) + 1)
         if (count > 4*max_nodes) then
@@ -133,7 +133,7 @@ contains
         character(len=*), intent(out) :: errmsg
         real(dp) :: tmp(0:max_cells_axis + 1), h
         integer :: k
-        stat = 1
+        stat = FC_ERR_VALUE
         tmp(0) = 1; n = 0; h = 1.0_dp/m
         do while (tmp(n) < smax)
             if (tmp(n) < near) then
@@ -255,7 +255,7 @@ contains
         m = mesh%m
         open (newunit=u, file=path, status='replace', action='write', iostat=ios, iomsg=iomsg)
         if (ios /= 0) then
-            stat = 1; errmsg = 'fem: cannot write the CalculiX deck '//trim(path)//': '//trim(iomsg); return
+            stat = FC_ERR_IO; errmsg = 'fem: cannot write the CalculiX deck '//trim(path)//': '//trim(iomsg); return
         end if
         write (u, '(a)') '** fastcontact influence-coefficient model (nested boxes), generated'
         write (u, '(a,i0,a,i0,a,es12.5)') '** cube ', m, '^3 cells, ', mesh%nl, ' layers, L = ', mesh%domain
@@ -312,7 +312,7 @@ contains
         end if
         close (u, iostat=ios, iomsg=iomsg)
         if (ios /= 0) then
-            stat = 1; errmsg = 'fem: cannot write the CalculiX deck '//trim(path)//': '//trim(iomsg); return
+            stat = FC_ERR_IO; errmsg = 'fem: cannot write the CalculiX deck '//trim(path)//': '//trim(iomsg); return
         end if
         stat = 0; errmsg = ''
     contains
