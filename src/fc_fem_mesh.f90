@@ -1,15 +1,16 @@
 !> Finite element model of thesis §5.2–5.3 for numerical influence coefficients: the
-!! quarter block [−L,0]×[−L,0]×[−L,0] of a body, its graded tensor-product mesh (Mesh1:
-!! hexahedra, Mesh2: prisms), the boundary conditions of thesis Table 5.1 and the
-!! equivalent nodal forces of a unit load on the quarter of the source element, written
-!! as a CalculiX input deck.
+!! `&fem` parameters, their defaults and limits, the parts of a CalculiX deck common to every
+!! mesh (boundary conditions of thesis Table 5.1, equivalent nodal forces of a unit load on
+!! the quarter of the source element, the step), and the graded tensor-product meshes of the
+!! quarter block [−L,0]³ (`tensor`: hexahedra, `tprism`: prisms).  Mesh1 (nested boxes) is
+!! [[fc_fem_shell]], Mesh2 (extruded prisms) [[fc_fem_extruded]].
 !!
-!! Mesh (per axis, coordinates increasing from −L to 0): a uniform "cube" region [−l, 0]
-!! with m = l/h_s cells of size h_s = h_c/(h_c/h_s), then cells growing by the stretching
-!! factor f up to −L (the last cell absorbs the remainder).  Mesh1 uses these nodes as a
-!! tensor product of hexahedra (C3D20, or C3D8 when linear); Mesh2 splits every hexahedron
-!! into two wedges whose triangular faces lie in the planes x = const (the "cross-section"
-!! of the thesis), C3D15 or C3D6.  Nodes live on a lattice with two points per cell and
+!! Tensor meshes (per axis, coordinates increasing from −L to 0): a uniform "cube" region
+!! [−l, 0] with m = l/h_s cells of size h_s = h_c/(h_c/h_s), then cells growing by the
+!! stretching factor f up to −L (the last cell absorbs the remainder); `tensor` uses these
+!! nodes as a tensor product of hexahedra (C3D20(R), or C3D8 when linear); `tprism` splits
+!! every hexahedron into two wedges whose triangular faces lie in the planes x = const,
+!! C3D15 or C3D6.  Nodes live on a lattice with two points per cell and
 !! axis (corners at even, mid-edge nodes at odd lattice indices).
 !!
 !! Loads (thesis Table 5.1, Remark 5.1): a unit traction on the top face z = 0, either
