@@ -57,7 +57,8 @@ program fastcontact_ic
     dx = (m%xmax - m%xmin)/m%nx; dy = (m%ymax - m%ymin)/m%ny
     call fem_defaults(m%fem, m%nx, m%ny, dx, dy)
     write (*, '(3a,i0,3a,es10.3,4(a,g0.4))') 'fastcontact-ic: model ', trim(m%fem%mesh), ' order ', m%fem%order, &
-        ', load ', trim(m%fem%load), ', L = ', m%fem%l_over_hc*max(dx, dy), ' mm, L/h_c = ', m%fem%l_over_hc, &
+        ' ('//trim(m%fem%integration)//' integration), load ', trim(m%fem%load), ', L = ', &
+        m%fem%l_over_hc*max(dx, dy), ' mm, L/h_c = ', m%fem%l_over_hc, &
         ', l/h_c = ', m%fem%cube_over_hc, ', h_c/h_s = ', m%fem%hc_over_hs, ', f = ', m%fem%stretch
     cached = .false.
     inquire (file=out_path, exist=exists)

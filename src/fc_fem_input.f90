@@ -2,7 +2,7 @@
 !! `&grid` groups plus `&fem` (the FE model, every key defaulted).  Groups are read with
 !! namelist READs; an unknown key or group is an error that names it.
 module fc_fem_input
-    use fc_kinds, only: dp, msg_len, FC_ERR_IO
+    use fc_kinds, only: dp, msg_len, FC_ERR_VALUE, FC_ERR_IO
     use fc_fem_mesh, only: fc_fem_params
     implicit none
     private
@@ -31,7 +31,7 @@ contains
         real(dp) :: g1, nu1, g2, nu2, xmin, xmax, ymin, ymax
         integer :: nx, ny
         character(len=256) :: ic_file
-        character(len=8) :: mesh
+        character(len=8) :: mesh, integration
         integer :: order, threads
         character(len=16) :: load
         real(dp) :: l_over_hc, cube_over_hc, hc_over_hs, stretch, stretch_far
@@ -41,7 +41,7 @@ contains
         namelist /material/ g1, nu1, g2, nu2, ic_file
         namelist /grid/ nx, ny, xmin, xmax, ymin, ymax
         namelist /fem/ mesh, order, load, l_over_hc, cube_over_hc, hc_over_hs, stretch, stretch_far, solver, threads, ccx, &
-            workdir, keep_work
+            workdir, keep_work, integration
         stat = FC_ERR_IO
         open (newunit=u, file=path, status='old', action='read', iostat=ios, iomsg=iomsg)
         if (ios /= 0) then
@@ -65,7 +65,7 @@ contains
         cube_over_hc = m%fem%cube_over_hc; hc_over_hs = m%fem%hc_over_hs; stretch = m%fem%stretch
         stretch_far = m%fem%stretch_far
         solver = m%fem%solver; threads = m%fem%threads; ccx = m%fem%ccx; workdir = m%fem%workdir
-        keep_work = m%fem%keep_work
+        keep_work = m%fem%keep_work; integration = m%fem%integration
         read (u, nml=fem, iostat=ios, iomsg=iomsg)
         if (ios > 0) then
             errmsg = trim(path)//': &fem: '//trim(iomsg); close (u); return
@@ -75,7 +75,7 @@ contains
         m%fem%cube_over_hc = cube_over_hc; m%fem%hc_over_hs = hc_over_hs; m%fem%stretch = stretch
         m%fem%stretch_far = stretch_far
         m%fem%solver = lower(solver); m%fem%threads = threads; m%fem%ccx = ccx; m%fem%workdir = workdir
-        m%fem%keep_work = keep_work
+        m%fem%keep_work = keep_work; m%fem%integration = lower(integration)
         if (.not. (m%g1 > 0)) then
             write (errmsg, '(a,es12.4,a)') 'material: g1 = ', m%g1, ' must be > 0 (the body computed)'; return
         end if

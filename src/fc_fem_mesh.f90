@@ -1,15 +1,16 @@
 !> Finite element model of thesis §5.2–5.3 for numerical influence coefficients: the
-!! quarter block [−L,0]×[−L,0]×[−L,0] of a body, its graded tensor-product mesh (Mesh1:
-!! hexahedra, Mesh2: prisms), the boundary conditions of thesis Table 5.1 and the
-!! equivalent nodal forces of a unit load on the quarter of the source element, written
-!! as a CalculiX input deck.
+!! `&fem` parameters, their defaults and limits, the parts of a CalculiX deck common to every
+!! mesh (boundary conditions of thesis Table 5.1, equivalent nodal forces of a unit load on
+!! the quarter of the source element, the step), and the graded tensor-product meshes of the
+!! quarter block [−L,0]³ (`tensor`: hexahedra, `tprism`: prisms).  Mesh1 (nested boxes) is
+!! [[fc_fem_shell]], Mesh2 (extruded prisms) [[fc_fem_extruded]].
 !!
-!! Mesh (per axis, coordinates increasing from −L to 0): a uniform "cube" region [−l, 0]
-!! with m = l/h_s cells of size h_s = h_c/(h_c/h_s), then cells growing by the stretching
-!! factor f up to −L (the last cell absorbs the remainder).  Mesh1 uses these nodes as a
-!! tensor product of hexahedra (C3D20, or C3D8 when linear); Mesh2 splits every hexahedron
-!! into two wedges whose triangular faces lie in the planes x = const (the "cross-section"
-!! of the thesis), C3D15 or C3D6.  Nodes live on a lattice with two points per cell and
+!! Tensor meshes (per axis, coordinates increasing from −L to 0): a uniform "cube" region
+!! [−l, 0] with m = l/h_s cells of size h_s = h_c/(h_c/h_s), then cells growing by the
+!! stretching factor f up to −L (the last cell absorbs the remainder); `tensor` uses these
+!! nodes as a tensor product of hexahedra (C3D20(R), or C3D8 when linear); `tprism` splits
+!! every hexahedron into two wedges whose triangular faces lie in the planes x = const,
+!! C3D15 or C3D6.  Nodes live on a lattice with two points per cell and
 !! axis (corners at even, mid-edge nodes at odd lattice indices).
 !!
 !! Loads (thesis Table 5.1, Remark 5.1): a unit traction on the top face z = 0, either
@@ -26,7 +27,7 @@ module fc_fem_mesh
 
     !> Parameters of the FE model (`&fem` group); 0 means "automatic" where stated.
     type, public :: fc_fem_params
-        character(len=8) :: mesh = 'hex'          !! 'hex' (Mesh1) or 'prism' (Mesh2)
+        character(len=8) :: mesh = 'hex'          !! 'hex' (Mesh1, nested boxes), 'prism' (Mesh2, extruded), 'tensor' or 'tprism' (tensor products)
         integer :: order = 2                      !! element order: 2 quadratic (default), 1 linear
         character(len=16) :: load = 'constant'    !! 'constant' (piecewise constant) or 'bilinear' (tent)
         real(dp) :: l_over_hc = 0                 !! domain size L/h_c (0: automatic, see doc/numerical_ic.md)
@@ -39,6 +40,7 @@ module fc_fem_mesh
         character(len=256) :: ccx = 'ccx'         !! CalculiX command
         character(len=256) :: workdir = ''        !! work directory ('' : a fresh one under $TMPDIR or /tmp)
         logical :: keep_work = .false.            !! keep the work directory after success
+        character(len=8) :: integration = ''      !! 'full' or 'reduced' (C3D20R; quadratic hexahedra only); '': automatic
         logical :: normal_only = .false.          !! run the normal load case only (A^zz, A^xz, A^yz; benchmarks)
     end type fc_fem_params
 
@@ -58,14 +60,17 @@ module fc_fem_mesh
     integer(i8), parameter :: auto_nodes = 30000_i8   !! node budget of the automatic stretch
 
     public :: fem_defaults, fem_validate, build_fem_mesh, write_fem_deck, fem_domain, lattice_coord
-    public :: face_shape, face_lattice
+    public :: face_shape, face_lattice, top_face_forces, write_deck_physics, hex_type, graded_axis, max_cells_axis, max_nodes
 
 contains
 
-    !> Fill the automatic values of `p` for a grid of nx×ny cells of size dx×dy.  The
-    !! automatic growth factor is the thesis' (1.2 Mesh1, 1.5 Mesh2) when that model has at
-    !! most `auto_nodes` nodes, else the first of 1.5, 2, 2.5, 3 that fits (a one-to-two
-    !! minute CalculiX run on one core); a stretch given explicitly is kept.
+    !> Fill the automatic values of `p` for a grid of nx×ny cells of size dx×dy.
+    !! Mesh1 (`hex`, nested boxes): the thesis' f = 1.2 and L = 4·10⁴ × the grid extent (the
+    !! clamped faces lower the coefficients near the load by ≈ 1.9 ρ/L, see
+    !! doc/numerical_ic.md), at most 10⁷ h_c.  The tensor-product meshes (`tensor`, `prism`):
+    !! the thesis' f (1.2, 1.5) when that model has at most `auto_nodes` nodes, else the first
+    !! of 1.5, 2, 2.5, 3 that fits (a one-to-two minute CalculiX run on one core).  Reduced
+    !! integration for quadratic hexahedra.  Values given explicitly are kept.
     subroutine fem_defaults(p, nx, ny, dx, dy)
         type(fc_fem_params), intent(inout) :: p
         integer, intent(in) :: nx, ny
@@ -73,21 +78,26 @@ contains
         real(dp), parameter :: candidates(4) = [1.5_dp, 2.0_dp, 2.5_dp, 3.0_dp]
         integer :: k
         if (p%l_over_hc == 0) then
-            if (p%mesh == 'prism') then
-                p%l_over_hc = max(80.0_dp, 50.0_dp*max(nx, ny))
-            else
-                p%l_over_hc = max(80.0_dp, 400.0_dp*max(nx, ny))
-            end if
+            select case (p%mesh)
+            case ('prism', 'tprism'); p%l_over_hc = max(80.0_dp, 50.0_dp*max(nx, ny))
+            case ('tensor'); p%l_over_hc = max(80.0_dp, 400.0_dp*max(nx, ny))
+            case default; p%l_over_hc = min(1.0e7_dp, max(80.0_dp, 4.0e4_dp*max(nx, ny)))
+            end select
         end if
         if (p%stretch == 0) then
             p%stretch = 1.2_dp
-            if (p%mesh == 'prism') p%stretch = 1.5_dp
+            if (p%mesh == 'prism' .or. p%mesh == 'tprism') p%stretch = 1.5_dp
             do k = 1, size(candidates)
+                if (p%mesh == 'hex' .or. p%mesh == 'prism') exit   ! nested boxes/squares: the thesis' f is cheap
                 if (model_nodes(p, nx, ny, dx, dy) <= auto_nodes) exit
                 if (candidates(k) > p%stretch) p%stretch = candidates(k)
             end do
         end if
         if (p%stretch_far == 0) p%stretch_far = p%stretch
+        if (len_trim(p%integration) == 0) then
+            p%integration = 'full'
+            if ((p%mesh == 'hex' .or. p%mesh == 'tensor') .and. p%order == 2) p%integration = 'reduced'
+        end if
     end subroutine fem_defaults
 
     !> Nodes of the model `p` would build (0 when the axes cannot be built).
@@ -116,7 +126,7 @@ contains
         if (q%order == 2) then
             count = count + int(ncx, i8)*(ncy + 1)*(ncz + 1) + int(ncx + 1, i8)*ncy*(ncz + 1) + &
                 int(ncx + 1, i8)*(ncy + 1)*ncz
-            if (q%mesh == 'prism') count = count + int(ncx + 1, i8)*ncy*ncz
+            if (q%mesh == 'tprism') count = count + int(ncx + 1, i8)*ncy*ncz
         end if
     end function model_nodes
 
@@ -137,8 +147,14 @@ contains
         character(len=*), intent(out) :: errmsg
         real(dp) :: m, l
         stat = FC_ERR_VALUE
-        if (p%mesh /= 'hex' .and. p%mesh /= 'prism') then
-            errmsg = "fem: mesh = '"//trim(p%mesh)//"' must be 'hex' or 'prism'"; return
+        if (p%mesh /= 'hex' .and. p%mesh /= 'prism' .and. p%mesh /= 'tensor' .and. p%mesh /= 'tprism') then
+            errmsg = "fem: mesh = '"//trim(p%mesh)//"' must be 'hex', 'prism', 'tensor' or 'tprism'"; return
+        end if
+        if (p%integration /= 'full' .and. p%integration /= 'reduced') then
+            errmsg = "fem: integration = '"//trim(p%integration)//"' must be 'full' or 'reduced'"; return
+        end if
+        if (p%integration == 'reduced' .and. (p%mesh == 'prism' .or. p%mesh == 'tprism' .or. p%order /= 2)) then
+            errmsg = "fem: integration = 'reduced' needs quadratic hexahedra (mesh = 'hex' or 'tensor', order = 2)"; return
         end if
         if (p%order /= 1 .and. p%order /= 2) then
             write (errmsg, '(a,i0,a)') 'fem: order = ', p%order, ' must be 1 (linear) or 2 (quadratic)'; return
@@ -256,7 +272,7 @@ contains
         call graded_axis(l, min(dx, dy)/p%hc_over_hs, m, p%stretch, near, p%stretch_far, mesh%zs, stat, errmsg)
         if (stat /= 0) return
         mesh%nxc = ubound(mesh%xs, 1); mesh%nyc = ubound(mesh%ys, 1); mesh%nzc = ubound(mesh%zs, 1)
-        mesh%prism = p%mesh == 'prism'
+        mesh%prism = p%mesh == 'tprism'
         mesh%order = p%order
         ! count first so that an oversized model is refused before allocating it
         count = int(mesh%nxc + 1, i8)*(mesh%nyc + 1)*(mesh%nzc + 1)
@@ -316,6 +332,8 @@ contains
         integer :: u, ios, i, j, k, ne
         integer :: c(0:1, 0:1, 0:1)
         character(len=msg_len) :: iomsg
+        real(dp), allocatable :: f(:, :), vals(:)
+        integer, allocatable :: ids(:)
         open (newunit=u, file=path, status='replace', action='write', iostat=ios, iomsg=iomsg)
         if (ios /= 0) then
             stat = FC_ERR_IO; errmsg = 'fem: cannot write the CalculiX deck '//trim(path)//': '//trim(iomsg); return
@@ -340,11 +358,7 @@ contains
                 write (u, '(a)') '*ELEMENT, TYPE=C3D6, ELSET=EALL'
             end if
         else
-            if (mesh%order == 2) then
-                write (u, '(a)') '*ELEMENT, TYPE=C3D20, ELSET=EALL'
-            else
-                write (u, '(a)') '*ELEMENT, TYPE=C3D8, ELSET=EALL'
-            end if
+            write (u, '(a)') '*ELEMENT, TYPE='//hex_type(p)//', ELSET=EALL'
         end if
         ne = 0
         do k = 0, mesh%nzc - 1
@@ -354,45 +368,18 @@ contains
                 end do
             end do
         end do
-        write (u, '(a)') '*MATERIAL, NAME=BODY'
-        write (u, '(a)') '*ELASTIC'
-        write (u, '(es19.12,",",es19.12)') 2*g*(1 + nu), nu
-        write (u, '(a)') '*SOLID SECTION, ELSET=EALL, MATERIAL=BODY'
         ! node sets of the boundary faces and of the top surface (output)
         call write_face_set('NXMIN', 1, 0); call write_face_set('NXZERO', 1, 2*mesh%nxc)
         call write_face_set('NYMIN', 2, 0); call write_face_set('NYZERO', 2, 2*mesh%nyc)
         call write_face_set('NZMIN', 3, 0); call write_face_set('NTOP', 3, 2*mesh%nzc)
-        write (u, '(a)') '*BOUNDARY'
-        write (u, '(a)') 'NXMIN,1,3,0.'
-        write (u, '(a)') 'NYMIN,1,3,0.'
-        write (u, '(a)') 'NZMIN,1,3,0.'
-        select case (dir)
-        case (FEM_LOAD_Z)   ! symmetric about x = 0 and y = 0
-            write (u, '(a)') 'NXZERO,1,1,0.'
-            write (u, '(a)') 'NYZERO,2,2,0.'
-        case (FEM_LOAD_X)   ! antisymmetric about x = 0, symmetric about y = 0
-            write (u, '(a)') 'NXZERO,2,3,0.'
-            write (u, '(a)') 'NYZERO,2,2,0.'
-        case (FEM_LOAD_Y)   ! symmetric about x = 0, antisymmetric about y = 0
-            write (u, '(a)') 'NXZERO,1,1,0.'
-            write (u, '(a)') 'NYZERO,1,1,0.'
-            write (u, '(a)') 'NYZERO,3,3,0.'
-        end select
-        write (u, '(a)') '*STEP'
-        select case (p%solver)
-        case ('spooles'); write (u, '(a)') '*STATIC, SOLVER=SPOOLES'
-        case ('iterative cholesky'); write (u, '(a)') '*STATIC, SOLVER=ITERATIVE CHOLESKY'
-        case ('iterative scaling'); write (u, '(a)') '*STATIC, SOLVER=ITERATIVE SCALING'
-        case ('pardiso'); write (u, '(a)') '*STATIC, SOLVER=PARDISO'
-        case ('pastix'); write (u, '(a)') '*STATIC, SOLVER=PASTIX'
-        end select
-        call write_loads(stat, errmsg)
+        call top_face_forces(p%load, mesh%order, mesh%xs, mesh%ys, dx, dy, f, stat, errmsg)
+        if (stat == 0) then
+            ids = pack(mesh%id(:, :, 2*mesh%nzc), f /= 0); vals = pack(f, f /= 0)
+            call write_deck_physics(u, p, dir, g, nu, ['NXMIN', 'NYMIN', 'NZMIN'], ids, vals)
+        end if
         if (stat /= 0) then
             close (u, status='delete'); return
         end if
-        write (u, '(a)') '*NODE PRINT, NSET=NTOP'
-        write (u, '(a)') 'U'
-        write (u, '(a)') '*END STEP'
         close (u, iostat=ios, iomsg=iomsg)
         if (ios /= 0) then
             stat = FC_ERR_IO; errmsg = 'fem: cannot write the CalculiX deck '//trim(path)//': '//trim(iomsg); return
@@ -475,71 +462,128 @@ contains
             end do
         end subroutine write_face_set
 
-        !> Equivalent nodal forces of the unit traction on the top face (Gauss 4×4 per face).
-        subroutine write_loads(stat, errmsg)
-            integer, intent(out) :: stat
-            character(len=*), intent(out) :: errmsg
-            real(dp), allocatable :: f(:, :)
-            real(dp) :: gp(4), gw(4), xa, xb, ya, yb, xi, eta, x, y, w, t, nsh(8), ext_x, ext_y
-            integer :: ii, jj, q1, q2, a, nn, kt, dofc, li, lj
-            real(dp) :: sgn
-            gp = [-0.861136311594053_dp, -0.339981043584856_dp, 0.339981043584856_dp, 0.861136311594053_dp]
-            gw = [0.347854845137454_dp, 0.652145154862546_dp, 0.652145154862546_dp, 0.347854845137454_dp]
-            stat = 0; errmsg = ''
-            allocate (f(0:2*mesh%nxc, 0:2*mesh%nyc), source=0.0_dp)
-            kt = 2*mesh%nzc
-            if (p%load == 'constant') then
-                ext_x = dx/2; ext_y = dy/2
-            else
-                ext_x = dx; ext_y = dy
+    end subroutine write_fem_deck
+
+    !> CalculiX type of the hexahedra of `p`: C3D20 / C3D20R (reduced integration) or C3D8.
+    function hex_type(p) result(t)
+        type(fc_fem_params), intent(in) :: p
+        character(len=:), allocatable :: t
+        if (p%order == 1) then
+            t = 'C3D8'
+        else if (p%integration == 'reduced') then
+            t = 'C3D20R'
+        else
+            t = 'C3D20'
+        end if
+    end function hex_type
+
+    !> Equivalent nodal forces f(lattice i, lattice j) of the unit traction (constant on
+    !! [−dx/2,0]×[−dy/2,0] or the tent on [−dx,0]×[−dy,0]) on a tensor grid of top faces with
+    !! cell boundaries xs, ys (increasing to 0); 4×4 Gauss points per face.
+    subroutine top_face_forces(load, order, xs, ys, dx, dy, f, stat, errmsg)
+        character(len=*), intent(in) :: load
+        integer, intent(in) :: order
+        real(dp), intent(in) :: xs(0:), ys(0:), dx, dy
+        real(dp), allocatable, intent(out) :: f(:, :)
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        real(dp) :: gp(4), gw(4), xa, xb, ya, yb, xi, eta, x, y, w, t, nsh(8), ext_x, ext_y
+        integer :: ii, jj, q1, q2, a, nn, li, lj, nxc, nyc
+        gp = [-0.861136311594053_dp, -0.339981043584856_dp, 0.339981043584856_dp, 0.861136311594053_dp]
+        gw = [0.347854845137454_dp, 0.652145154862546_dp, 0.652145154862546_dp, 0.347854845137454_dp]
+        stat = 0; errmsg = ''
+        nxc = ubound(xs, 1); nyc = ubound(ys, 1)
+        allocate (f(0:2*nxc, 0:2*nyc), source=0.0_dp)
+        if (load == 'constant') then
+            ext_x = dx/2; ext_y = dy/2
+        else
+            ext_x = dx; ext_y = dy
+        end if
+        nn = 8; if (order == 1) nn = 4
+        do jj = 0, nyc - 1
+            ya = ys(jj); yb = ys(jj + 1)
+            if (yb <= -ext_y*(1 - 1e-9_dp)) cycle
+            if (ya < -ext_y*(1 + 1e-9_dp)) then
+                stat = FC_ERR_INTERNAL; errmsg = 'fem: internal error: the load edge in y is not a mesh line'; return
             end if
-            do jj = 0, mesh%nyc - 1
-                ya = mesh%ys(jj); yb = mesh%ys(jj + 1)
-                if (yb <= -ext_y*(1 - 1e-9_dp)) cycle
-                if (ya < -ext_y*(1 + 1e-9_dp)) then
-                    stat = FC_ERR_INTERNAL; errmsg = 'fem: internal error: the load edge in y is not a mesh line'; return
+            do ii = 0, nxc - 1
+                xa = xs(ii); xb = xs(ii + 1)
+                if (xb <= -ext_x*(1 - 1e-9_dp)) cycle
+                if (xa < -ext_x*(1 + 1e-9_dp)) then
+                    stat = FC_ERR_INTERNAL; errmsg = 'fem: internal error: the load edge in x is not a mesh line'; return
                 end if
-                do ii = 0, mesh%nxc - 1
-                    xa = mesh%xs(ii); xb = mesh%xs(ii + 1)
-                    if (xb <= -ext_x*(1 - 1e-9_dp)) cycle
-                    if (xa < -ext_x*(1 + 1e-9_dp)) then
-                        stat = FC_ERR_INTERNAL; errmsg = 'fem: internal error: the load edge in x is not a mesh line'; return
-                    end if
-                    nn = 8; if (mesh%order == 1) nn = 4
-                    do q2 = 1, 4
-                        do q1 = 1, 4
-                            xi = gp(q1); eta = gp(q2)
-                            x = (xa + xb)/2 + xi*(xb - xa)/2
-                            y = (ya + yb)/2 + eta*(yb - ya)/2
-                            if (p%load == 'constant') then
-                                t = 1
-                            else
-                                t = (1 - abs(x)/dx)*(1 - abs(y)/dy)
-                            end if
-                            w = gw(q1)*gw(q2)*(xb - xa)*(yb - ya)/4*t
-                            call face_shape(mesh%order, xi, eta, nsh)
-                            do a = 1, nn
-                                call face_lattice(ii, jj, a, li, lj)
-                                f(li, lj) = f(li, lj) + w*nsh(a)
-                            end do
+                do q2 = 1, 4
+                    do q1 = 1, 4
+                        xi = gp(q1); eta = gp(q2)
+                        x = (xa + xb)/2 + xi*(xb - xa)/2
+                        y = (ya + yb)/2 + eta*(yb - ya)/2
+                        t = 1
+                        if (load /= 'constant') t = (1 - abs(x)/dx)*(1 - abs(y)/dy)
+                        w = gw(q1)*gw(q2)*(xb - xa)*(yb - ya)/4*t
+                        call face_shape(order, xi, eta, nsh)
+                        do a = 1, nn
+                            call face_lattice(ii, jj, a, li, lj)
+                            f(li, lj) = f(li, lj) + w*nsh(a)
                         end do
                     end do
                 end do
             end do
-            select case (dir)
-            case (FEM_LOAD_Z); dofc = 3; sgn = -1   ! pressure pushes into the body
-            case (FEM_LOAD_X); dofc = 1; sgn = 1
-            case default; dofc = 2; sgn = 1
-            end select
-            write (u, '(a)') '*CLOAD'
-            do jj = 0, 2*mesh%nyc
-                do ii = 0, 2*mesh%nxc
-                    if (f(ii, jj) == 0) cycle
-                    write (u, '(i0,",",i0,",",es19.12)') mesh%id(ii, jj, kt), dofc, sgn*f(ii, jj)
-                end do
-            end do
-        end subroutine write_loads
-    end subroutine write_fem_deck
+        end do
+    end subroutine top_face_forces
+
+    !> The part of a deck common to every mesh: material, the clamped node sets `clamped`,
+    !! the symmetry conditions of thesis Table 5.1 on the node sets NXZERO and NYZERO for the
+    !! load direction `dir`, the static step with the nodal forces `vals` (unit traction,
+    !! before the sign of the direction) on nodes `ids`, and the output of node set NTOP.
+    subroutine write_deck_physics(u, p, dir, g, nu, clamped, ids, vals)
+        integer, intent(in) :: u, dir
+        type(fc_fem_params), intent(in) :: p
+        real(dp), intent(in) :: g, nu, vals(:)
+        character(len=*), intent(in) :: clamped(:)
+        integer, intent(in) :: ids(:)
+        integer :: q, dofc
+        real(dp) :: sgn
+        write (u, '(a)') '*MATERIAL, NAME=BODY'
+        write (u, '(a)') '*ELASTIC'
+        write (u, '(es19.12,",",es19.12)') 2*g*(1 + nu), nu
+        write (u, '(a)') '*SOLID SECTION, ELSET=EALL, MATERIAL=BODY'
+        write (u, '(a)') '*BOUNDARY'
+        do q = 1, size(clamped)
+            write (u, '(a)') trim(clamped(q))//',1,3,0.'
+        end do
+        select case (dir)
+        case (FEM_LOAD_Z)   ! symmetric about x = 0 and y = 0
+            write (u, '(a)') 'NXZERO,1,1,0.'
+            write (u, '(a)') 'NYZERO,2,2,0.'
+        case (FEM_LOAD_X)   ! antisymmetric about x = 0, symmetric about y = 0
+            write (u, '(a)') 'NXZERO,2,3,0.'
+            write (u, '(a)') 'NYZERO,2,2,0.'
+        case (FEM_LOAD_Y)   ! symmetric about x = 0, antisymmetric about y = 0
+            write (u, '(a)') 'NXZERO,1,1,0.'
+            write (u, '(a)') 'NYZERO,1,1,0.'
+            write (u, '(a)') 'NYZERO,3,3,0.'
+        end select
+        write (u, '(a)') '*STEP'
+        select case (p%solver)
+        case ('spooles'); write (u, '(a)') '*STATIC, SOLVER=SPOOLES'
+        case ('iterative cholesky'); write (u, '(a)') '*STATIC, SOLVER=ITERATIVE CHOLESKY'
+        case ('iterative scaling'); write (u, '(a)') '*STATIC, SOLVER=ITERATIVE SCALING'
+        case ('pardiso'); write (u, '(a)') '*STATIC, SOLVER=PARDISO'
+        case ('pastix'); write (u, '(a)') '*STATIC, SOLVER=PASTIX'
+        end select
+        select case (dir)
+        case (FEM_LOAD_Z); dofc = 3; sgn = -1   ! pressure pushes into the body
+        case (FEM_LOAD_X); dofc = 1; sgn = 1
+        case default; dofc = 2; sgn = 1
+        end select
+        write (u, '(a)') '*CLOAD'
+        do q = 1, size(ids)
+            write (u, '(i0,",",i0,",",es19.12)') ids(q), dofc, sgn*vals(q)
+        end do
+        write (u, '(a)') '*NODE PRINT, NSET=NTOP'
+        write (u, '(a)') 'U'
+        write (u, '(a)') '*END STEP'
+    end subroutine write_deck_physics
 
     !> Lattice indices of local node `a` of top face (ii, jj): corners (−,−), (+,−), (+,+),
     !! (−,+), then mid-sides bottom, right, top, left (the order of [[face_shape]]).

@@ -126,7 +126,7 @@ contains
             return
         end if
         if (settings%preconditioner /= 'fft' .and. settings%preconditioner /= 'runsum') then
-            stat = 1; errmsg = "solver: rolling preconditioner = '"//trim(settings%preconditioner)// &
+            stat = FC_ERR_VALUE; errmsg = "solver: rolling preconditioner = '"//trim(settings%preconditioner)// &
                 "' is not one of 'fft', 'runsum'"
             return
         end if

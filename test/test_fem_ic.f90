@@ -10,6 +10,8 @@ module test_fem_ic
     use fc_fem_mesh, only: fc_fem_params, fc_fem_mesh_t, fem_defaults, fem_validate, build_fem_mesh, write_fem_deck, &
         FEM_LOAD_Z, FEM_LOAD_X
     use fc_fem_ic, only: compute_fem_ic, fc_fem_info
+    use fc_fem_shell, only: fc_fem_shell_t, build_shell_mesh, write_shell_deck
+    use fc_fem_extruded, only: fc_fem_extruded_t, build_extruded_mesh, write_extruded_deck
     use fc_icfile_load, only: load_influence_source
     use fc_geometry, only: quadratic_gap
     use fc_contact
@@ -196,7 +198,8 @@ contains
 
     !> The equivalent nodal forces of the deck add up to the load on the quarter cell:
     !! dx·dy/4 for the unit constant traction and for the tent (volume dx·dy over the whole
-    !! support, a quarter of it modelled), Mesh1 and Mesh2, quadratic and linear; normal
+    !! support, a quarter of it modelled), every mesh (nested boxes, extruded prisms, tensor
+    !! hexahedra and prisms), quadratic and linear; normal
     !! loads point into the body (−z), x loads along +x.
     subroutine test_nodal_forces(error)
         type(error_type), allocatable, intent(out) :: error
@@ -207,20 +210,36 @@ contains
         character(len=msg_len) :: msg
         character(len=256) :: line
         logical :: in_cload
-        character(len=8), parameter :: meshes(4) = ['hex  ', 'prism', 'hex  ', 'hex  ']
-        character(len=8), parameter :: loads(4) = ['constant', 'constant', 'bilinear', 'constant']
-        integer, parameter :: orders(4) = [2, 2, 2, 1]
+        type(fc_fem_shell_t) :: shell
+        type(fc_fem_extruded_t) :: ext
+        character(len=8), parameter :: meshes(8) = ['tensor', 'tprism', 'tensor', 'tensor', 'hex   ', 'hex   ', &
+            'prism ', 'prism ']
+        character(len=8), parameter :: loads(8) = ['constant', 'constant', 'bilinear', 'constant', 'bilinear', 'constant', &
+            'constant', 'bilinear']
+        integer, parameter :: orders(8) = [2, 2, 2, 1, 2, 1, 2, 1]
         dx = 0.3_dp; dy = 0.2_dp
-        do k = 1, 4
+        do k = 1, 8
             p = fc_fem_params()
             p%mesh = meshes(k); p%load = loads(k); p%order = orders(k); p%stretch = 2
             call fem_defaults(p, 4, 4, dx, dy)
             call fem_validate(p, 4, 4, dx, dy, stat, msg)
             call check(error, stat == 0, msg); if (allocated(error)) return
-            call build_fem_mesh(p, 4, 4, dx, dy, mesh, stat, msg)
-            call check(error, stat == 0, msg); if (allocated(error)) return
-            call write_fem_deck('test_fem_ic_deck.inp', p, mesh, merge(FEM_LOAD_Z, FEM_LOAD_X, k /= 3), 200.0_dp, &
-                0.3_dp, dx, dy, stat, msg)
+            if (p%mesh == 'hex') then
+                call build_shell_mesh(p, 4, 4, dx, dy, shell, stat, msg)
+                call check(error, stat == 0, msg); if (allocated(error)) return
+                call write_shell_deck('test_fem_ic_deck.inp', p, shell, merge(FEM_LOAD_Z, FEM_LOAD_X, loads(k) /= 'bilinear'), &
+                    200.0_dp, 0.3_dp, dx, dy, stat, msg)
+            else if (p%mesh == 'prism') then
+                call build_extruded_mesh(p, 4, 4, dx, dy, ext, stat, msg)
+                call check(error, stat == 0, msg); if (allocated(error)) return
+                call write_extruded_deck('test_fem_ic_deck.inp', p, ext, merge(FEM_LOAD_Z, FEM_LOAD_X, loads(k) /= 'bilinear'), &
+                    200.0_dp, 0.3_dp, dx, dy, stat, msg)
+            else
+                call build_fem_mesh(p, 4, 4, dx, dy, mesh, stat, msg)
+                call check(error, stat == 0, msg); if (allocated(error)) return
+                call write_fem_deck('test_fem_ic_deck.inp', p, mesh, merge(FEM_LOAD_Z, FEM_LOAD_X, loads(k) /= 'bilinear'), &
+                    200.0_dp, 0.3_dp, dx, dy, stat, msg)
+            end if
             call check(error, stat == 0, msg); if (allocated(error)) return
             open (newunit=u, file='test_fem_ic_deck.inp', status='old', action='read')
             total = 0; in_cload = .false.; ndof = 0
@@ -236,7 +255,7 @@ contains
             end do
             close (u, status='delete')
             write (msg, '(a,i0,a,es12.4,a,es12.4)') 'case ', k, ': nodal forces sum to ', total, ', load ', dx*dy/4
-            if (k /= 3) then
+            if (loads(k) /= 'bilinear') then
                 call check(error, ndof == 3 .and. abs(-total - dx*dy/4) < 1e-12_dp, msg)
             else
                 call check(error, ndof == 1 .and. abs(total - dx*dy/4) < 1e-12_dp, msg)
@@ -402,20 +421,19 @@ contains
     subroutine small_fem_model(p)
         type(fc_fem_params), intent(out) :: p
         p%mesh = 'hex'; p%order = 2; p%load = 'constant'
-        p%l_over_hc = 3200; p%cube_over_hc = 1; p%hc_over_hs = 4; p%stretch = 2.5_dp
+        p%l_over_hc = 32000; p%cube_over_hc = 1; p%hc_over_hs = 4; p%stretch = 1.5_dp
         p%workdir = 'test_fem_ic_work'
     end subroutine small_fem_model
 
     !> FE coefficients against the half-space ones and in a contact solve (thesis §5.3–5.4,
-    !! 8×8 grid of [−1.2, 1.2]², G = 200, ν = 0.42, a small model: L = 3200 h_c, f = 2.5):
-    !! A^zz, A^xx, A^yy at the origin within eq. 5.12's 1 %; along the axes the shape
-    !! A(0) − A(k) within 1 % (the clamped faces at distance L shift every coefficient near
-    !! the load by about the same amount, see doc/numerical_ic.md); A^xy, A^zx, A^xz with
-    !! their signs (xy within 5 %, the coupling blocks, least resolved next to the load, within
-    !! 10 %).  Then the Hertz sphere (approach 0.02) with both bodies' FE
-    !! coefficients: Fz within 1 % of the half-space solve on the same grid (measured
-    !! 0.3–0.5 % for such models) and within 2 % of Hertz's 9.1954 N; Fx within 1 % of
-    !! the half-space solve.
+    !! 8×8 grid of [−1.2, 1.2]², G = 200, ν = 0.42, a small Mesh1: nested boxes, f = 1.5,
+    !! L = 32 000 h_c, C3D20R, two CalculiX runs of about a second):
+    !! A^zz at every offset along both axes (0 … n) and the diagonal within eq. 5.12's 1 %
+    !! (measured ≤ 0.4 %; the clamped faces at L lower A(ρ) by ≈ 1.9 ρ/L = 0.05 % at the
+    !! grid's edge), A^xx, A^yy along the axes within 1 %, A^xy(1,1) within 2 %, A^zx, A^xz
+    !! next to the load within 10 % (and their signs).  Then the Hertz sphere (approach 0.02)
+    !! with both bodies' FE coefficients: Fz and Fx within 0.1 % of the half-space solve on
+    !! the same grid (measured 0.02 % and 0.005 %), Fz within 2 % of Hertz's 9.1954 N.
     subroutine test_fem_vs_analytic(error)
         type(error_type), allocatable, intent(out) :: error
         type(fc_fem_params) :: p
@@ -426,7 +444,7 @@ contains
         type(fc_contact_result) :: ra, rf
         integer :: stat, k
         integer, parameter :: n = 8
-        real(dp) :: h
+        real(dp) :: h, worst
         character(len=msg_len) :: msg
         character(len=120) :: line
         call small_fem_model(p)
@@ -436,19 +454,22 @@ contains
         call validate_ic_set(set, 'fem set', stat, msg)
         call check(error, stat == 0, trim(msg)); if (allocated(error)) return
         call analytic_body_set(200.0_dp, 0.42_dp, h, h, n, n, ana, stat, msg)
-        write (line, '(a,es10.3)') 'A^zz(0,0) outside eq. 5.12: ', dev(set%a(0, 0, 3, 3), ana%a(0, 0, 3, 3))
-        call check(error, abs(dev(set%a(0, 0, 3, 3), ana%a(0, 0, 3, 3))) < 0.01_dp, line)
-        do k = 1, 3
-            write (line, '(a,i0,a,es10.3)') 'A^zz(0) - A^zz(k) along the axes, offset ', k, ': ', &
-                dev(set%a(0, 0, 3, 3) - set%a(k, 0, 3, 3), ana%a(0, 0, 3, 3) - ana%a(k, 0, 3, 3))
-            call check(error, abs(dev(set%a(0, 0, 3, 3) - set%a(k, 0, 3, 3), ana%a(0, 0, 3, 3) - ana%a(k, 0, 3, 3))) &
-                < 0.01_dp, line)
-            call check(error, abs(dev(set%a(0, 0, 3, 3) - set%a(0, -k, 3, 3), ana%a(0, 0, 3, 3) - ana%a(0, -k, 3, 3))) &
-                < 0.01_dp, line)
+        worst = 0
+        do k = 0, n
+            worst = max(worst, abs(dev(set%a(k, 0, 3, 3), ana%a(k, 0, 3, 3))), abs(dev(set%a(0, -k, 3, 3), ana%a(0, -k, 3, 3))), &
+                abs(dev(set%a(k, k, 3, 3), ana%a(k, k, 3, 3))))
         end do
-        call check(error, abs(dev(set%a(0, 0, 1, 1), ana%a(0, 0, 1, 1))) < 0.01_dp, 'A^xx(0,0) outside 1 %')
-        call check(error, abs(dev(set%a(0, 0, 2, 2), ana%a(0, 0, 2, 2))) < 0.01_dp, 'A^yy(0,0) outside 1 %')
-        call check(error, abs(dev(set%a(1, 1, 1, 2), ana%a(1, 1, 1, 2))) < 0.05_dp, 'A^xy(1,1) outside 5 %')
+        write (line, '(a,es10.3)') 'A^zz along the axes and the diagonal outside eq. 5.12: worst ', worst
+        call check(error, worst < 0.01_dp, line)
+        worst = 0
+        do k = 0, n
+            worst = max(worst, abs(dev(set%a(k, 0, 1, 1), ana%a(k, 0, 1, 1))), abs(dev(set%a(0, k, 1, 1), ana%a(0, k, 1, 1))), &
+                abs(dev(set%a(k, 0, 2, 2), ana%a(k, 0, 2, 2))), abs(dev(set%a(0, k, 2, 2), ana%a(0, k, 2, 2))))
+        end do
+        write (line, '(a,es10.3)') 'A^xx, A^yy along the axes outside 1 %: worst ', worst
+        call check(error, worst < 0.01_dp, line)
+        write (line, '(a,es10.3)') 'A^xy(1,1) outside 2 %: ', dev(set%a(1, 1, 1, 2), ana%a(1, 1, 1, 2))
+        call check(error, abs(dev(set%a(1, 1, 1, 2), ana%a(1, 1, 1, 2))) < 0.02_dp, line)
         call check(error, abs(dev(set%a(1, 0, 3, 1), ana%a(1, 0, 3, 1))) < 0.1_dp, 'A^zx(1,0) outside 10 % (or sign)')
         call check(error, abs(dev(set%a(-1, 0, 1, 3), ana%a(-1, 0, 1, 3))) < 0.1_dp, 'A^xz(-1,0) outside 10 % (or sign)')
         if (allocated(error)) return
@@ -463,9 +484,9 @@ contains
         call check(error, stat == 0 .and. rf%status == 0, 'FE solve: '//trim(msg)); if (allocated(error)) return
         write (line, '(3(a,es10.3))') 'Fz: FE vs half-space ', dev(rf%normal%fn, ra%normal%fn), ', vs Hertz ', &
             dev(rf%normal%fn, 9.1954_dp), '; Fx FE vs half-space ', dev(rf%tangential%fx, ra%tangential%fx)
-        call check(error, abs(dev(rf%normal%fn, ra%normal%fn)) < 0.01_dp, line)
+        call check(error, abs(dev(rf%normal%fn, ra%normal%fn)) < 0.001_dp, line)
         call check(error, abs(dev(rf%normal%fn, 9.1954_dp)) < 0.02_dp, line)
-        call check(error, abs(dev(rf%tangential%fx, ra%tangential%fx)) < 0.01_dp, line)
+        call check(error, abs(dev(rf%tangential%fx, ra%tangential%fx)) < 0.001_dp, line)
         call ops_a%destroy(); call ops_f%destroy()
         call execute_command_line('rm -rf test_fem_ic_work')
     end subroutine test_fem_vs_analytic
