@@ -477,7 +477,7 @@ contains
             if (allocated(ops%ic%a)) call clear_influence_coefficients(ops)
             return
         end if
-        stat = FC_ERR_UNSUPPORTED
+        stat = FC_ERR_IC_FILE
         if (s%grid_auto) then
             errmsg = "ic_file with an automatic potential area: the area chooses its own element size, the file "// &
                 "holds coefficients for one; give a fixed grid (nx, ny, xmin, xmax, ymin, ymax) matching the file"

@@ -233,6 +233,10 @@ contains
         if (.not. real_in_range(s%target, 0.0_dp, nearest(1.0_dp, -1.0_dp))) then
             errmsg = '&solver target = '//fmt_real(s%target)//': must lie in [0, 1) (relative error; 0: off)'; return
         end if
+        ! the solver tolerance becomes 0.01·target: below 1e-10 it would reach rounding (or underflow)
+        if (s%target > 0 .and. s%target < 1.0e-10_dp) then
+            errmsg = '&solver target = '//fmt_real(s%target)//': must be 0 (off) or >= 1e-10 (relative error)'; return
+        end if
         if (s%max_levels < 2 .or. s%max_levels > 12) then
             errmsg = '&solver max_levels = '//fmt_int(s%max_levels)//': must lie in [2, 12]'; return
         end if
