@@ -412,6 +412,8 @@ contains
         type(fc_case_input), intent(in) :: s
         character(len=*), intent(out) :: errmsg
         logical :: steady, transient
+        real(dp), parameter :: max_element_steps = 1.0e7_dp   !! nsteps·nx·ny of a transient run
+        real(dp) :: steps
         errmsg = ''
         steady = s%problem == 'rolling'
         transient = s%problem == 'transient_rolling'
@@ -435,6 +437,23 @@ contains
         end if
         if (s%nsteps < 0 .or. s%nsteps > 100000) then
             errmsg = '&tangential nsteps = '//fmt_int(s%nsteps)//': must be in [0, 100000] (0: automatic)'; return
+        end if
+        ! cost bound: element solves of a transient run on a fixed grid (automatic steps: the
+        ! area length travelled four times at dq = dx, i.e. 4·nx steps)
+        if (transient .and. .not. grid_is_auto(s)) then
+            if (s%nsteps > 0) then
+                steps = s%nsteps
+            else if (s%dq > 0) then
+                steps = 4*(s%xmax - s%xmin)/s%dq
+            else
+                steps = 4*real(s%nx, dp)
+            end if
+            if (steps*real(s%nx, dp)*real(s%ny, dp) > max_element_steps) then
+                errmsg = '&tangential nsteps = '//fmt_int(s%nsteps)//' with &grid nx = '//fmt_int(s%nx)//', ny = '// &
+                    fmt_int(s%ny)//': steps x elements must be <= 1e7 (a run of minutes); fewer steps (nsteps, '// &
+                    'or a larger dq) or a coarser grid'
+                return
+            end if
         end if
         if (transient .and. s%tforce_prescribed) then
             errmsg = "&tangential fx, fy: problem = 'transient_rolling' takes creepages xi, eta, phi"; return
