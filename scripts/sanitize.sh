@@ -54,7 +54,7 @@ for nml in example/*.nml; do
 done
 if [ "$FUZZ_SECONDS" != 0 ]; then
     # ASan reserves terabytes of address space: no ulimit -v under the sanitizer
-    python3 scripts/fuzz_driver.py --driver "$driver" --budget "$FUZZ_SECONDS" --timeout 900 --mem-mb 0 \
+    python3 scripts/fuzz_driver.py --driver "$driver" --budget "$FUZZ_SECONDS" --timeout 1800 --mem-mb 0 \
         >"$tmp/fuzz.log" 2>&1 || { status=1; }
     grep -A12 'FUZZ FAILURE' "$tmp/fuzz.log" | head -n 80
     tail -n 1 "$tmp/fuzz.log"
