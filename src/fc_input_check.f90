@@ -28,7 +28,13 @@ contains
         end if
         select case (kind_of(key, maxlen))
         case ('real')
-            if (.not. is_real(v)) errmsg = head//'not a real number (e.g. 82000.0, 1.5e-3)'
+            if (.not. is_real(v)) then
+                errmsg = head//'not a real number (e.g. 82000.0, 1.5e-3)'
+            else if (decimal_magnitude(v) >= 308) then
+                ! rejected before the read converts it: the conversion would overflow (a trap
+                ! under -ffpe-trap=overflow, +Inf otherwise)
+                errmsg = head//'outside the double-precision range (|value| < 1e308)'
+            end if
         case ('integer')
             if (.not. is_integer_text(v)) then
                 errmsg = head//'not an integer'
@@ -87,6 +93,66 @@ contains
 
     !> A real literal: [sign] digits [. digits] [(e|d) [sign] digits], at least one digit in
     !! the mantissa, or NaN / Inf / Infinity with a sign (the validators reject those by key).
+    !> Decimal exponent of the first significant digit of a real literal that [[is_real]]
+    !! accepted (e.g. 12.5e3 → 4, 0.05 → −2, 0 → −huge); exponents beyond 9 digits saturate.
+    pure integer function decimal_magnitude(v) result(mag)
+        character(len=*), intent(in) :: v
+        integer :: i, n, nint_digits, lead0, ex, sgn, nd
+        logical :: nonzero
+        character(len=len(v)) :: w
+        w = v
+        call lower_in_place(w)
+        n = len_trim(w); i = 1
+        mag = -huge(1)
+        if (w(1:1) == '+' .or. w(1:1) == '-') i = 2
+        if (index(w, 'n') > 0) return                      ! nan, inf, infinity: checked by the validators
+        nint_digits = 0; lead0 = 0; nonzero = .false.
+        do while (i <= n)
+            if (.not. is_digit(w(i:i))) exit
+            if (w(i:i) /= '0' .or. nonzero) then
+                nonzero = .true.; nint_digits = nint_digits + 1
+            end if
+            i = i + 1
+        end do
+        if (i <= n) then
+            if (w(i:i) == '.') then
+                i = i + 1
+                do while (i <= n)
+                    if (.not. is_digit(w(i:i))) exit
+                    if (.not. nonzero) then
+                        if (w(i:i) == '0') then
+                            lead0 = lead0 + 1
+                        else
+                            nonzero = .true.
+                        end if
+                    end if
+                    i = i + 1
+                end do
+            end if
+        end if
+        if (.not. nonzero) return
+        if (nint_digits > 0) then
+            mag = nint_digits - 1
+        else
+            mag = -(lead0 + 1)
+        end if
+        ex = 0; sgn = 1; nd = 0
+        if (i <= n) then
+            i = i + 1                                      ! 'e' or 'd'
+            if (i <= n) then
+                if (w(i:i) == '-') sgn = -1
+                if (w(i:i) == '+' .or. w(i:i) == '-') i = i + 1
+            end if
+            do while (i <= n)
+                if (.not. is_digit(w(i:i))) exit
+                if (nd < 9) ex = 10*ex + (iachar(w(i:i)) - iachar('0'))
+                if (nd >= 9) ex = 999999999
+                nd = nd + 1; i = i + 1
+            end do
+        end if
+        mag = mag + sgn*ex
+    end function decimal_magnitude
+
     pure logical function is_real(v)
         character(len=*), intent(in) :: v
         integer :: i, n, nd
