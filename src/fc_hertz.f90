@@ -69,7 +69,9 @@ contains
         if (approach <= 0 .or. amin <= 0) return
         ratio = amax/amin
         ! N/M = [(a/b)² E − K]/(K − E) increases monotonically with e² from 1 (circle).
-        lo = 0; hi = 1
+        ! e² stays below 1 − 2ε: beyond a curvature ratio of ~1.2e14 the ellipse is clipped
+        ! there (semi-axis ratio ~2e-8) instead of dividing by 1 − e² = 0.
+        lo = 0; hi = 1 - 2*epsilon(1.0_dp)
         do it = 1, 200
             e2 = 0.5_dp*(lo + hi)
             f = ratio_of(e2)
@@ -102,6 +104,9 @@ contains
             real(dp) :: k1, e1
             if (ecc2 < 1.0e-12_dp) then
                 ratio_of = 1; return
+            end if
+            if (ecc2 >= 1) then
+                ratio_of = huge(1.0_dp); return
             end if
             call elliptic_ke(ecc2, k1, e1)
             ratio_of = (e1/(1 - ecc2) - k1)/(k1 - e1)

@@ -209,18 +209,24 @@ contains
     end subroutine kernel_symbol
 
     !> 64-bit FNV-1a hash of `text` as 16 hexadecimal digits (cache key).
+    !! The product modulo 2^64 is formed from two 32-bit limbs held in 64-bit integers, so no
+    !! signed arithmetic overflows (the prime is 2^40 + 435).
     function hash_text(text) result(h)
         character(len=*), intent(in) :: text
         character(len=16) :: h
-        integer(i8) :: v
+        integer(i8), parameter :: mask32 = 4294967295_i8
+        integer(i8), parameter :: prime_hi = 256_i8, prime_lo = 435_i8
+        integer(i8) :: hi, lo, t
         integer :: i
-        integer(i8), parameter :: prime = 1099511628211_i8
-        v = -3750763034362895579_i8   ! FNV offset basis 0xcbf29ce484222325 as a signed integer
+        hi = int(z'CBF29CE4', i8)   ! FNV offset basis 0xcbf29ce484222325
+        lo = int(z'84222325', i8)
         do i = 1, len(text)
-            v = ieor(v, int(iachar(text(i:i)), i8))
-            v = v*prime                ! wraps modulo 2^64 (two's complement)
+            lo = ieor(lo, int(iachar(text(i:i)), i8))
+            t = lo*prime_lo
+            hi = iand(hi*prime_lo + lo*prime_hi + ishft(t, -32), mask32)
+            lo = iand(t, mask32)
         end do
-        write (h, '(z16.16)') v
+        write (h, '(z8.8,z8.8)') hi, lo
     end function hash_text
 
     !> Write a set in the fastcontact format (doc/ic_file_format.md) to `path`, atomically:

@@ -161,14 +161,15 @@ contains
         case ('quadratic', 'strip2d', 'cylinder')
             if (.not. is_given(s, 'geometry', 'rx')) then
                 errmsg = "&geometry rx: missing required value for kind = '"//trim(s%kind)//"'"
-            else if (.not. (s%rx >= min_radius)) then
-                errmsg = '&geometry rx = '//fmt_real(s%rx)//': must be > 0 (at least '//fmt_limit(min_radius)//' mm)'
+            else if (.not. (s%rx >= min_radius .and. s%rx <= max_radius)) then
+                errmsg = '&geometry rx = '//fmt_real(s%rx)//': must be > 0 (at least '//fmt_limit(min_radius)// &
+                    ' mm, at most '//fmt_limit(max_radius)//' mm)'
             else if (s%kind == 'quadratic') then
                 if (.not. is_given(s, 'geometry', 'ry')) then
                     errmsg = "&geometry ry: missing required value for kind = 'quadratic' (0: flat in y)"
-                else if (.not. (s%ry == 0 .or. s%ry >= min_radius)) then
+                else if (.not. (s%ry == 0 .or. (s%ry >= min_radius .and. s%ry <= max_radius))) then
                     errmsg = '&geometry ry = '//fmt_real(s%ry)//': must be >= 0 (0: flat in y; else at least '// &
-                        fmt_limit(min_radius)//' mm)'
+                        fmt_limit(min_radius)//' mm, at most '//fmt_limit(max_radius)//' mm)'
                 end if
             end if
         case ('punch_rough')

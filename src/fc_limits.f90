@@ -16,6 +16,9 @@ module fc_limits
 
     real(dp), parameter, public :: max_length = 1.0e6_dp         !! |coordinate|, |approach|, |shift|, |gap| [mm]
     real(dp), parameter, public :: min_radius = 1.0e-6_dp        !! smallest radius of curvature > 0 [mm]
+    real(dp), parameter, public :: max_radius = 1.0e8_dp         !! largest radius of curvature [mm] (0: flat);
+        !! with min_radius it bounds the curvature ratio to 1e14, the thinnest Hertz ellipse
+        !! (1 − e² ≥ 4.4e-16) that double precision resolves
     real(dp), parameter, public :: min_modulus = 1.0e-6_dp       !! smallest shear modulus [N/mm²]
     real(dp), parameter, public :: max_force = 1.0e15_dp         !! |Fn|, |Fx|, |Fy| [N]
     real(dp), parameter, public :: min_force = 1.0e-12_dp        !! smallest prescribed Fn [N]

@@ -71,7 +71,10 @@ contains
             new_unittest('strip_mp3_contact_strips', test_strip_mp3), &
             new_unittest('strip_unknown_solver', test_strip_unknown_solver), &
             new_unittest('strip_nx_not_power_of_2', test_strip_bad_nx), &
-            new_unittest('strip_needs_strip2d', test_strip_needs_kind) &
+            new_unittest('strip_needs_strip2d', test_strip_needs_kind), &
+            new_unittest('radius_above_limit', test_radius_limit), &
+            new_unittest('real_beyond_double_range', test_real_overflow), &
+            new_unittest('transient_rolling_cost_bound', test_transient_cost) &
             ]
     end subroutine collect_driver
 
@@ -289,6 +292,34 @@ contains
     end subroutine test_not_converged
 
     ! ---------------------------------------------------------------- bad input ----
+
+    !> A radius above 1e8 mm (the Hertz estimate of the automatic area would need an ellipse
+    !! thinner than double precision) is refused with the limit; the automatic area is used.
+    subroutine test_radius_limit(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: text
+        text = replace(base_case('bad'), 'ry = 163.0', 'ry = 1e30')
+        text = replace(text, '&grid nx = 16, ny = 16, xmin = -10.0, xmax = 10.0, ymin = -6.0, ymax = 6.0 /', &
+            '&grid auto = .true. /')
+        call expect_bad(error, text, [character(len=16) :: '&geometry', 'ry', 'E+30', 'at most'])
+    end subroutine test_radius_limit
+
+    !> A real literal beyond 1e308 is refused before conversion (it would overflow to +Inf).
+    subroutine test_real_overflow(error)
+        type(error_type), allocatable, intent(out) :: error
+        call expect_bad(error, replace(base_case('bad'), 'g1 = 82000.0', 'g1 = 1d400'), &
+            [character(len=16) :: '&material', 'g1', '1d400', '1e308'])
+    end subroutine test_real_overflow
+
+    !> Transient rolling: steps x elements above 1e7 is refused before any step is taken.
+    subroutine test_transient_cost(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: text
+        text = replace(base_case('bad'), "&case name = 'bad' /", "&case name = 'bad', problem = 'transient_rolling' /")
+        text = replace(text, '&normal approach = 0.1091 /', &
+            '&normal approach = 0.1091 /'//nl//'&tangential mu = 0.3, xi = 0.001, nsteps = 50000 /')
+        call expect_bad(error, text, [character(len=16) :: '&tangential', 'nsteps', '50000', '1e7'])
+    end subroutine test_transient_cost
 
     subroutine test_unknown_key(error)
         type(error_type), allocatable, intent(out) :: error

@@ -27,6 +27,7 @@ contains
         type(unittest_type), allocatable, intent(out) :: tests(:)
         tests = [ &
             new_unittest('own_format_roundtrip_exact', test_own_roundtrip), &
+            new_unittest('cache_hash_is_fnv1a_64', test_hash_fnv1a), &
             new_unittest('contact_format_roundtrip_lossless', test_contact_roundtrip), &
             new_unittest('two_half_space_bodies_equal_analytic', test_combine), &
             new_unittest('nonsymmetric_file_rejected', test_reject_nonsymmetric), &
@@ -51,6 +52,16 @@ contains
         call analytic_body_set(g, nu, h, h, n, n, b, stat, msg)
         call combine_ic_sets(b, b, set, stat, msg)
     end subroutine analytic_combined
+
+    !> The cache key is FNV-1a 64 (published test vectors), computed without signed overflow.
+    subroutine test_hash_fnv1a(error)
+        type(error_type), allocatable, intent(out) :: error
+        call check(error, hash_text('') == 'CBF29CE484222325', 'empty: '//hash_text(''))
+        if (allocated(error)) return
+        call check(error, hash_text('a') == 'AF63DC4C8601EC8C', 'a: '//hash_text('a'))
+        if (allocated(error)) return
+        call check(error, hash_text('foobar') == '85944171F73967E8', 'foobar: '//hash_text('foobar'))
+    end subroutine test_hash_fnv1a
 
     subroutine test_own_roundtrip(error)
         type(error_type), allocatable, intent(out) :: error

@@ -17,6 +17,7 @@ contains
             new_unittest('test_I_reference_numbers', test_reference), &
             new_unittest('cattaneo_sphere_numbers', test_sphere), &
             new_unittest('force_approach_roundtrip', test_roundtrip), &
+            new_unittest('thin_ellipse_finite', test_thin_ellipse), &
             new_unittest('rough_surface_sigma_and_seed', test_rough), &
             new_unittest('grid_centres_and_profiles', test_grid), &
             new_unittest('table_and_wavy_geometry', test_table) ]
@@ -78,6 +79,30 @@ contains
     !> Eq. (2.16) sets R(0,0) = σ²; sampled on a grid finer than the highest mode
     !! (nx > 2M, ny > 2N) the discrete mean is 0 and the discrete variance is exactly σ².
     !! The same seed gives the same surface; another seed another one.
+    !> Curvature ratios up to 1e14 (the driver's radius limits) give a finite ellipse whose
+    !! force and approach round-trip; beyond, the ellipse is clipped, still finite (no 1/(1−e²)
+    !! with e² = 1).
+    subroutine test_thin_ellipse(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_hertz_solution) :: s, t
+        real(dp), parameter :: ratios(3) = [1.0e8_dp, 1.0e14_dp, 1.0e30_dp]
+        real(dp) :: ratio
+        character(len=12) :: r
+        integer :: k
+        do k = 1, 3
+            ratio = ratios(k)
+            write (r, '(es12.3)') ratio
+            s = hertz_from_approach(0.5_dp, 0.5_dp/ratio, 1000.0_dp, 1.0e-3_dp)
+            call check(error, s%a > 0 .and. s%b > s%a .and. s%b < huge(1.0_dp) .and. s%p0 > 0 .and. &
+                s%p0 < huge(1.0_dp) .and. s%fn > 0 .and. s%fn < huge(1.0_dp), 'ellipse not finite at ratio '//r)
+            if (allocated(error)) return
+            if (ratio > 1.0e15_dp) cycle
+            t = hertz_from_force(0.5_dp, 0.5_dp/ratio, 1000.0_dp, s%fn)
+            call check(error, abs(t%approach - 1.0e-3_dp) < 1.0e-9_dp, 'force/approach round trip at ratio '//r)
+            if (allocated(error)) return
+        end do
+    end subroutine test_thin_ellipse
+
     subroutine test_rough(error)
         type(error_type), allocatable, intent(out) :: error
         type(fc_grid) :: grid
