@@ -45,6 +45,8 @@ if [ ! -x "$driver" ]; then
     echo "sanitize: cannot find the sanitized driver"; exit 1
 fi
 icprog="$(fpm run --flag "$FLAGS" fastcontact-ic --runner echo 2>/dev/null | tail -n 1)"
+# absolute paths: the example runs below change directory
+driver="$(realpath "$driver")"; icprog="$(realpath "$icprog")"
 tmp="$(mktemp -d)"
 here="$PWD"
 # model files (an &fem group) go to fastcontact-ic, written where the example cases expect
