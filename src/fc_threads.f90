@@ -27,8 +27,11 @@ module fc_threads
 
     integer, parameter, public :: max_threads_allowed = 1024  !! bound on a requested count
     !> Grids smaller than this (nx·ny) keep single-threaded FFT plans when the caller gives
-    !! the grid size (the doubled-grid transforms are then below 1024² points).
-    integer, parameter, public :: fftw_thread_min_elements = 512*512
+    !! the grid size (doubled-grid transforms below 2·32768 points gain nothing from a second
+    !! thread).  On an idle 2-core machine, 2 threads with threaded FFTs from this size run
+    !! Cattaneo 240×200 1.41× faster than one thread (1.0× with FFTs threaded only from 512²);
+    !! on a machine loaded beyond its cores they lose (doc/parallel.md §5.3).
+    integer, parameter, public :: fftw_thread_min_elements = 32768
     !> Element loops and vector operations of the solvers (BCCG, TangCG, the FFT products'
     !! spectral multiplications and copies) run on several threads only for arrays with more
     !! elements than this; below it a parallel region costs more than the loop (measured with
@@ -95,9 +98,8 @@ contains
 
     !> Use `n` threads (n ≤ 0: [[fc_default_threads]]) for OpenMP regions and for FFTW plans
     !! made from now on.  With `elements` (the grid size nx·ny), FFT plans stay on one thread
-    !! below [[fftw_thread_min_elements]]: the many small transforms of TangCG were 13× slower
-    !! in CPU time with 2 FFTW threads (Cattaneo 240×200, doc/parallel.md).  Call it outside
-    !! parallel regions.
+    !! below [[fftw_thread_min_elements]], where a second FFTW thread costs more than it saves
+    !! (doc/parallel.md §5.3).  Call it outside parallel regions.
     subroutine set_thread_count(n, elements)
         integer, intent(in) :: n
         integer, intent(in), optional :: elements
