@@ -38,6 +38,7 @@ module fc_rolling
     use fc_tangcg, only: fc_tangential_operator, fc_tangential_result, EL_EXTERIOR, EL_ADHESION, EL_SLIP
     use fc_rolling_base
     use fc_rolling_refsolvers, only: run_steadygs, run_march
+    use fc_force_newton, only: fc_force_newton_t
     implicit none
     private
 
@@ -190,10 +191,11 @@ contains
         type(fc_tangential_result) :: trial
         type(fc_rolling_settings) :: inner
         type(fc_rolling_loading) :: cur
-        real(dp) :: fn, flimit, k0, area, jac(2, 2), x(2), r(2), xn(2), rn(2), dx(2), dr(2), step, ftol, det, muk
+        type(fc_force_newton_t) :: nw
+        real(dp) :: fn, flimit, k0, area, jac(2, 2), x(2), muk
         real(dp) :: total_cpu
-        integer :: outer, total_it, total_mv, halvings, nx, ny
-        logical :: converged
+        integer :: total_it, total_mv, nx, ny
+        logical :: accepted, done
         nx = size(pn, 1); ny = size(pn, 2)
         allocate (qx(nx, ny), qy(nx, ny), ox(nx, ny), oy(nx, ny))
         qx = 0; qy = 0; ox = 0; oy = 0
@@ -219,61 +221,34 @@ contains
         area = count(pn > 0)*top%grid%area()
         k0 = top%material%g*area/pi*pi**2/(4*(1 - top%material%nu/2))   ! G·ab·C11, ab = area/π
         jac = 0; jac(1, 1) = -k0; jac(2, 2) = -k0
-        ftol = settings%tol*flimit
         x = [-load%fx/k0, -load%fy/k0]
         if (present(xi_start)) x(1) = xi_start
         if (present(eta_start)) x(2) = eta_start
         cur = load; cur%force_prescribed = .false.
         total_it = 0; total_mv = 0; total_cpu = 0
-        converged = .false.
         inner = settings
-        inner%tol = max(settings%tol, min(1.0e-3_dp, 0.1_dp*hypot(load%fx, load%fy)/flimit))
-        call evaluate(x, r, res)
-        if (stat /= 0) return
-        do outer = 1, 60
-            if (norm2(r) <= ftol .and. inner%tol <= settings%tol) then
-                converged = .true.; exit
-            end if
-            inner%tol = max(settings%tol, min(inner%tol, 0.01_dp*norm2(r)/flimit))
-            det = jac(1, 1)*jac(2, 2) - jac(1, 2)*jac(2, 1)
-            if (det == 0) exit
-            dx = -[jac(2, 2)*r(1) - jac(1, 2)*r(2), -jac(2, 1)*r(1) + jac(1, 1)*r(2)]/det
-            step = 1
-            do halvings = 0, 30
-                xn = x + step*dx
-                call evaluate(xn, rn, trial)
-                if (stat /= 0) return
-                if (norm2(rn) < norm2(r) .or. halvings == 30) exit
-                step = step/2
-            end do
-            dr = rn - r
-            dx = xn - x
-            if (dot_product(dx, dx) > 0) jac = jac + spread(dr - matmul(jac, dx), 2, 2)*spread(dx, 1, 2)/dot_product(dx, dx)
-            x = xn; r = rn
-            res = trial
+        call nw%start(x, jac, settings%tol, hypot(load%fx, load%fy), flimit)
+        do
+            inner%tol = nw%tol_inner
+            cur%xi = nw%x_trial(1); cur%eta = nw%x_trial(2)
+            call solve_rolling(top, pn, cur, inner, trial, stat, errmsg, qx, qy, ox, oy)
+            if (stat /= 0) return
+            total_it = total_it + trial%iterations
+            total_mv = total_mv + trial%matvecs
+            total_cpu = total_cpu + trial%cpu_seconds
+            qx = trial%px; qy = trial%py          ! warm start of the next solve
+            call nw%update([trial%fx - load%fx, trial%fy - load%fy], accepted, done)
+            if (accepted) res = trial
+            if (done) exit
         end do
-        res%outer_iterations = outer
+        res%outer_iterations = nw%outer
         res%iterations = total_it
         res%matvecs = total_mv
         res%cpu_seconds = total_cpu
-        if (res%status == FC_CONVERGED .and. .not. converged) then
+        if (res%status == FC_CONVERGED .and. .not. nw%converged) then
             res%status = FC_NOT_CONVERGED
-            write (res%message, '(a,es10.3,a)') 'creep-force loop not converged: force error ', norm2(r), ' N'
+            write (res%message, '(a,es10.3,a)') 'creep-force loop not converged: force error ', norm2(nw%r), ' N'
         end if
-    contains
-        subroutine evaluate(creep, resid, out)
-            real(dp), intent(in) :: creep(2)
-            real(dp), intent(out) :: resid(2)
-            type(fc_tangential_result), intent(inout) :: out
-            cur%xi = creep(1); cur%eta = creep(2)
-            call solve_rolling(top, pn, cur, inner, out, stat, errmsg, qx, qy, ox, oy)
-            if (stat /= 0) return
-            total_it = total_it + out%iterations
-            total_mv = total_mv + out%matvecs
-            total_cpu = total_cpu + out%cpu_seconds
-            qx = out%px; qy = out%py
-            resid = [out%fx - load%fx, out%fy - load%fy]
-        end subroutine evaluate
     end subroutine solve_rolling_loading
 
     !> Newton–GMRES with TangCG's active set and variables.

@@ -32,6 +32,7 @@ module fc_tangcg
     use fc_influence
     use fc_tangcg_operator, only: fc_tangential_operator, build_tangential_operator, coupling_displacements
     use fc_threads, only: omp_min_elements
+    use fc_force_newton, only: fc_force_newton_t
     implicit none
     private
 
@@ -180,10 +181,11 @@ contains
         real(dp), allocatable :: zx(:, :), zy(:, :), ox(:, :), oy(:, :), qx(:, :), qy(:, :)
         type(fc_tangential_result) :: trial
         type(fc_tangential_settings) :: inner
-        real(dp) :: fn, flimit, k0, a, jac(2, 2), x(2), r(2), xn(2), rn(2), dx(2), dr(2), step, ftol, det
+        type(fc_force_newton_t) :: nw
+        real(dp) :: fn, flimit, k0, a, jac(2, 2), x(2)
         real(dp) :: total_cpu
-        integer :: outer, total_it, total_mv, nx, ny, halvings
-        logical :: converged
+        integer :: total_it, total_mv, nx, ny
+        logical :: accepted, done
         nx = size(pn, 1); ny = size(pn, 2)
         allocate (zx(nx, ny), zy(nx, ny), ox(nx, ny), oy(nx, ny), qx(nx, ny), qy(nx, ny))
         zx = 0; zy = 0; ox = 0; oy = 0
@@ -211,62 +213,33 @@ contains
         a = sqrt(count(pn > 0)*top%grid%area()/pi)
         k0 = 8*top%material%g*a/(2 - top%material%nu)
         jac = 0; jac(1, 1) = -k0; jac(2, 2) = -k0       ! dF/d(ξ,η): traction opposes the shift
-        ftol = settings%tol*flimit
         x = [-load%fx/k0, -load%fy/k0]
         if (present(xi_start)) x(1) = xi_start
         if (present(eta_start)) x(2) = eta_start
         total_it = 0; total_mv = 0; total_cpu = 0
-        converged = .false.
-        ! inner solves far from the force need less accuracy: tolerance tied to the force error
         inner = settings
-        inner%tol = max(settings%tol, min(1.0e-3_dp, 0.1_dp*hypot(load%fx, load%fy)/flimit))
-        call evaluate(x, r, res)
-        if (stat /= 0) return
-        do outer = 1, 60
-            if (norm2(r) <= ftol .and. inner%tol <= settings%tol) then
-                converged = .true.; exit
-            end if
-            inner%tol = max(settings%tol, min(inner%tol, 0.01_dp*norm2(r)/flimit))
-            det = jac(1, 1)*jac(2, 2) - jac(1, 2)*jac(2, 1)
-            if (det == 0) exit
-            dx = -[jac(2, 2)*r(1) - jac(1, 2)*r(2), -jac(2, 1)*r(1) + jac(1, 1)*r(2)]/det
-            step = 1
-            do halvings = 0, 30
-                xn = x + step*dx
-                call evaluate(xn, rn, trial)
-                if (stat /= 0) return
-                if (norm2(rn) < norm2(r) .or. halvings == 30) exit
-                step = step/2
-            end do
-            ! Broyden update of the 2×2 Jacobian with the step actually taken
-            dr = rn - r
-            dx = xn - x
-            if (dot_product(dx, dx) > 0) jac = jac + spread(dr - matmul(jac, dx), 2, 2)*spread(dx, 1, 2)/dot_product(dx, dx)
-            x = xn; r = rn
-            call move_alloc_result(trial, res)
+        call nw%start(x, jac, settings%tol, hypot(load%fx, load%fy), flimit)
+        do
+            inner%tol = nw%tol_inner
+            call solve_tangential(top, pn, load%mu, inner, trial, stat, errmsg, nw%x_trial(1), nw%x_trial(2), &
+                                  load%phi, zx, zy, qx, qy, ox, oy)
+            if (stat /= 0) return
+            total_it = total_it + trial%iterations
+            total_mv = total_mv + trial%matvecs
+            total_cpu = total_cpu + trial%cpu_seconds
+            qx = trial%px; qy = trial%py          ! warm start of the next solve
+            call nw%update([trial%fx - load%fx, trial%fy - load%fy], accepted, done)
+            if (accepted) call move_alloc_result(trial, res)
+            if (done) exit
         end do
-        res%outer_iterations = outer
+        res%outer_iterations = nw%outer
         res%iterations = total_it
         res%matvecs = total_mv
         res%cpu_seconds = total_cpu
-        if (res%status == FC_CONVERGED .and. .not. converged) then
+        if (res%status == FC_CONVERGED .and. .not. nw%converged) then
             res%status = FC_NOT_CONVERGED
-            write (res%message, '(a,es10.3,a)') 'force loop not converged: force error ', norm2(r), ' N'
+            write (res%message, '(a,es10.3,a)') 'force loop not converged: force error ', norm2(nw%r), ' N'
         end if
-    contains
-        subroutine evaluate(shift, resid, out)
-            real(dp), intent(in) :: shift(2)
-            real(dp), intent(out) :: resid(2)
-            type(fc_tangential_result), intent(inout) :: out
-            call solve_tangential(top, pn, load%mu, inner, out, stat, errmsg, shift(1), shift(2), load%phi, &
-                                  zx, zy, qx, qy, ox, oy)
-            if (stat /= 0) return
-            total_it = total_it + out%iterations
-            total_mv = total_mv + out%matvecs
-            total_cpu = total_cpu + out%cpu_seconds
-            qx = out%px; qy = out%py          ! warm start of the next solve
-            resid = [out%fx - load%fx, out%fy - load%fy]
-        end subroutine evaluate
     end subroutine solve_tangential_loading
 
     subroutine move_alloc_result(from, to)
