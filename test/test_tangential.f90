@@ -8,6 +8,7 @@ module test_tangential
     use fc_contact, only: solve_normal_tangential
     use fc_hertz
     use fc_testing
+    use fc_force_newton, only: fc_force_newton_t
     implicit none
     private
     public :: collect_tangential
@@ -34,6 +35,7 @@ contains
             new_unittest('full_adhesion_equals_cg', test_full_adhesion), &
             new_unittest('full_slip_at_bound', test_full_slip), &
             new_unittest('cattaneo_mindlin_prescribed_force', test_cattaneo_force), &
+            new_unittest('force_newton_synthetic', test_force_newton), &
             new_unittest('unpreconditioned_slower_and_oscillating', test_unpreconditioned), &
             new_unittest('not_converged_reported', test_not_converged), &
             new_unittest('transient_from_previous_state', test_transient), &
@@ -294,6 +296,61 @@ contains
     !> Cattaneo–Mindlin with Fx = 0.875·μ·Fn (thesis §4.4): stick radius 0.5 within one cell,
     !! |ξ| within 1 % of 0.008172 on 120×120, RMS error of |p| against μp0/a·[√(a²−r²) −
     !! √(c²−r²)] decreasing with refinement (40² → 80² → 120²).
+    !> The force loop alone on a smooth saturating law F(x) = −Fs·tanh(K x/Fs) (componentwise,
+    !! coupled through a rotation), started from a wrong Jacobian: it must reach |r| ≤ tol·flimit
+    !! with the inner tolerance at tol, accept only decreasing trial points, and stop
+    !! unconverged on a singular Jacobian.
+    subroutine test_force_newton(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_force_newton_t) :: nw
+        real(dp), parameter :: fs = 3.0_dp, target(2) = [-1.2_dp, 0.7_dp], tol = 1.0e-8_dp
+        real(dp) :: r(2), rprev, jac0(2, 2)
+        logical :: accepted, done
+        integer :: evals
+        jac0 = 0; jac0(1, 1) = -50; jac0(2, 2) = -50   ! true slope at 0: about −120 and −80
+        call nw%start([0.0_dp, 0.0_dp], jac0, tol, norm2(target), fs)
+        rprev = huge(1.0_dp); evals = 0
+        do
+            evals = evals + 1
+            r = law(nw%x_trial) - target
+            call nw%update(r, accepted, done)
+            if (accepted) then
+                call check(error, norm2(r) < rprev .or. evals == 1, 'an accepted point must lower |r|')
+                if (allocated(error)) return
+                rprev = norm2(r)
+            end if
+            if (done .or. evals > 2000) exit
+        end do
+        call check(error, nw%converged, 'force loop must converge on a smooth law')
+        if (allocated(error)) return
+        call check(error, norm2(nw%r) <= tol*fs .and. nw%tol_inner <= tol, 'residual above tol*flimit')
+        if (allocated(error)) return
+        call check(error, nw%outer <= 15, 'Broyden must converge in a few outer steps')
+        if (allocated(error)) return
+        ! a 20x too soft first Jacobian overshoots into saturation: step halving keeps it to
+        ! 9 outer steps (17 with full steps only)
+        jac0 = 0; jac0(1, 1) = -5; jac0(2, 2) = -5
+        call nw%start([0.0_dp, 0.0_dp], jac0, tol, norm2(target), fs)
+        evals = 0
+        do
+            evals = evals + 1
+            call nw%update(law(nw%x_trial) - target, accepted, done)
+            if (done .or. evals > 2000) exit
+        end do
+        call check(error, nw%converged .and. nw%outer <= 12, 'soft start: converged in <= 12 outer steps with halving')
+        if (allocated(error)) return
+        call nw%start([0.0_dp, 0.0_dp], reshape([1.0_dp, 2.0_dp, 2.0_dp, 4.0_dp], [2, 2]), tol, norm2(target), fs)
+        call nw%update(law(nw%x_trial) - target, accepted, done)
+        call check(error, done .and. .not. nw%converged, 'singular Jacobian: stop, not converged')
+    contains
+        pure function law(x) result(f)
+            real(dp), intent(in) :: x(2)
+            real(dp) :: f(2), y(2)
+            y = [120*x(1) + 10*x(2), 10*x(1) + 80*x(2)]
+            f = -fs*tanh(y/fs)
+        end function law
+    end subroutine test_force_newton
+
     subroutine test_cattaneo_force(error)
         type(error_type), allocatable, intent(out) :: error
         type(fc_grid) :: grid
