@@ -14,7 +14,7 @@
 !! by its two triangles), placed at the straight diagonal's mid-point.
 module fc_fem_extruded
     use fc_kinds, only: dp, i8, FC_ERR_VALUE, FC_ERR_IO
-    use fc_fem_mesh, only: fc_fem_params, fc_fem_mesh_t, top_face_forces, write_deck_physics, fem_domain, &
+    use fc_fem_mesh, only: fc_fem_params, fc_fem_mesh_t, top_face_forces, write_deck_physics, close_deck, fem_domain, &
         graded_axis, max_nodes, lattice_coord
     use fc_fem_shell, only: box_levels
     implicit none
@@ -230,14 +230,7 @@ contains
             ids = pack(top%id(:, :, 0), f /= 0); vals = pack(f, f /= 0)
             call write_deck_physics(u, p, dir, g, nu, ['NXMIN ', 'NOUTER'], ids, vals)
         end if
-        if (stat /= 0) then
-            close (u, status='delete'); return
-        end if
-        close (u, iostat=ios, iomsg=iomsg)
-        if (ios /= 0) then
-            stat = FC_ERR_IO; errmsg = 'fem: cannot write the CalculiX deck '//trim(path)//': '//trim(iomsg); return
-        end if
-        stat = 0; errmsg = ''
+        call close_deck(u, path, stat, errmsg)
     contains
 
         subroutine write_set(name, list)

@@ -4,6 +4,7 @@
 module fc_fem_input
     use fc_kinds, only: dp, msg_len, FC_ERR_VALUE, FC_ERR_IO
     use fc_fem_mesh, only: fc_fem_params
+    use fc_strings, only: lower
     implicit none
     private
 
@@ -89,14 +90,5 @@ contains
         stat = 0; errmsg = ''
     end subroutine read_fem_model
 
-    pure function lower(s) result(t)
-        character(len=*), intent(in) :: s
-        character(len=len(s)) :: t
-        integer :: i
-        t = s
-        do i = 1, len(s)
-            if (s(i:i) >= 'A' .and. s(i:i) <= 'Z') t(i:i) = achar(iachar(s(i:i)) + 32)
-        end do
-    end function lower
 
 end module fc_fem_input

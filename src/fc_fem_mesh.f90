@@ -60,7 +60,8 @@ module fc_fem_mesh
     integer(i8), parameter :: auto_nodes = 30000_i8   !! node budget of the automatic stretch
 
     public :: fem_defaults, fem_validate, build_fem_mesh, write_fem_deck, fem_domain, lattice_coord
-    public :: face_shape, face_lattice, top_face_forces, write_deck_physics, hex_type, graded_axis, max_cells_axis, max_nodes
+    public :: face_shape, face_lattice, top_face_forces, write_deck_physics, close_deck, hex_type, graded_axis
+    public :: max_cells_axis, max_nodes
 
 contains
 
@@ -377,14 +378,7 @@ contains
             ids = pack(mesh%id(:, :, 2*mesh%nzc), f /= 0); vals = pack(f, f /= 0)
             call write_deck_physics(u, p, dir, g, nu, ['NXMIN', 'NYMIN', 'NZMIN'], ids, vals)
         end if
-        if (stat /= 0) then
-            close (u, status='delete'); return
-        end if
-        close (u, iostat=ios, iomsg=iomsg)
-        if (ios /= 0) then
-            stat = FC_ERR_IO; errmsg = 'fem: cannot write the CalculiX deck '//trim(path)//': '//trim(iomsg); return
-        end if
-        stat = 0; errmsg = ''
+        call close_deck(u, path, stat, errmsg)
     contains
 
         subroutine element_lines(i, j, k)
@@ -618,5 +612,24 @@ contains
         end if
     end subroutine face_shape
 
+
+    !> Finish a CalculiX deck written on unit `u`: deleted when `stat` ≠ 0 (no half-written
+    !! deck survives an error), else closed with its I/O status checked.
+    subroutine close_deck(u, path, stat, errmsg)
+        integer, intent(in) :: u
+        character(len=*), intent(in) :: path
+        integer, intent(inout) :: stat
+        character(len=*), intent(inout) :: errmsg
+        integer :: ios
+        character(len=msg_len) :: iomsg
+        if (stat /= 0) then
+            close (u, status='delete'); return
+        end if
+        close (u, iostat=ios, iomsg=iomsg)
+        if (ios /= 0) then
+            stat = FC_ERR_IO; errmsg = 'fem: cannot write the CalculiX deck '//trim(path)//': '//trim(iomsg); return
+        end if
+        stat = 0; errmsg = ''
+    end subroutine close_deck
 
 end module fc_fem_mesh

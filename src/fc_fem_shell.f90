@@ -22,7 +22,7 @@
 !! lattice index); linear: even indices only.
 module fc_fem_shell
     use fc_kinds, only: dp, i8, FC_ERR_VALUE, FC_ERR_IO
-    use fc_fem_mesh, only: fc_fem_params, face_shape, face_lattice, top_face_forces, write_deck_physics, hex_type, &
+    use fc_fem_mesh, only: fc_fem_params, face_shape, face_lattice, top_face_forces, write_deck_physics, close_deck, hex_type, &
         fem_domain, max_cells_axis, max_nodes
     implicit none
     private
@@ -307,14 +307,7 @@ contains
             ids = pack(lat, f /= 0); vals = pack(f, f /= 0)
             call write_deck_physics(u, p, dir, g, nu, ['NOUTER'], ids, vals)
         end if
-        if (stat /= 0) then
-            close (u, status='delete'); return
-        end if
-        close (u, iostat=ios, iomsg=iomsg)
-        if (ios /= 0) then
-            stat = FC_ERR_IO; errmsg = 'fem: cannot write the CalculiX deck '//trim(path)//': '//trim(iomsg); return
-        end if
-        stat = 0; errmsg = ''
+        call close_deck(u, path, stat, errmsg)
     contains
 
         !> Nodes on the plane lattice index 0 of axis `axis_` (x = 0 or y = 0).
