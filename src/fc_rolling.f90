@@ -35,7 +35,8 @@ module fc_rolling
     use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
     use fc_kinds
     use fc_geometry, only: fc_grid
-    use fc_tangcg, only: fc_tangential_operator, fc_tangential_result, EL_EXTERIOR, EL_ADHESION, EL_SLIP
+    use fc_tangcg, only: fc_tangential_operator, fc_tangential_result, EL_EXTERIOR, EL_ADHESION, EL_SLIP, &
+        finish_force_loop
     use fc_rolling_base
     use fc_rolling_refsolvers, only: run_steadygs, run_march
     use fc_force_newton, only: fc_force_newton_t
@@ -241,14 +242,7 @@ contains
             if (accepted) res = trial
             if (done) exit
         end do
-        res%outer_iterations = nw%outer
-        res%iterations = total_it
-        res%matvecs = total_mv
-        res%cpu_seconds = total_cpu
-        if (res%status == FC_CONVERGED .and. .not. nw%converged) then
-            res%status = FC_NOT_CONVERGED
-            write (res%message, '(a,es10.3,a)') 'creep-force loop not converged: force error ', norm2(nw%r), ' N'
-        end if
+        call finish_force_loop(res, nw, total_it, total_mv, total_cpu, 'creep-force loop')
     end subroutine solve_rolling_loading
 
     !> Newton–GMRES with TangCG's active set and variables.

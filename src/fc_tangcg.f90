@@ -84,6 +84,7 @@ module fc_tangcg
     public :: solve_tangential
     public :: solve_tangential_loading
     public :: circle_newton   ! shared with the steady rolling solver (fc_rolling)
+    public :: finish_force_loop   ! shared with steady rolling (fc_rolling)
 
 contains
 
@@ -232,15 +233,27 @@ contains
             if (accepted) call move_alloc_result(trial, res)
             if (done) exit
         end do
+        call finish_force_loop(res, nw, total_it, total_mv, total_cpu, 'force loop')
+    end subroutine solve_tangential_loading
+
+    !> Totals of a prescribed-force loop ([[fc_force_newton]]) into its last accepted result:
+    !! iterations, products and CPU seconds summed over every inner solve; a loop that did
+    !! not converge turns a converged inner status into not_converged with the force error.
+    subroutine finish_force_loop(res, nw, iterations, matvecs, cpu_seconds, what)
+        type(fc_tangential_result), intent(inout) :: res
+        type(fc_force_newton_t), intent(in) :: nw
+        integer, intent(in) :: iterations, matvecs
+        real(dp), intent(in) :: cpu_seconds
+        character(len=*), intent(in) :: what    !! name of the loop in the message
         res%outer_iterations = nw%outer
-        res%iterations = total_it
-        res%matvecs = total_mv
-        res%cpu_seconds = total_cpu
+        res%iterations = iterations
+        res%matvecs = matvecs
+        res%cpu_seconds = cpu_seconds
         if (res%status == FC_CONVERGED .and. .not. nw%converged) then
             res%status = FC_NOT_CONVERGED
-            write (res%message, '(a,es10.3,a)') 'force loop not converged: force error ', norm2(nw%r), ' N'
+            write (res%message, '(a,a,es10.3,a)') what, ' not converged: force error ', norm2(nw%r), ' N'
         end if
-    end subroutine solve_tangential_loading
+    end subroutine finish_force_loop
 
     subroutine move_alloc_result(from, to)
         type(fc_tangential_result), intent(inout) :: from
