@@ -36,7 +36,7 @@ module fc_rolling
     use fc_kinds
     use fc_geometry, only: fc_grid
     use fc_tangcg, only: fc_tangential_operator, fc_tangential_result, EL_EXTERIOR, EL_ADHESION, EL_SLIP, &
-        finish_force_loop
+        finish_force_loop, finish_status, traction_change
     use fc_rolling_base
     use fc_rolling_refsolvers, only: run_steadygs, run_march
     use fc_force_newton, only: fc_force_newton_t
@@ -400,7 +400,7 @@ contains
         if (stagnated) then
             res%residual = change
         else
-            call finish(res, converged, 'Newton-GMRES', settings%maxit, 'Krylov iterations', change)
+            call finish_status(res, converged, 'Newton-GMRES', settings%maxit, 'Krylov iterations', change)
         end if
         res%px = px; res%py = py; res%ux = ux; res%uy = uy; res%sx = sx; res%sy = sy
         res%state = EL_EXTERIOR

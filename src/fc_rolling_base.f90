@@ -47,7 +47,7 @@ module fc_rolling_base
         logical :: fastsim = .false.       !! steady: Kalker's simplified theory on the Hertz ellipse, no grid
     end type fc_rolling_case
 
-    public :: convective_difference, rigid_creepage, traction_change, steady_diagonal, finish, rolling_summary, dot
+    public :: convective_difference, rigid_creepage, steady_diagonal, rolling_summary, dot
 
 contains
 
@@ -77,21 +77,6 @@ contains
         end do
     end subroutine rigid_creepage
 
-    !> Relative RMS change of the traction vector (thesis eq. 4.49).
-    pure real(dp) function traction_change(px, py, qx, qy)
-        real(dp), intent(in) :: px(:, :), py(:, :), qx(:, :), qy(:, :)
-        real(dp) :: num, den
-        num = sum((px - qx)**2 + (py - qy)**2)
-        den = sum(px**2 + py**2)
-        if (den > 0) then
-            traction_change = sqrt(num/den)
-        else if (num > 0) then
-            traction_change = huge(1.0_dp)
-        else
-            traction_change = 0
-        end if
-    end function traction_change
-
     !> Diagonal (dxx, dyy) of the steady operator s ← (A p − (A p)_{+x})/δx:
     !! (A_II − A_{I+x,I})/δx per component (A^xy vanishes on the x axis).
     subroutine steady_diagonal(top, dxx, dyy)
@@ -103,23 +88,6 @@ contains
         end if
         dxx = dxx/top%grid%dx; dyy = dyy/top%grid%dx
     end subroutine steady_diagonal
-
-    !> Final status and message; `change` is the last traction change.
-    subroutine finish(res, converged, solver, maxit, unit_name, change)
-        type(fc_tangential_result), intent(inout) :: res
-        logical, intent(in) :: converged
-        character(len=*), intent(in) :: solver, unit_name
-        integer, intent(in) :: maxit
-        real(dp), intent(in) :: change
-        if (converged) then
-            res%status = FC_CONVERGED
-            res%message = 'converged'
-        else if (res%status == FC_NOT_CONVERGED) then
-            write (res%message, '(a,i0,1x,a,a,es10.3)') solver//' not converged in maxit = ', maxit, unit_name, &
-                '; last traction change ', change
-        end if
-        res%residual = change
-    end subroutine finish
 
     !> Forces, moment and element counts.
     subroutine rolling_summary(grid, res)

@@ -6,7 +6,7 @@ module fc_rolling_refsolvers
     use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
     use fc_kinds
     use fc_tangcg, only: fc_tangential_operator, fc_tangential_result, EL_EXTERIOR, EL_ADHESION, EL_SLIP, &
-                         circle_newton, fc_tangential_settings, solve_tangential
+                         circle_newton, fc_tangential_settings, solve_tangential, finish_status, traction_change
     use fc_rolling_base
     implicit none
     private
@@ -123,7 +123,7 @@ contains
                 exit
             end if
         end do
-        call finish(res, converged, 'SteadyGS', settings%maxit, 'sweeps', change)
+        call finish_status(res, converged, 'SteadyGS', settings%maxit, 'sweeps', change)
         res%outer_iterations = res%iterations
         ! report the exact slip of the final tractions (one FFT product)
         call top%apply(px, py, ux, uy)
@@ -188,7 +188,7 @@ contains
                 exit
             end if
         end do
-        call finish(res, converged, 'march', settings%maxit, 'steps', change)
+        call finish_status(res, converged, 'march', settings%maxit, 'steps', change)
         res%iterations = its; res%matvecs = mvs
         res%px = ppx; res%py = ppy
         call top%apply(ppx, ppy, res%ux, res%uy)

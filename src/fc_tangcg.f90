@@ -84,7 +84,7 @@ module fc_tangcg
     public :: solve_tangential
     public :: solve_tangential_loading
     public :: circle_newton   ! shared with the steady rolling solver (fc_rolling)
-    public :: finish_force_loop   ! shared with steady rolling (fc_rolling)
+    public :: finish_force_loop, finish_status, traction_change   ! shared with the rolling solvers
 
 contains
 
