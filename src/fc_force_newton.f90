@@ -9,11 +9,11 @@
 !!     call nw%start(x0, jac0, tol, hypot(fx, fy), flimit)
 !!     do
 !!         solve at nw%x_trial with tolerance nw%tol_inner, forces F → r = F − (fx, fy)
-!!         call nw%update(r, accepted, done)
+!!         call nw%update(r, accepted, done, iterations, matvecs, cpu_seconds)
 !!         if (accepted) keep this solve as the current result
 !!         if (done) exit
 !!     end do
-!!     nw%converged, nw%outer, nw%r
+!!     nw%converged, nw%outer, nw%r and the inner solves' totals
 !!
 !! Force tolerance tol·flimit [N]; at most 60 outer steps of at most 31 trial points each.
 module fc_force_newton
@@ -30,6 +30,9 @@ module fc_force_newton
         real(dp) :: r(2) = 0            !! force residual F − F_prescribed at the current iterate [N]
         integer :: outer = 0            !! outer (Broyden) steps taken
         logical :: converged = .false.  !! |r| ≤ tol·flimit with the inner solve at tol
+        integer :: iterations = 0       !! inner-solver iterations summed over every trial point
+        integer :: matvecs = 0          !! inner-solver products summed over every trial point
+        real(dp) :: cpu_seconds = 0     !! inner-solver CPU seconds summed over every trial point
         real(dp), private :: x(2) = 0, dx(2) = 0, jac(2, 2) = 0, step = 1
         real(dp), private :: tol = 0, flimit = 1, ftol = 0
         integer, private :: halvings = 0
@@ -52,16 +55,23 @@ contains
         self%outer = 0; self%halvings = 0; self%step = 1
         self%converged = .false.; self%first = .true.
         self%r = 0
+        self%iterations = 0; self%matvecs = 0; self%cpu_seconds = 0
     end subroutine newton_start
 
-    !> Take the residual of the solve at x_trial.  `accepted`: that solve is the new current
-    !! iterate; `done`: stop (converged, singular Jacobian, or 60 outer steps).
-    subroutine newton_update(self, r_trial, accepted, done)
+    !> Take the residual of the solve at x_trial and that solve's cost.  `accepted`: that
+    !! solve is the new current iterate; `done`: stop (converged, singular Jacobian, or 60
+    !! outer steps).
+    subroutine newton_update(self, r_trial, accepted, done, iterations, matvecs, cpu_seconds)
         class(fc_force_newton_t), intent(inout) :: self
         real(dp), intent(in) :: r_trial(2)
         logical, intent(out) :: accepted, done
+        integer, intent(in), optional :: iterations, matvecs
+        real(dp), intent(in), optional :: cpu_seconds
         real(dp) :: dr(2), dx(2)
         done = .false.
+        if (present(iterations)) self%iterations = self%iterations + iterations
+        if (present(matvecs)) self%matvecs = self%matvecs + matvecs
+        if (present(cpu_seconds)) self%cpu_seconds = self%cpu_seconds + cpu_seconds
         if (self%first) then
             self%first = .false.
             self%r = r_trial; accepted = .true.

@@ -105,62 +105,64 @@ contains
             errmsg = 'cannot open influence-coefficient file '//trim(path)//': '//trim(iomsg); return
         end if
         line = 0
-        call next_data(ios); if (ios /= 0) goto 90
-        read (buf, *, iostat=ios) nmatrix, iaconvex; if (ios /= 0) goto 90
-        call next_data(ios); if (ios /= 0) goto 90
-        read (buf, *, iostat=ios) lquasid, xyzorder; if (ios /= 0) goto 90
-        call next_data(ios); if (ios /= 0) goto 90
-        read (buf, *, iostat=ios) lsymmx, lsymmy; if (ios /= 0) goto 90
-        call next_data(ios); if (ios /= 0) goto 90
-        read (buf, *, iostat=ios) mx, my, dx, dy; if (ios /= 0) goto 90
-        if (nmatrix /= 1) then
-            write (errmsg, '(2a,i0,a)') trim(path), ': nmatrix = ', nmatrix, &
-                ' is not supported (only 1: coefficients independent of position)'
-            close (u); return
-        end if
-        if (iaconvex /= 1 .and. iaconvex /= 2) then
-            write (errmsg, '(2a,i0,a)') trim(path), ': iaconvex = ', iaconvex, ' must be 1 or 2'; close (u); return
-        end if
-        if (lquasid /= 0 .or. xyzorder /= 312) then
-            write (errmsg, '(2a,i0,a,i0,a)') trim(path), ': lquasid = ', lquasid, ', xyzorder = ', xyzorder, &
-                ' not supported (need 0 and 312: nine columns in order n, x, y)'
-            close (u); return
-        end if
-        if (lsymmx /= 1 .or. lsymmy /= 0) then
-            write (errmsg, '(2a,i0,a,i0,a)') trim(path), ': lsymmx = ', lsymmx, ', lsymmy = ', lsymmy, &
-                ' not supported (need 1 and 0)'
-            close (u); return
-        end if
-        if (mx < 1 .or. my < 1 .or. mx > ic_max_offset + 1 .or. my > ic_max_offset + 1) then
-            write (errmsg, '(2a,i0,a,i0,a,i0,a)') trim(path), ': mx = ', mx, ', my = ', my, ' must lie in [1, ', &
-                ic_max_offset + 1, ']'
-            close (u); return
-        end if
-        if (.not. (dx > 0 .and. dy > 0)) then
-            write (errmsg, '(2a,2es12.4,a)') trim(path), ': dx, dy = ', dx, dy, ' must be > 0'; close (u); return
-        end if
-        call ic_set_allocate(set, mx - 1, my - 1, dx, dy)
-        set%content = 'combined'; set%source = 'contact'; set%load = 'constant'
-        set%model = 'CONTACT influence-coefficient file '//trim(path); set%hash = ''; set%g = 0; set%nu = 0
-        do iy = -(my - 1), my - 1
-            do ix = 0, mx - 1
-                call next_data(ios); if (ios /= 0) goto 90
-                read (buf, *, iostat=ios) jx, v
-                if (ios /= 0) goto 90
-                if (jx /= ix) then
-                    write (errmsg, '(2a,i0,a,i0,a,i0,a,i0)') trim(path), ': line ', line, ': ixofs = ', jx, &
-                        ' where ', ix, ' was expected (offset iy = ', iy
-                    errmsg = trim(errmsg)//')'
-                    close (u); return
-                end if
-                call store(ix, iy, 1.0_dp)
-                if (ix > 0) call store(-ix, iy, -1.0_dp)
+        ! every read failure leaves the block to the one message below
+        parse: block
+            call next_data(ios); if (ios /= 0) exit parse
+            read (buf, *, iostat=ios) nmatrix, iaconvex; if (ios /= 0) exit parse
+            call next_data(ios); if (ios /= 0) exit parse
+            read (buf, *, iostat=ios) lquasid, xyzorder; if (ios /= 0) exit parse
+            call next_data(ios); if (ios /= 0) exit parse
+            read (buf, *, iostat=ios) lsymmx, lsymmy; if (ios /= 0) exit parse
+            call next_data(ios); if (ios /= 0) exit parse
+            read (buf, *, iostat=ios) mx, my, dx, dy; if (ios /= 0) exit parse
+            if (nmatrix /= 1) then
+                write (errmsg, '(2a,i0,a)') trim(path), ': nmatrix = ', nmatrix, &
+                    ' is not supported (only 1: coefficients independent of position)'
+                close (u); return
+            end if
+            if (iaconvex /= 1 .and. iaconvex /= 2) then
+                write (errmsg, '(2a,i0,a)') trim(path), ': iaconvex = ', iaconvex, ' must be 1 or 2'; close (u); return
+            end if
+            if (lquasid /= 0 .or. xyzorder /= 312) then
+                write (errmsg, '(2a,i0,a,i0,a)') trim(path), ': lquasid = ', lquasid, ', xyzorder = ', xyzorder, &
+                    ' not supported (need 0 and 312: nine columns in order n, x, y)'
+                close (u); return
+            end if
+            if (lsymmx /= 1 .or. lsymmy /= 0) then
+                write (errmsg, '(2a,i0,a,i0,a)') trim(path), ': lsymmx = ', lsymmx, ', lsymmy = ', lsymmy, &
+                    ' not supported (need 1 and 0)'
+                close (u); return
+            end if
+            if (mx < 1 .or. my < 1 .or. mx > ic_max_offset + 1 .or. my > ic_max_offset + 1) then
+                write (errmsg, '(2a,i0,a,i0,a,i0,a)') trim(path), ': mx = ', mx, ', my = ', my, ' must lie in [1, ', &
+                    ic_max_offset + 1, ']'
+                close (u); return
+            end if
+            if (.not. (dx > 0 .and. dy > 0)) then
+                write (errmsg, '(2a,2es12.4,a)') trim(path), ': dx, dy = ', dx, dy, ' must be > 0'; close (u); return
+            end if
+            call ic_set_allocate(set, mx - 1, my - 1, dx, dy)
+            set%content = 'combined'; set%source = 'contact'; set%load = 'constant'
+            set%model = 'CONTACT influence-coefficient file '//trim(path); set%hash = ''; set%g = 0; set%nu = 0
+            do iy = -(my - 1), my - 1
+                do ix = 0, mx - 1
+                    call next_data(ios); if (ios /= 0) exit parse
+                    read (buf, *, iostat=ios) jx, v
+                    if (ios /= 0) exit parse
+                    if (jx /= ix) then
+                        write (errmsg, '(2a,i0,a,i0,a,i0,a,i0)') trim(path), ': line ', line, ': ixofs = ', jx, &
+                            ' where ', ix, ' was expected (offset iy = ', iy
+                        errmsg = trim(errmsg)//')'
+                        close (u); return
+                    end if
+                    call store(ix, iy, 1.0_dp)
+                    if (ix > 0) call store(-ix, iy, -1.0_dp)
+                end do
             end do
-        end do
-        close (u)
-        call validate_ic_set(set, path, stat, errmsg)
-        return
-90      continue
+            close (u)
+            call validate_ic_set(set, path, stat, errmsg)
+            return
+        end block parse
         write (errmsg, '(2a,i0,a)') trim(path), ': line ', line, ': cannot read the expected numbers'
         close (u)
     contains

@@ -194,8 +194,7 @@ contains
         type(fc_rolling_loading) :: cur
         type(fc_force_newton_t) :: nw
         real(dp) :: fn, flimit, k0, area, jac(2, 2), x(2), muk
-        real(dp) :: total_cpu
-        integer :: total_it, total_mv, nx, ny
+        integer :: nx, ny
         logical :: accepted, done
         nx = size(pn, 1); ny = size(pn, 2)
         allocate (qx(nx, ny), qy(nx, ny), ox(nx, ny), oy(nx, ny))
@@ -226,7 +225,6 @@ contains
         if (present(xi_start)) x(1) = xi_start
         if (present(eta_start)) x(2) = eta_start
         cur = load; cur%force_prescribed = .false.
-        total_it = 0; total_mv = 0; total_cpu = 0
         inner = settings
         call nw%start(x, jac, settings%tol, hypot(load%fx, load%fy), flimit)
         do
@@ -234,15 +232,13 @@ contains
             cur%xi = nw%x_trial(1); cur%eta = nw%x_trial(2)
             call solve_rolling(top, pn, cur, inner, trial, stat, errmsg, qx, qy, ox, oy)
             if (stat /= 0) return
-            total_it = total_it + trial%iterations
-            total_mv = total_mv + trial%matvecs
-            total_cpu = total_cpu + trial%cpu_seconds
             qx = trial%px; qy = trial%py          ! warm start of the next solve
-            call nw%update([trial%fx - load%fx, trial%fy - load%fy], accepted, done)
+            call nw%update([trial%fx - load%fx, trial%fy - load%fy], accepted, done, &
+                           trial%iterations, trial%matvecs, trial%cpu_seconds)
             if (accepted) res = trial
             if (done) exit
         end do
-        call finish_force_loop(res, nw, total_it, total_mv, total_cpu, 'creep-force loop')
+        call finish_force_loop(res, nw, 'creep-force loop')
     end subroutine solve_rolling_loading
 
     !> Newton–GMRES with TangCG's active set and variables.

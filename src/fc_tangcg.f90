@@ -22,9 +22,10 @@
 !! Stopping criterion (thesis eq. 4.49): ‖p^k − p^{k−1}‖_rms/‖p^k‖_rms < tol, with an
 !! unchanged subdivision.
 !!
-!! Size (~660 lines): TangCG and ConvexGS share the loading, the force loop, the result
-!! and the slip bookkeeping of thesis ch. 4; kept in one home like CONTACT's `tangcg` (the
-!! operator is in [[fc_tangcg_operator]], the preconditioner in [[fc_tangprec]]).
+!! Size (~800 lines): TangCG and ConvexGS share the loading, the result, the status and the
+!! slip bookkeeping of thesis ch. 4 (also used by the rolling solvers); kept in one home like
+!! CONTACT's `tangcg` (the operator is in [[fc_tangcg_operator]], the preconditioner in
+!! [[fc_tangprec]], the prescribed-force loop in [[fc_force_newton]]).
 module fc_tangcg
     use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
     use fc_kinds
@@ -184,8 +185,7 @@ contains
         type(fc_tangential_settings) :: inner
         type(fc_force_newton_t) :: nw
         real(dp) :: fn, flimit, k0, a, jac(2, 2), x(2)
-        real(dp) :: total_cpu
-        integer :: total_it, total_mv, nx, ny
+        integer :: nx, ny
         logical :: accepted, done
         nx = size(pn, 1); ny = size(pn, 2)
         allocate (zx(nx, ny), zy(nx, ny), ox(nx, ny), oy(nx, ny), qx(nx, ny), qy(nx, ny))
@@ -217,7 +217,6 @@ contains
         x = [-load%fx/k0, -load%fy/k0]
         if (present(xi_start)) x(1) = xi_start
         if (present(eta_start)) x(2) = eta_start
-        total_it = 0; total_mv = 0; total_cpu = 0
         inner = settings
         call nw%start(x, jac, settings%tol, hypot(load%fx, load%fy), flimit)
         do
@@ -225,30 +224,26 @@ contains
             call solve_tangential(top, pn, load%mu, inner, trial, stat, errmsg, nw%x_trial(1), nw%x_trial(2), &
                                   load%phi, zx, zy, qx, qy, ox, oy)
             if (stat /= 0) return
-            total_it = total_it + trial%iterations
-            total_mv = total_mv + trial%matvecs
-            total_cpu = total_cpu + trial%cpu_seconds
             qx = trial%px; qy = trial%py          ! warm start of the next solve
-            call nw%update([trial%fx - load%fx, trial%fy - load%fy], accepted, done)
+            call nw%update([trial%fx - load%fx, trial%fy - load%fy], accepted, done, &
+                           trial%iterations, trial%matvecs, trial%cpu_seconds)
             if (accepted) call move_alloc_result(trial, res)
             if (done) exit
         end do
-        call finish_force_loop(res, nw, total_it, total_mv, total_cpu, 'force loop')
+        call finish_force_loop(res, nw, 'force loop')
     end subroutine solve_tangential_loading
 
     !> Totals of a prescribed-force loop ([[fc_force_newton]]) into its last accepted result:
     !! iterations, products and CPU seconds summed over every inner solve; a loop that did
     !! not converge turns a converged inner status into not_converged with the force error.
-    subroutine finish_force_loop(res, nw, iterations, matvecs, cpu_seconds, what)
+    subroutine finish_force_loop(res, nw, what)
         type(fc_tangential_result), intent(inout) :: res
         type(fc_force_newton_t), intent(in) :: nw
-        integer, intent(in) :: iterations, matvecs
-        real(dp), intent(in) :: cpu_seconds
         character(len=*), intent(in) :: what    !! name of the loop in the message
         res%outer_iterations = nw%outer
-        res%iterations = iterations
-        res%matvecs = matvecs
-        res%cpu_seconds = cpu_seconds
+        res%iterations = nw%iterations
+        res%matvecs = nw%matvecs
+        res%cpu_seconds = nw%cpu_seconds
         if (res%status == FC_CONVERGED .and. .not. nw%converged) then
             res%status = FC_NOT_CONVERGED
             write (res%message, '(a,a,es10.3,a)') what, ' not converged: force error ', norm2(nw%r), ' N'
