@@ -66,7 +66,7 @@ contains
     !! for what case k inherits; cases k … `last_case` (default k) are solved and written, their
     !! statuses (0 converged, 1 input error, 2 solver failure) returned in `statuses`; no
     !! closing summary line.
-    subroutine run_driver(args, exit_code, report_unit, error_unit, only_case, last_case, statuses)
+    subroutine run_driver(args, exit_code, report_unit, error_unit, only_case, last_case, statuses, operators)
         character(len=*), intent(in) :: args(:)
         integer, intent(out) :: exit_code
         integer, intent(in), optional :: report_unit   !! report (default: stdout)
@@ -74,6 +74,9 @@ contains
         integer, intent(in), optional :: only_case     !! first case to solve (1-based)
         integer, intent(in), optional :: last_case     !! last case to solve (with only_case)
         integer, allocatable, intent(out), optional :: statuses(:)  !! per solved case (with only_case)
+        !> operators kept by the caller across calls (the MPI batch: one set per rank); a call
+        !! reuses them while grid and material match, exactly as consecutive cases of one file do
+        type(fc_contact_operators), intent(inout), optional :: operators
         integer :: rep, err, i, k, stat, ncase_err, ncase_fail
         character(len=:), allocatable :: case_file, out_dir
         type(fc_case_chunk), allocatable :: cases(:)
@@ -218,7 +221,11 @@ contains
             ! ---- solve: model choice, potential area, accuracy target (fc_auto); operators reused;
             !      the outcome goes straight into the summary
             call system_clock(t1)
-            call solve_case_auto(kase, ops, s%outcome, stat, errmsg)
+            if (present(operators)) then
+                call solve_case_auto(kase, operators, s%outcome, stat, errmsg)
+            else
+                call solve_case_auto(kase, ops, s%outcome, stat, errmsg)
+            end if
             call system_clock(t2)
             if (stat /= 0) then
                 call library_context(stat, errmsg, state, s%outcome)

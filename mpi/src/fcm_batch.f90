@@ -4,18 +4,18 @@
 !! Each case is solved by the serial driver's own routine ([[run_driver]] with `only_case`):
 !! the cases before it are read and checked only, for what it inherits, so every rank writes
 !! exactly the JSON and CSV files the serial driver writes for that case.  Its report and
-!! error messages go to scratch files and travel to rank 0, which prints them in case order
-!! followed by the serial driver's closing line; the exit status follows the serial rules
-!! (1 if a case had an input error, else 2 if a solver failed, else 0).  A failing case
+!! error messages are captured as text and gathered on rank 0 at the end, which prints them in
+!! case order followed by the serial driver's closing line; the exit status follows the serial
+!! rules (1 if a case had an input error, else 2 if a solver failed, else 0).  A failing case
 !! only marks its own status; the other cases finish.
 !!
-!! Dynamic load balance: the cases are grouped in chunks of consecutive cases (about four
-!! chunks per rank, so that a rank reuses its operators across the cases of a chunk as the
-!! serial driver does across consecutive cases) and rank 0 hands out chunk indices.  Every
-!! rank, rank 0 included, solves chunks; a worker holds one chunk in reserve and asks for the
-!! next one when it starts one, so it rarely waits while rank 0 is busy with its own chunk
-!! (rank 0 answers requests between its chunks).  Waiting ranks poll with short sleeps rather
-!! than spin, so that an idle rank does not take a core from a busy one.
+!! Dynamic load balance by guided self-scheduling: the cases are grouped in chunks of
+!! consecutive cases whose sizes shrink along the file (⌈remaining / 2P⌉ cases, at least 1),
+!! and every rank, rank 0 included, takes the next chunk from a shared counter
+!! (MPI-3 passive-target `MPI_Fetch_and_op` on a one-integer window of rank 0), so no rank
+!! waits for another to hand out work and the last chunks, being small, finish close
+!! together.  Each rank keeps one set of influence operators across its chunks, reused while
+!! grid and material match, as the serial driver reuses them across consecutive cases.
 !!
 !! Difference from the serial driver (documented in doc/parallel.md): a case whose input is
 !! rejected only while solving (e.g. a tangential force above μ·Fn) is, for the inheritance
@@ -26,12 +26,13 @@ module fcm_batch
     use, intrinsic :: iso_c_binding, only: c_int
     use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
     use fc_kinds, only: msg_len
+    use fc_contact, only: fc_contact_operators
     use fc_namelist, only: fc_case_chunk, read_case_file
     use fc_driver, only: run_driver, EXIT_OK, EXIT_INPUT_ERROR, EXIT_NOT_CONVERGED
     implicit none
     private
 
-    integer, parameter :: TAG_ASSIGN = 11, TAG_RESULT = 12, TAG_TEXT = 13
+    integer, parameter :: TAG_SIZES = 11, TAG_HEADS = 12, TAG_STATUS = 13, TAG_TEXT = 14
 
     interface
         integer(c_int) function c_usleep(us) bind(C, name='usleep')
@@ -48,9 +49,28 @@ module fcm_batch
         integer :: rank = -1                        !! rank that solved it
     end type case_outcome
 
-    public :: run_mpi_batch
+    public :: run_mpi_batch, guided_chunks
 
 contains
+
+    !> Last case of each chunk under guided self-scheduling: chunk sizes ⌈remaining / 2P⌉,
+    !! at least 1, so the first chunks are large (few operator set-ups and re-reads of the
+    !! file) and the last ones single cases (the ranks finish close together).
+    pure function guided_chunks(ncases, nprocs) result(last)
+        integer, intent(in) :: ncases   !! cases in the file
+        integer, intent(in) :: nprocs   !! ranks
+        integer, allocatable :: last(:)
+        integer :: done, n, s
+        integer :: buf(ncases)
+        done = 0; n = 0
+        do while (done < ncases)
+            s = max(1, (ncases - done + 2*nprocs - 1)/(2*nprocs))
+            n = n + 1
+            done = done + s
+            buf(n) = done
+        end do
+        last = buf(1:n)
+    end function guided_chunks
 
     !> Run the batch on `comm` (collective).  `exit_code` is the same on every rank.
     !! `report_unit`, `err_unit` (rank 0) default to stdout and stderr; `case_ranks`
@@ -61,12 +81,15 @@ contains
         integer, intent(out) :: exit_code
         integer, intent(in), optional :: report_unit, err_unit
         integer, allocatable, intent(out), optional :: case_ranks(:)
-        integer :: rank, nprocs, ierr, ncases, rep, err, k, nerr, nfail
+        integer :: rank, nprocs, ierr, ncases, rep, err, k, nerr, nfail, r, win, nchunks
         type(case_outcome), allocatable :: out(:)
         type(fc_case_chunk), allocatable :: cases(:)
+        type(fc_contact_operators) :: ops
         character(len=msg_len) :: errmsg
         character(len=:), allocatable :: case_file
-        integer :: stat, next, csize, nchunks
+        integer, allocatable :: last(:), mine(:)
+        integer :: stat, nmine, zero
+        integer(MPI_ADDRESS_KIND) :: base, wsize
         call mpi_comm_rank(comm, rank, ierr)
         call mpi_comm_size(comm, nprocs, ierr)
         rep = output_unit; err = error_unit
@@ -90,11 +113,36 @@ contains
             exit_code = -1 - ncases
             return
         end if
-        csize = max(1, ncases/(4*nprocs))
-        nchunks = (ncases + csize - 1)/csize
-        allocate (out(nchunks))
+        last = guided_chunks(ncases, nprocs)
+        nchunks = size(last)
+        allocate (out(nchunks), mine(nchunks))
+        ! ---- the shared chunk counter: one integer on rank 0, starting at 0
+        wsize = 0
+        if (rank == 0) wsize = storage_size(0)/8
+        call mpi_win_allocate(wsize, storage_size(0)/8, MPI_INFO_NULL, comm, base, win, ierr)
         if (rank == 0) then
-            call master(out)
+            zero = 0   ! origin buffers stay valid until the unlock: variables, not constants
+            call mpi_win_lock(MPI_LOCK_EXCLUSIVE, 0, 0, win, ierr)
+            call mpi_put(zero, 1, MPI_INTEGER, 0, 0_MPI_ADDRESS_KIND, 1, MPI_INTEGER, win, ierr)
+            call mpi_win_unlock(0, win, ierr)
+        end if
+        call mpi_barrier(comm, ierr)
+        ! ---- every rank takes chunks until the counter passes the last one
+        nmine = 0
+        do
+            k = next_chunk()
+            if (k > nchunks) exit
+            call solve_chunk(k, out(k))
+            out(k)%rank = rank
+            nmine = nmine + 1; mine(nmine) = k
+        end do
+        call ops%destroy()
+        call mpi_win_free(win, ierr)
+        ! ---- outcomes to rank 0, printed in case order
+        if (rank == 0) then
+            do r = 1, nprocs - 1
+                call receive_outcomes(r, out)
+            end do
             nerr = count([(out(k)%statuses == 1, k=1, nchunks)])
             nfail = count([(out(k)%statuses >= 2 .or. out(k)%statuses < 0, k=1, nchunks)])
             do k = 1, nchunks
@@ -113,108 +161,106 @@ contains
             if (present(case_ranks)) then
                 allocate (case_ranks(ncases))
                 do k = 1, nchunks
-                    case_ranks((k - 1)*csize + 1:min(k*csize, ncases)) = out(k)%rank
+                    case_ranks(first_case(k):last(k)) = out(k)%rank
                 end do
             end if
         else
-            call worker()
+            call send_outcomes()
         end if
         call mpi_bcast(exit_code, 1, MPI_INTEGER, 0, comm, ierr)
 
     contains
 
-        !> Rank 0: hand out cases, solve cases itself between requests, collect outcomes.
-        subroutine master(out)
-            type(case_outcome), intent(inout) :: out(:)
-            integer :: received, r, st(MPI_STATUS_SIZE), first(2)
-            logical :: flag
-            next = 1
-            ! two chunks per worker to start with (the second one is the reserve)
-            do r = 1, nprocs - 1
-                first = 0
-                if (next <= nchunks) then
-                    first(1) = next; next = next + 1
-                end if
-                if (next <= nchunks) then
-                    first(2) = next; next = next + 1
-                end if
-                call mpi_send(first, 2, MPI_INTEGER, r, TAG_ASSIGN, comm, ierr)
-            end do
-            received = 0
-            do while (received < nchunks)
-                ! answer every request that has arrived
-                do
-                    call mpi_iprobe(MPI_ANY_SOURCE, TAG_RESULT, comm, flag, st, ierr)
-                    if (.not. flag) exit
-                    call receive_outcome(st(MPI_SOURCE), out)
-                    received = received + 1
-                    call mpi_send(take_next(), 1, MPI_INTEGER, st(MPI_SOURCE), TAG_ASSIGN, comm, ierr)
-                end do
-                if (next <= nchunks) then
-                    k = take_next()
-                    call solve_case(k, out(k))
-                    out(k)%rank = 0
-                    received = received + 1
-                else if (received < nchunks) then
-                    ierr = c_usleep(2000_c_int)
-                end if
-            end do
-        end subroutine master
+        integer function first_case(k)
+            integer, intent(in) :: k
+            first_case = 1
+            if (k > 1) first_case = last(k - 1) + 1
+        end function first_case
 
-        integer function take_next()
-            take_next = 0
-            if (next <= nchunks) then
-                take_next = next; next = next + 1
-            end if
-        end function take_next
+        !> Next chunk index (1-based) from the shared counter; > nchunks when all are taken.
+        integer function next_chunk()
+            integer :: taken, one
+            one = 1
+            call mpi_win_lock(MPI_LOCK_SHARED, 0, 0, win, ierr)
+            call mpi_fetch_and_op(one, taken, MPI_INTEGER, 0, 0_MPI_ADDRESS_KIND, MPI_SUM, win, ierr)
+            call mpi_win_unlock(0, win, ierr)
+            next_chunk = taken + 1
+        end function next_chunk
 
-        !> Other ranks: solve the cases handed out, send each outcome (which also asks for
-        !! the next case), keep one case in reserve.
-        subroutine worker()
-            integer :: queue(2), nq, k, req, nextk, st(MPI_STATUS_SIZE), head(4), sreq(3)
-            integer, allocatable :: sbuf(:)
-            type(case_outcome) :: o
+        !> Solve chunk k with the serial driver; report and errors captured as text.
+        subroutine solve_chunk(k, o)
+            integer, intent(in) :: k
+            type(case_outcome), intent(out) :: o
+            integer :: ur, ue, code
+            open (newunit=ur, status='scratch', action='readwrite', form='formatted')
+            open (newunit=ue, status='scratch', action='readwrite', form='formatted')
+            call run_driver(args, code, report_unit=ur, error_unit=ue, only_case=first_case(k), &
+                last_case=last(k), statuses=o%statuses, operators=ops)
+            o%report = slurp(ur)
+            o%errors = slurp(ue)
+            close (ur); close (ue)
+        end subroutine solve_chunk
+
+        !> A rank other than 0: its outcomes in four messages (sizes first), sent without
+        !! spinning while rank 0 is still solving.
+        subroutine send_outcomes()
+            integer :: sizes(3), req(4), j, nst
+            integer, allocatable :: heads(:), sts(:)
             character(len=:), allocatable :: text
-            logical :: pending, sending
-            call mpi_recv(queue, 2, MPI_INTEGER, 0, TAG_ASSIGN, comm, st, ierr)
-            nq = count(queue > 0)
-            pending = .false.; sending = .false.
-            do while (nq > 0)
-                k = queue(1); queue(1) = queue(2); queue(2) = 0; nq = nq - 1
-                call solve_case(k, o)
-                if (pending) then
-                    call wait_politely(req)
-                    pending = .false.
-                    if (nextk > 0) then
-                        nq = nq + 1; queue(nq) = nextk
-                    end if
-                end if
-                ! outcome (also the request for the next case), sent without waiting for rank 0
-                if (sending) call wait_politely(sreq(1))
-                if (sending) call wait_politely(sreq(2))
-                if (sending) call wait_politely(sreq(3))
-                head = [k, size(o%statuses), len(o%report), len(o%errors)]
-                sbuf = [o%statuses, 0]
-                text = o%report//o%errors//' '
-                call mpi_isend(head, 4, MPI_INTEGER, 0, TAG_RESULT, comm, sreq(1), ierr)
-                call mpi_isend(sbuf, size(sbuf), MPI_INTEGER, 0, TAG_TEXT, comm, sreq(2), ierr)
-                call mpi_isend(text, len(text), MPI_CHARACTER, 0, TAG_TEXT, comm, sreq(3), ierr)
-                sending = .true.
-                call mpi_irecv(nextk, 1, MPI_INTEGER, 0, TAG_ASSIGN, comm, req, ierr)
-                pending = .true.
-                if (nq == 0) then
-                    call wait_politely(req)
-                    pending = .false.
-                    if (nextk > 0) then
-                        nq = 1; queue(1) = nextk
-                    end if
-                end if
+            allocate (heads(max(1, 4*nmine)))
+            heads = 0; nst = 0; text = ''
+            do j = 1, nmine
+                associate (o => out(mine(j)))
+                    heads(4*j - 3:4*j) = [mine(j), size(o%statuses), len(o%report), len(o%errors)]
+                    nst = nst + size(o%statuses)
+                    text = text//o%report//o%errors
+                end associate
             end do
-            if (pending) call wait_politely(req)
-            if (sending) call wait_politely(sreq(1))
-            if (sending) call wait_politely(sreq(2))
-            if (sending) call wait_politely(sreq(3))
-        end subroutine worker
+            allocate (sts(max(1, nst)))
+            sts = 0; nst = 0
+            do j = 1, nmine
+                associate (o => out(mine(j)))
+                    sts(nst + 1:nst + size(o%statuses)) = o%statuses
+                    nst = nst + size(o%statuses)
+                end associate
+            end do
+            text = text//' '   ! never empty
+            sizes = [nmine, size(sts), len(text)]
+            call mpi_isend(sizes, 3, MPI_INTEGER, 0, TAG_SIZES, comm, req(1), ierr)
+            call mpi_isend(heads, size(heads), MPI_INTEGER, 0, TAG_HEADS, comm, req(2), ierr)
+            call mpi_isend(sts, size(sts), MPI_INTEGER, 0, TAG_STATUS, comm, req(3), ierr)
+            call mpi_isend(text, len(text), MPI_CHARACTER, 0, TAG_TEXT, comm, req(4), ierr)
+            do j = 1, 4
+                call wait_politely(req(j))
+            end do
+        end subroutine send_outcomes
+
+        !> Rank 0: the outcomes of rank `src`.
+        subroutine receive_outcomes(src, out)
+            integer, intent(in) :: src
+            type(case_outcome), intent(inout) :: out(:)
+            integer :: sizes(3), st(MPI_STATUS_SIZE), req, j, kk, ist, itx
+            integer, allocatable :: heads(:), sts(:)
+            character(len=:), allocatable :: text
+            call mpi_irecv(sizes, 3, MPI_INTEGER, src, TAG_SIZES, comm, req, ierr)
+            call wait_politely(req)
+            allocate (heads(max(1, 4*sizes(1))), sts(sizes(2)))
+            allocate (character(len=sizes(3)) :: text)
+            call mpi_recv(heads, size(heads), MPI_INTEGER, src, TAG_HEADS, comm, st, ierr)
+            call mpi_recv(sts, size(sts), MPI_INTEGER, src, TAG_STATUS, comm, st, ierr)
+            call mpi_recv(text, len(text), MPI_CHARACTER, src, TAG_TEXT, comm, st, ierr)
+            ist = 0; itx = 0
+            do j = 1, sizes(1)
+                kk = heads(4*j - 3)
+                out(kk)%statuses = sts(ist + 1:ist + heads(4*j - 2))
+                ist = ist + heads(4*j - 2)
+                out(kk)%report = text(itx + 1:itx + heads(4*j - 1))
+                itx = itx + heads(4*j - 1)
+                out(kk)%errors = text(itx + 1:itx + heads(4*j))
+                itx = itx + heads(4*j)
+                out(kk)%rank = src
+            end do
+        end subroutine receive_outcomes
 
         subroutine wait_politely(req)
             integer, intent(inout) :: req
@@ -226,38 +272,6 @@ contains
                 ierr = c_usleep(2000_c_int)
             end do
         end subroutine wait_politely
-
-        !> Solve chunk k with the serial driver; report and errors captured as text.
-        subroutine solve_case(k, o)
-            integer, intent(in) :: k
-            type(case_outcome), intent(out) :: o
-            integer :: ur, ue, code
-            open (newunit=ur, status='scratch', action='readwrite', form='formatted')
-            open (newunit=ue, status='scratch', action='readwrite', form='formatted')
-            call run_driver(args, code, report_unit=ur, error_unit=ue, only_case=(k - 1)*csize + 1, &
-                last_case=min(k*csize, ncases), statuses=o%statuses)
-            o%report = slurp(ur)
-            o%errors = slurp(ue)
-            close (ur); close (ue)
-        end subroutine solve_case
-
-        subroutine receive_outcome(src, out)
-            integer, intent(in) :: src
-            type(case_outcome), intent(inout) :: out(:)
-            integer :: head(4), st(MPI_STATUS_SIZE), kk
-            integer, allocatable :: sbuf(:)
-            character(len=:), allocatable :: text
-            call mpi_recv(head, 4, MPI_INTEGER, src, TAG_RESULT, comm, st, ierr)
-            kk = head(1)
-            allocate (sbuf(head(2) + 1))
-            call mpi_recv(sbuf, size(sbuf), MPI_INTEGER, src, TAG_TEXT, comm, st, ierr)
-            out(kk)%statuses = sbuf(1:head(2))
-            allocate (character(len=head(3) + head(4) + 1) :: text)   ! one trailing blank: never empty
-            call mpi_recv(text, len(text), MPI_CHARACTER, src, TAG_TEXT, comm, st, ierr)
-            out(kk)%report = text(1:head(3))
-            out(kk)%errors = text(head(3) + 1:head(3) + head(4))
-            out(kk)%rank = src
-        end subroutine receive_outcome
 
     end subroutine run_mpi_batch
 

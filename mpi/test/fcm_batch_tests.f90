@@ -5,7 +5,7 @@
 module fcm_batch_tests
     use mpi
     use fc_driver, only: run_driver
-    use fcm_batch, only: run_mpi_batch
+    use fcm_batch, only: run_mpi_batch, guided_chunks
     implicit none
     private
     public :: batch_tests
@@ -21,6 +21,7 @@ contains
         integer, intent(inout) :: npass, nfail
         call run('batch_equals_serial_driver', test_equal)
         call run('batch_bad_command_line', test_bad_args)
+        call run('batch_guided_chunks', test_guided)
     contains
         subroutine run(name, test)
             character(len=*), intent(in) :: name
@@ -154,6 +155,42 @@ contains
             if (all(ranks == 0) .or. all(ranks /= 0)) msg = 'all cases solved by one kind of rank: no distribution'
         end if
     end subroutine test_equal
+
+    !> Guided self-scheduling: the chunks cover every case once, in order, never grow, the
+    !! first is ⌈n / 2P⌉ cases and the last ones single cases; their number stays small
+    !! (each chunk re-reads the file up to its first case).
+    subroutine test_guided(msg)
+        character(len=:), allocatable, intent(out) :: msg
+        integer, allocatable :: last(:), sizes(:)
+        integer :: n, p, k
+        last = guided_chunks(40, 2)
+        if (size(last) /= 11 .or. any(last /= [10, 18, 24, 28, 31, 34, 36, 37, 38, 39, 40])) then
+            msg = 'guided_chunks(40, 2) /= [10, 18, 24, 28, 31, 34, 36, 37, 38, 39, 40]'; return
+        end if
+        do p = 1, 9
+            do n = 1, 2000, 37
+                last = guided_chunks(n, p)
+                sizes = last - [0, last(1:size(last) - 1)]
+                if (last(size(last)) /= n .or. any(sizes < 1)) then
+                    msg = 'chunks do not cover the cases once'; return
+                end if
+                do k = 2, size(sizes)
+                    if (sizes(k) > sizes(k - 1)) then
+                        msg = 'a chunk is larger than the one before it'; return
+                    end if
+                end do
+                if (sizes(1) /= (n + 2*p - 1)/(2*p)) then
+                    msg = 'first chunk is not ceiling(n / 2P)'; return
+                end if
+                if (real(size(last)) > 2*p*(1 + log(real(n))) + 1) then   ! about 2P·ln(n / 2P) + 2P
+                    msg = 'too many chunks'; return
+                end if
+                if (n >= 2*p .and. sizes(size(sizes)) /= 1) then
+                    msg = 'the last chunk is not a single case'; return
+                end if
+            end do
+        end do
+    end subroutine test_guided
 
     !> A missing case file: exit status 1 on every rank, as the serial driver.
     subroutine test_bad_args(msg)
