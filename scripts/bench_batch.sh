@@ -47,12 +47,13 @@ MPIRUN=(mpirun --oversubscribe)
 # speed-up the batch achieves when each rank has its core (load balance and overheads included).
 echo "run,mode,ranks,wall_s,cpu_s,cpu_max_rank_s,load1,exit" >"$out"
 for r in $(seq 1 "$repeats"); do
-    for mode in serial mpi2; do
+    for mode in serial mpi2 mpi2_ob1; do
         rm -rf "$tmp/out"
         if [ "$mode" = serial ]; then
             cmd=(env OMP_NUM_THREADS=1 "$serial" "$nml" --out "$tmp/out"); ranks=1
         else
-            cmd=(env OMP_NUM_THREADS=1 "${MPIRUN[@]}" -np 2 sh -c \
+            opts=(); [ "$mode" = mpi2_ob1 ] && opts=(--mca pml ob1)
+            cmd=(env OMP_NUM_THREADS=1 "${MPIRUN[@]}" "${opts[@]}" -np 2 sh -c \
                 '/usr/bin/time -f "%U %S" -o "$0.$OMPI_COMM_WORLD_RANK" "$@"' "$tmp/rank" "$mpibin" "$nml" --out "$tmp/out"); ranks=2
         fi
         set +e
@@ -62,7 +63,7 @@ for r in $(seq 1 "$repeats"); do
         read -r wall user sys <"$tmp/time"
         cpu="$(awk "BEGIN{print $user+$sys}")"
         cmax="$cpu"
-        if [ "$mode" = mpi2 ]; then
+        if [ "$mode" != serial ]; then
             cmax="$(cat "$tmp"/rank.* | awk '{c=$1+$2; if (c>m) m=c} END{print m}')"
             rm -f "$tmp"/rank.*
         fi
