@@ -198,8 +198,8 @@ contains
     end subroutine ic_kernel
 
     !> Coefficients for offsets dix ∈ [−mx, mx], diy ∈ [−my, my].  The antiderivatives are
-    !! evaluated once per element corner and double-differenced (four times fewer special
-    !! function calls than element by element).
+    !! evaluated once per element corner of one quadrant, mirrored to the others and
+    !! double-differenced (sixteen times fewer special-function calls than element by element).
     subroutine ic_kernel_extended(block, mat, grid, mx, my, kernel)
         integer, intent(in) :: block
         type(fc_material), intent(in) :: mat
@@ -240,19 +240,43 @@ contains
         subroutine add_primitive(which, factor)
             integer, intent(in) :: which
             real(dp), intent(in) :: factor
-            integer :: ii, jj
+            integer :: ii, jj, im, jm
+            real(dp) :: su, sv, s
             if (factor == 0) return
-            ! rows are independent: shared among threads (fc_threads)
+            ! The corners are symmetric (cx(1−i) = −cx(i), likewise cy) and every antiderivative
+            ! is even or odd in each argument, so it is evaluated on the quadrant i, j ≥ 1 only
+            ! and mirrored (exactly: asinh, atan are odd, hypot and log even) — a quarter of
+            ! the special-function calls.  Rows are independent: shared among threads.
+            su = -1; sv = -1                       ! parity in u (= x) and in v (= y)
+            select case (which)
+            case (4); su = 1; sv = 1               ! −ρ
+            case (5); su = 1                       ! v·ln ρ + u·atan(v/u): even in u, odd in v
+            case (6); sv = 1                       ! roles of u and v swapped
+            end select
             !$omp parallel do default(shared) private(jj) schedule(static)
-            do jj = -my, my + 1
+            do jj = 1, my + 1
                 select case (which)
-                case (1); fc(:, jj) = f_inv_rho(cx, cy(jj))
-                case (2); fc(:, jj) = f_uu_rho3(cx, cy(jj))
-                case (3); fc(:, jj) = f_vv_rho3(cx, cy(jj))
-                case (4); fc(:, jj) = f_uv_rho3(cx, cy(jj))
-                case (5); fc(:, jj) = f_u_rho2(cx, cy(jj))
-                case default; fc(:, jj) = f_u_rho2(cy(jj), cx)
+                case (1); fc(1:, jj) = f_inv_rho(cx(1:), cy(jj))
+                case (2); fc(1:, jj) = f_uu_rho3(cx(1:), cy(jj))
+                case (3); fc(1:, jj) = f_vv_rho3(cx(1:), cy(jj))
+                case (4); fc(1:, jj) = f_uv_rho3(cx(1:), cy(jj))
+                case (5); fc(1:, jj) = f_u_rho2(cx(1:), cy(jj))
+                case default; fc(1:, jj) = f_u_rho2(cy(jj), cx(1:))
                 end select
+            end do
+            !$omp end parallel do
+            ! the other three quadrants, read from the first one only
+            !$omp parallel do default(shared) private(ii, jj, im, jm, s) schedule(static)
+            do jj = -my, my + 1
+                jm = jj; s = 1
+                if (jj <= 0) then
+                    jm = 1 - jj; s = sv
+                end if
+                if (jj <= 0) fc(1:, jj) = s*fc(1:, jm)
+                do ii = -mx, 0
+                    im = 1 - ii
+                    fc(ii, jj) = (su*s)*fc(im, jm)
+                end do
             end do
             !$omp end parallel do
             !$omp parallel do default(shared) private(ii, jj) schedule(static)
