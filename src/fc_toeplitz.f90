@@ -130,7 +130,7 @@ contains
         type(fc_bttb), intent(in), optional :: plans_from
         real(dp), allocatable :: mker(:, :)
         real(dp) :: smax
-        integer :: mx, my, i, j, di, dj
+        integer :: mx, my, i, j, di, dj, jw
         mx = 2*nx; if (nx == 1) mx = 1
         my = 2*ny; if (ny == 1) my = 1
         call setup_plans(prec, nx, ny, mx, my, plans_from)
@@ -149,9 +149,9 @@ contains
             call fftw_execute_dft_c2r(w%plan_bwd, w%cbuf, w%rbuf)
             allocate (mker(-(nx - 1):nx - 1, -(ny - 1):ny - 1))
             do j = -(ny - 1), ny - 1
-                do i = -(nx - 1), nx - 1
-                    mker(i, j) = w%rbuf(modulo(i, mx) + 1, modulo(j, my) + 1)
-                end do
+                jw = j + 1; if (j < 0) jw = j + my + 1      ! modulo(j, my) + 1
+                mker(0:nx - 1, j) = w%rbuf(1:nx, jw)
+                mker(-(nx - 1):-1, j) = w%rbuf(mx - nx + 2:mx, jw)
             end do
         end associate
         call load_kernel(prec, mker)
@@ -229,14 +229,16 @@ contains
     subroutine load_kernel(op, kernel)
         type(fc_bttb), intent(inout) :: op
         real(dp), intent(in) :: kernel(-(op%nx - 1):, -(op%ny - 1):)
-        integer :: i, j
+        integer :: j, jw
         allocate (op%kernel(-(op%nx - 1):op%nx - 1, -(op%ny - 1):op%ny - 1), source=kernel)
         op%fft%rbuf = 0
-        do j = -(op%ny - 1), op%ny - 1
-            do i = -(op%nx - 1), op%nx - 1
-                op%fft%rbuf(modulo(i, op%mx) + 1, modulo(j, op%my) + 1) = kernel(i, j)
+        associate (nx => op%nx, mx => op%mx, rbuf => op%fft%rbuf)
+            do j = -(op%ny - 1), op%ny - 1
+                jw = j + 1; if (j < 0) jw = j + op%my + 1   ! offset k sits at modulo(k, m) + 1
+                rbuf(1:nx, jw) = kernel(0:nx - 1, j)
+                rbuf(mx - nx + 2:mx, jw) = kernel(-(nx - 1):-1, j)
             end do
-        end do
+        end associate
     end subroutine load_kernel
 
     !> Transform the circulant in the real buffer into the scaled symbol, stored as real
@@ -268,10 +270,14 @@ contains
         mx = size(c, 1); my = size(c, 2)
         tol = 1.0e-13_dp*maxval(abs(c))
         even_dev = 0; odd_dev = 0
+        ! the partner of index k is modulo(1 − k, m) + 1: 1 for k = 1, else m + 2 − k
         do j = 1, my
-            jr = modulo(1 - j, my) + 1
-            do i = 1, mx
-                ir = modulo(1 - i, mx) + 1
+            jr = 1
+            if (j > 1) jr = my + 2 - j
+            even_dev = max(even_dev, abs(c(1, j) - c(1, jr)))
+            odd_dev = max(odd_dev, abs(c(1, j) + c(1, jr)))
+            do i = 2, mx
+                ir = mx + 2 - i
                 even_dev = max(even_dev, abs(c(i, j) - c(ir, jr)))
                 odd_dev = max(odd_dev, abs(c(i, j) + c(ir, jr)))
             end do
