@@ -9,7 +9,17 @@ module fc_fftw
 
 #include "fftw3.f03"
 
-    public :: c_ptr, c_null_ptr, c_associated, c_int
+    !> FFTW's `fftw_alignment_of` for an address of any type: arrays with equal values may
+    !! replace each other in new-array execution of one plan (FFTW manual, "New-array
+    !! Execute Functions").
+    interface
+        integer(c_int) function fc_fftw_alignment_of(p) bind(C, name='fftw_alignment_of')
+            import :: c_int, c_ptr
+            type(c_ptr), value :: p
+        end function fc_fftw_alignment_of
+    end interface
+
+    public :: c_ptr, c_null_ptr, c_associated, c_int, fc_fftw_alignment_of
     public :: fftw_plan_dft_r2c_2d, fftw_plan_dft_c2r_2d
     public :: fftw_execute_dft_r2c, fftw_execute_dft_c2r
     public :: fftw_plan_many_dft_r2c, fftw_plan_many_dft_c2r, fftw_plan_many_dft, fftw_execute_dft

@@ -241,7 +241,7 @@ contains
             integer, intent(in) :: which
             real(dp), intent(in) :: factor
             integer :: ii, jj, im, jm
-            real(dp) :: su, sv, s
+            real(dp) :: su, sv, s, d
             if (factor == 0) return
             ! The corners are symmetric (cx(1−i) = −cx(i), likewise cy) and every antiderivative
             ! is even or odd in each argument, so it is evaluated on the quadrant i, j ≥ 1 only
@@ -279,10 +279,20 @@ contains
                 end do
             end do
             !$omp end parallel do
-            !$omp parallel do default(shared) private(ii, jj) schedule(static)
-            do jj = -my, my
-                do ii = -mx, mx
-                    kernel(ii, jj) = kernel(ii, jj) + factor*(fc(ii + 1, jj + 1) - fc(ii + 1, jj) - fc(ii, jj + 1) + fc(ii, jj))
+            ! The double difference inherits the reflections: A(−i, j) = −su·A(i, j) and
+            ! A(i, −j) = −sv·A(i, j).  Computed for i, j ≥ 0 and mirrored, the coefficients
+            ! keep these symmetries exactly, so an even block (A^xy as well as A^zz, A^xx,
+            ! A^yy) gets a real symbol and an odd one an imaginary symbol ([[fc_toeplitz]]).
+            !$omp parallel do default(shared) private(ii, jj, d) schedule(static)
+            do jj = 0, my
+                do ii = 0, mx
+                    d = factor*(fc(ii + 1, jj + 1) - fc(ii + 1, jj) - fc(ii, jj + 1) + fc(ii, jj))
+                    ! odd in x (y): exactly zero on the axis, not the rounding of a − b − a + b
+                    if ((ii == 0 .and. su > 0) .or. (jj == 0 .and. sv > 0)) d = 0
+                    kernel(ii, jj) = kernel(ii, jj) + d
+                    if (ii > 0) kernel(-ii, jj) = kernel(-ii, jj) + (-su)*d
+                    if (jj > 0) kernel(ii, -jj) = kernel(ii, -jj) + (-sv)*d
+                    if (ii > 0 .and. jj > 0) kernel(-ii, -jj) = kernel(-ii, -jj) + (su*sv)*d
                 end do
             end do
             !$omp end parallel do

@@ -418,23 +418,45 @@ contains
 
     !> Spectrum of x (zero-padded to the circulant size): the first half of a product,
     !! so that several blocks can share one forward transform.
+    !! The transform writes into `spectrum` directly when FFTW may use it in place of the
+    !! plan set's buffer (same shape and alignment, [[fftw_compatible]]), else through the
+    !! buffer and a copy; both give the same numbers.
     subroutine bttb_forward(self, x, spectrum)
         class(fc_bttb), intent(inout) :: self
         real(dp), intent(in) :: x(:, :)
-        complex(dp), intent(out) :: spectrum(:, :)
-        call transform_forward(self%fft, x)
-        call copy_spectrum(self%fft%cbuf, spectrum)
+        complex(dp), intent(out), contiguous, target :: spectrum(:, :)
+        if (fftw_compatible(spectrum, self%fft%cbuf)) then
+            call transform_forward_to(self%fft, x, spectrum)
+        else
+            call transform_forward(self%fft, x)
+            call copy_spectrum(self%fft%cbuf, spectrum)
+        end if
     end subroutine bttb_forward
 
     !> y = IFFT(spectrum) restricted to the grid (spectrum already multiplied by symbols).
+    !! `spectrum` is scratch: the transform may run in it and destroy it (as [[bttb_forward]]).
     subroutine bttb_backward(self, spectrum, y)
         class(fc_bttb), intent(inout) :: self
-        complex(dp), intent(in) :: spectrum(:, :)
+        complex(dp), intent(inout), contiguous, target :: spectrum(:, :)
         real(dp), intent(out) :: y(:, :)
-        call copy_spectrum(spectrum, self%fft%cbuf)
-        call transform_backward(self%fft, y)
+        if (fftw_compatible(spectrum, self%fft%cbuf)) then
+            call transform_backward_from(self%fft, spectrum, y)
+        else
+            call copy_spectrum(spectrum, self%fft%cbuf)
+            call transform_backward(self%fft, y)
+        end if
         self%nproducts = self%nproducts + 1
     end subroutine bttb_backward
+
+    !> Whether FFTW may execute the plans made on `buf` on `a` instead: same shape and the
+    !! same alignment as FFTW counts it (`fftw_alignment_of`: the address modulo the SIMD
+    !! alignment of the library's build).
+    logical function fftw_compatible(a, buf)
+        complex(dp), intent(in), contiguous, target :: a(:, :)
+        complex(dp), intent(in), contiguous, target :: buf(:, :)
+        fftw_compatible = all(shape(a) == shape(buf))
+        if (fftw_compatible) fftw_compatible = fc_fftw_alignment_of(c_loc(a)) == fc_fftw_alignment_of(c_loc(buf))
+    end function fftw_compatible
 
     !> out = spectrum · symbol (`add`: out = out + spectrum · symbol).
     subroutine bttb_multiply(self, spectrum, out, add)
@@ -522,6 +544,15 @@ contains
     subroutine transform_forward(w, x)
         type(fc_fft_plans), intent(inout) :: w
         real(dp), intent(in) :: x(:, :)
+        call transform_forward_to(w, x, w%cbuf)
+    end subroutine transform_forward
+
+    !> c ← FFT of x zero-padded to mx×my; c is the plan set's cbuf or an array FFTW may use in
+    !! its place ([[fftw_compatible]]); w's cbuf is not referenced otherwise.
+    subroutine transform_forward_to(w, x, c)
+        type(fc_fft_plans), intent(inout) :: w
+        real(dp), intent(in) :: x(:, :)
+        complex(dp), intent(inout), contiguous :: c(:, :)
         integer :: nx, ny, j
         logical :: par
         nx = w%nx; ny = w%ny
@@ -535,35 +566,44 @@ contains
         end do
         !$omp end parallel do
         if (w%split) then
-            call fftw_execute_dft_r2c(w%plan_x_fwd, w%rbuf, w%cbuf)
+            call fftw_execute_dft_r2c(w%plan_x_fwd, w%rbuf, c)
             !$omp parallel do default(shared) schedule(static) if(par)
             do j = ny + 1, w%my
-                w%cbuf(:, j) = 0
+                c(:, j) = 0
             end do
             !$omp end parallel do
-            call fftw_execute_dft(w%plan_y_fwd, w%cbuf, w%cbuf)
+            call fftw_execute_dft(w%plan_y_fwd, c, c)
         else
-            call fftw_execute_dft_r2c(w%plan_fwd, w%rbuf, w%cbuf)
+            call fftw_execute_dft_r2c(w%plan_fwd, w%rbuf, c)
         end if
-    end subroutine transform_forward
+    end subroutine transform_forward_to
 
     !> y ← inverse FFT of cbuf, restricted to the grid (cbuf is destroyed).
     subroutine transform_backward(w, y)
         type(fc_fft_plans), intent(inout) :: w
         real(dp), intent(out) :: y(:, :)
+        call transform_backward_from(w, w%cbuf, y)
+    end subroutine transform_backward
+
+    !> y ← inverse FFT of c (the plan set's cbuf or an array FFTW may use in its place),
+    !! restricted to the grid; c is destroyed.
+    subroutine transform_backward_from(w, c, y)
+        type(fc_fft_plans), intent(inout) :: w
+        complex(dp), intent(inout), contiguous :: c(:, :)
+        real(dp), intent(out) :: y(:, :)
         integer :: j
         if (w%split) then
-            call fftw_execute_dft(w%plan_y_bwd, w%cbuf, w%cbuf)
-            call fftw_execute_dft_c2r(w%plan_x_bwd, w%cbuf, w%rbuf)
+            call fftw_execute_dft(w%plan_y_bwd, c, c)
+            call fftw_execute_dft_c2r(w%plan_x_bwd, c, w%rbuf)
         else
-            call fftw_execute_dft_c2r(w%plan_bwd, w%cbuf, w%rbuf)
+            call fftw_execute_dft_c2r(w%plan_bwd, c, w%rbuf)
         end if
         !$omp parallel do default(shared) schedule(static) if(size(w%rbuf) > omp_min_elements)
         do j = 1, w%ny
             y(:, j) = w%rbuf(1:w%nx, j)
         end do
         !$omp end parallel do
-    end subroutine transform_backward
+    end subroutine transform_backward_from
 
     !> b ← a for two spectra of the same shape (threaded column copy).
     subroutine copy_spectrum(a, b)

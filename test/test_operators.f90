@@ -23,6 +23,7 @@ contains
             new_unittest('copy_survives_original', test_copy_survives_original), &
             new_unittest('blocks_share_one_plan_set', test_shared_plans), &
             new_unittest('real_symbols_even_odd', test_real_symbols), &
+            new_unittest('kernel_exact_reflections', test_kernel_reflections), &
             new_unittest('final_binding_releases_plans', test_final_binding) ]
     end subroutine collect_operators
 
@@ -172,6 +173,36 @@ contains
         call check(error, maxval(abs(aimag(sym))) == 0, 'inverse symbol real')
         call op%destroy()
     end subroutine test_real_symbols
+
+    !> On the thesis' Cattaneo grid (240×200, where rounding in the double differences of
+    !! large antiderivative values used to leave A^xy a complex symbol) every block has its
+    !! reflections exactly: A(−i, j) = ±A(i, j), A(i, −j) = ±A(i, j) with the signs of the
+    !! kernel (ZZ, XX, YY even in both; XY odd in both; XZ, ZX odd in x, even in y; YZ, ZY the
+    !! reverse), and A^xy is stored as a real (even) symbol.
+    subroutine test_kernel_reflections(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_material) :: mat
+        type(fc_grid) :: grid
+        type(fc_bttb) :: op
+        real(dp), allocatable :: k(:, :)
+        real(dp), parameter :: ex(IC_ZZ:IC_ZY) = [1, 1, 1, -1, -1, -1, 1, 1], &
+            ey(IC_ZZ:IC_ZY) = [1, 1, 1, -1, 1, 1, -1, -1]
+        integer :: stat, b, n
+        character(len=200) :: msg, label
+        call dissimilar(mat)
+        call make_grid(grid, 240, 200, -1.2857_dp, 1.2857_dp, -1.2857_dp, 1.2857_dp, stat, msg)
+        do b = IC_ZZ, IC_ZY
+            call ic_kernel(b, mat, grid, k)
+            n = 239
+            write (label, '(a,i0)') 'block ', b
+            call check(error, all(k(-n:n, :) == ex(b)*k(n:-n:-1, :)), trim(label)//' reflection in x exact')
+            call check(error, all(k(:, -199:199) == ey(b)*k(:, 199:-199:-1)), trim(label)//' reflection in y exact')
+            if (allocated(error)) return
+        end do
+        call build_bttb(op, IC_XY, mat, grid)
+        call check(error, op%parity == SYMBOL_EVEN .and. allocated(op%rsymbol), 'A^xy stored as a real symbol')
+        call op%destroy()
+    end subroutine test_kernel_reflections
 
     !> A block that goes out of scope releases its share of the plan set (final binding).
     subroutine test_final_binding(error)
