@@ -222,9 +222,9 @@ contains
             !      the outcome goes straight into the summary
             call system_clock(t1)
             if (present(operators)) then
-                call solve_case_auto(kase, operators, s%outcome, stat, errmsg)
+                call solve_and_count(operators, kase, s)
             else
-                call solve_case_auto(kase, ops, s%outcome, stat, errmsg)
+                call solve_and_count(ops, kase, s)
             end if
             call system_clock(t2)
             if (stat /= 0) then
@@ -345,6 +345,19 @@ contains
             end if
 
         end subroutine run_one_case
+
+        !> Solve `kase` on `o` into `s`, noting whether the case built the operators or
+        !! reused those of an earlier case.
+        subroutine solve_and_count(o, kase, s)
+            type(fc_contact_operators), intent(inout) :: o
+            type(fc_case), intent(in) :: kase
+            type(fc_case_summary), intent(inout) :: s
+            integer :: bn, bt
+            bn = o%builds_normal; bt = o%builds_tangential
+            call solve_case_auto(kase, o, s%outcome, stat, errmsg)
+            s%operator_built = o%builds_normal > bn
+            s%operator_built_tangential = o%builds_tangential > bt
+        end subroutine solve_and_count
 
         !> Solve a strip model problem case and write its outputs (sets case_status).
         subroutine run_strip_case(dir, kase, t0, rate, case_status)

@@ -52,6 +52,8 @@ module fc_output
         integer :: panagiotopoulos_rounds = 0        !! normal–tangential rounds (1 when K = 0)
         real(dp) :: residual_normal = 0, residual_tangential = 0
         real(dp) :: setup_seconds_tangential = 0     !! tangential operator set-up (0 when reused)
+        logical :: operator_built = .false.          !! the case built the normal operator (else reused)
+        logical :: operator_built_tangential = .false.  !! the case built the tangential operator
         logical :: has_hertz = .false.               !! quadratic geometry: analytic comparison
         type(fc_hertz_solution) :: hertz             !! analytic Hertz solution
         character(len=msg_len) :: message = ''       !! solver message
@@ -115,6 +117,7 @@ contains
         call kv_real('cpu_seconds_normal', s%cpu_seconds_normal)
         call kv_real('cpu_seconds_tangential', s%cpu_seconds_tangential)
         call kv_real('setup_seconds', s%setup_seconds)
+        call kv_bool('operator_built', s%operator_built)
         call kv_str('solver_normal', s%solver_normal)
         call kv_str('status_normal', s%status_normal)
         call kv_int('iterations_normal', s%iterations_normal)
@@ -149,6 +152,7 @@ contains
             call kv_reals('history_tangential', s%outcome%result%tangential%history)
             call kv_int('panagiotopoulos_rounds', s%panagiotopoulos_rounds)
             call kv_real('setup_seconds_tangential', s%setup_seconds_tangential)
+            call kv_bool('operator_built_tangential', s%operator_built_tangential)
         end if
         call kv_int('nx', s%outcome%grid%nx)
         call kv_int('ny', s%outcome%grid%ny)
@@ -204,6 +208,11 @@ contains
             end if
             write (u, '(a)') '  "'//key//'": '//json_real(val)//trim(comma)
         end subroutine kv_real
+        subroutine kv_bool(key, val)
+            character(len=*), intent(in) :: key
+            logical, intent(in) :: val
+            write (u, '(a)') '  "'//key//'": '//trim(merge('true ', 'false', val))//','
+        end subroutine kv_bool
         subroutine kv_int(key, val)
             character(len=*), intent(in) :: key
             integer, intent(in) :: val

@@ -220,16 +220,26 @@ contains
     end function slurp_file
 
     !> JSON text with every number after a key ending in "seconds…" replaced by X.
+    !> JSON text with the values that depend on where and when a case ran masked: timings
+    !! (`…seconds`) and whether the case built its operators or reused a previous case's
+    !! (`operator_built…`: a rank starts its chunks with other operators than the serial run).
     function timing_free(text) result(t)
         character(len=*), intent(in) :: text
+        character(len=:), allocatable :: t
+        t = masked(masked(text, 'seconds'), 'operator_built')
+    end function timing_free
+
+    !> `text` with the value of every key containing `key` replaced by X.
+    function masked(text, key) result(t)
+        character(len=*), intent(in) :: text, key
         character(len=:), allocatable :: t
         integer :: i, j
         t = ''
         i = 1
         do
-            j = index(text(i:), 'seconds')
+            j = index(text(i:), key)
             if (j == 0) exit
-            j = i + j - 1 + 7
+            j = i + j - 1 + len(key)
             do while (j <= len(text))
                 if (text(j:j) == ':') exit
                 j = j + 1
@@ -242,7 +252,7 @@ contains
             end do
         end do
         t = t//text(i:)
-    end function timing_free
+    end function masked
 
     !> Report without the lines that carry timings.
     function report_free(text) result(t)
