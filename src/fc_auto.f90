@@ -63,6 +63,7 @@ module fc_auto
     use fc_auto_estimate, only: richardson_estimate, level_estimate, certify_coarsest, target_quantities, &
         estimate_safety, estimate_safety_h2, h2_ratio_low, h2_ratio_high
     use fc_threads, only: set_thread_count
+    use fc_fft_effort, only: use_fft_wisdom
     use fc_auto_area, only: auto_area, line_indentation, plane_strain_hertz, contact_touches_boundary, even_up
     use fc_auto_answers, only: analytic_answer, fastsim_answer
     use fc_fastsim, only: fastsim_error_bound
@@ -95,6 +96,18 @@ contains
         s = s_in
         stat = 0; errmsg = ''
         call set_thread_count(s%threads, elements=s%nx*s%ny)   ! before any FFT plan of this case is made
+        if (len_trim(s%fft_wisdom) > 0 .and. .not. s%grid_auto .and. s%nx*s%ny > 1) then
+            ! measured plans for the case's grid (the thread count above is part of the wisdom);
+            ! operators built from here on use them
+            block
+                logical :: measured
+                call use_fft_wisdom(trim(s%fft_wisdom), s%nx, s%ny, s%periodic, measured, stat, errmsg)
+                if (stat /= 0) return
+                if (measured) then
+                    call ops%normal%destroy(); call ops%tangential%destroy()
+                end if
+            end block
+        end if
         allocate (out%reductions(0), out%warnings(0), out%levels(0))
         out%material = s%material
         call combine_material(out%material, stat, errmsg)

@@ -33,7 +33,7 @@ module fc_driver
     use fc_scene, only: fc_case
     use fc_strings, only: fmt_int, fmt_real
     use fc_errors, only: FC_ERR_FRICTION_BOUND, FC_ERR_NO_CONTACT, FC_ERR_GEOMETRY, FC_ERR_IO, FC_ERR_ALLOC, &
-        FC_ERR_GRID, FC_ERR_IC_FILE, FC_ERR_MODEL_RANGE
+        FC_ERR_GRID, FC_ERR_IC_FILE, FC_ERR_MODEL_RANGE, FC_ERR_FFT_WISDOM
     use fc_output, only: fc_case_summary, write_case_json, write_case_csv, write_case_npy, write_case_report
     use fc_auto, only: fc_auto_outcome, solve_case_auto
     implicit none
@@ -557,6 +557,8 @@ contains
             else
                 errmsg = "&material ic_file = '"//trim(state%ic_file)//"': "//trim(errmsg)
             end if
+        case (FC_ERR_FFT_WISDOM)
+            errmsg = "&solver fft_wisdom = '"//trim(state%fft_wisdom)//"': "//trim(errmsg)
         case (FC_ERR_MODEL_RANGE)
             errmsg = "&solver model = '"//trim(state%model)//"' with &geometry rx = "//fmt_real(state%rx)//', ry = '// &
                 fmt_real(state%ry)//': '//trim(errmsg)

@@ -1,4 +1,5 @@
-!> FFTW planning effort for repeated solves on one grid (flat API, `fc_set_fft_effort`).
+!> FFTW planning effort for repeated solves on one grid (flat API `fc_set_fft_effort`,
+!! driver `&solver fft_wisdom`).
 !!
 !! The operators of [[fc_toeplitz]] plan with FFTW_ESTIMATE: no measurement, instant.
 !! FFTW_MEASURE finds faster plans by timing candidates, at a planning cost that only
@@ -7,16 +8,18 @@
 !! therefore measures, once per grid shape, the plans the product of an nx×ny operator
 !! uses (the same shapes, strides and buffer kinds as [[fc_toeplitz]]); the operators built
 !! afterwards get the measured plans without any change to how they are built.  Planning
-!! overwrites the buffers, which are scratch arrays here.
+!! overwrites the buffers, which are scratch arrays here.  [[use_fft_wisdom]] keeps the
+!! wisdom in a file, so that only the first process on a grid pays for the measurement.
 !!
-!! Measured break-even and per-call gains: doc/legacy_api.md ("FFT planning effort").
+!! Measured break-even and per-call gains: doc/legacy_api.md ("FFT planning effort"),
+!! doc/benchmarks.md (wisdom files).
 module fc_fft_effort
-    use fc_kinds, only: dp
+    use fc_kinds, only: dp, FC_ERR_FFT_WISDOM
     use fc_fftw
     implicit none
     private
 
-    public :: prime_fft_plans
+    public :: prime_fft_plans, fft_plans_in_wisdom, use_fft_wisdom
 
 contains
 
@@ -27,10 +30,75 @@ contains
     subroutine prime_fft_plans(nx, ny, periodic)
         integer, intent(in) :: nx, ny
         logical, intent(in), optional :: periodic
+        logical :: all_made
+        all_made = product_plans(nx, ny, FFTW_MEASURE, periodic)
+    end subroutine prime_fft_plans
+
+    !> Whether FFTW's wisdom already holds measured plans for the products on an nx×ny grid
+    !! (planning with FFTW_WISDOM_ONLY succeeds for every one of them).
+    logical function fft_plans_in_wisdom(nx, ny, periodic) result(known)
+        integer, intent(in) :: nx, ny
+        logical, intent(in), optional :: periodic
+        known = product_plans(nx, ny, ior(FFTW_MEASURE, FFTW_WISDOM_ONLY), periodic)
+    end function fft_plans_in_wisdom
+
+    !> Wisdom file `path` for an nx×ny grid: read it when it exists, measure the grid's plans
+    !! when the wisdom lacks them and then write the file (created or extended).  `measured`
+    !! says whether plans were measured.  stat = FC_ERR_FFT_WISDOM when the file exists but
+    !! is not FFTW wisdom, or cannot be written.
+    subroutine use_fft_wisdom(path, nx, ny, periodic, measured, stat, errmsg)
+        character(len=*), intent(in) :: path
+        integer, intent(in) :: nx, ny
+        logical, intent(in) :: periodic
+        logical, intent(out) :: measured
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        logical :: exists
+        integer(c_int) :: ok
+        integer :: u, ios
+        stat = 0; errmsg = ''; measured = .false.
+        inquire (file=path, exist=exists)
+        if (.not. exists) then
+            ! can the file be written?  Asked before the measurement, which takes seconds
+            open (newunit=u, file=path, status='new', action='write', iostat=ios)
+            if (ios /= 0) then
+                stat = FC_ERR_FFT_WISDOM
+                errmsg = 'cannot create the wisdom file (does its directory exist?)'
+                return
+            end if
+            close (u, status='delete')
+        else
+            !$omp critical (fc_fftw_planner)
+            ok = fftw_import_wisdom_from_filename(trim(path)//c_null_char)
+            !$omp end critical (fc_fftw_planner)
+            if (ok == 0) then
+                stat = FC_ERR_FFT_WISDOM
+                errmsg = 'the file exists but FFTW cannot read it as wisdom (delete it to measure again)'
+                return
+            end if
+        end if
+        if (fft_plans_in_wisdom(nx, ny, periodic)) return
+        call prime_fft_plans(nx, ny, periodic)
+        measured = .true.
+        !$omp critical (fc_fftw_planner)
+        ok = fftw_export_wisdom_to_filename(trim(path)//c_null_char)
+        !$omp end critical (fc_fftw_planner)
+        if (ok == 0) then
+            stat = FC_ERR_FFT_WISDOM
+            errmsg = 'cannot write the wisdom file (does its directory exist?)'
+        end if
+    end subroutine use_fft_wisdom
+
+    !> Plan (with `flags`) and destroy the transforms of the products on an nx×ny grid;
+    !! .true. when every plan was made (with FFTW_WISDOM_ONLY: all were in the wisdom).
+    logical function product_plans(nx, ny, flags, periodic) result(all_made)
+        integer, intent(in) :: nx, ny
+        integer(c_int), intent(in) :: flags
+        logical, intent(in), optional :: periodic
         real(dp), allocatable :: rbuf(:, :)
         complex(dp), allocatable :: cbuf(:, :)
         type(c_ptr) :: p(6)
-        integer :: mx, my, mxh, k
+        integer :: mx, my, mxh, k, nplans
         logical :: per
         per = .false.
         if (present(periodic)) per = periodic
@@ -43,25 +111,31 @@ contains
         mxh = mx/2 + 1
         allocate (rbuf(mx, my), cbuf(mxh, my))
         p = c_null_ptr
+        nplans = 2
         !$omp critical (fc_fftw_planner)
-        p(1) = fftw_plan_dft_r2c_2d(int(my, c_int), int(mx, c_int), rbuf, cbuf, FFTW_MEASURE)
-        p(2) = fftw_plan_dft_c2r_2d(int(my, c_int), int(mx, c_int), cbuf, rbuf, FFTW_MEASURE)
+        p(1) = fftw_plan_dft_r2c_2d(int(my, c_int), int(mx, c_int), rbuf, cbuf, flags)
+        p(2) = fftw_plan_dft_c2r_2d(int(my, c_int), int(mx, c_int), cbuf, rbuf, flags)
         if (my > ny) then
             ! the padding-aware passes of fc_toeplitz: r2c along x on the ny data columns,
             ! c2c along y; the inverse in the opposite order
+            nplans = 6
             p(3) = fftw_plan_many_dft_r2c(1_c_int, [int(mx, c_int)], int(ny, c_int), rbuf, [int(mx, c_int)], &
-                1_c_int, int(mx, c_int), cbuf, [int(mxh, c_int)], 1_c_int, int(mxh, c_int), FFTW_MEASURE)
+                1_c_int, int(mx, c_int), cbuf, [int(mxh, c_int)], 1_c_int, int(mxh, c_int), flags)
             p(4) = fftw_plan_many_dft(1_c_int, [int(my, c_int)], int(mxh, c_int), cbuf, [int(my, c_int)], &
-                int(mxh, c_int), 1_c_int, cbuf, [int(my, c_int)], int(mxh, c_int), 1_c_int, FFTW_FORWARD, FFTW_MEASURE)
+                int(mxh, c_int), 1_c_int, cbuf, [int(my, c_int)], int(mxh, c_int), 1_c_int, FFTW_FORWARD, flags)
             p(5) = fftw_plan_many_dft(1_c_int, [int(my, c_int)], int(mxh, c_int), cbuf, [int(my, c_int)], &
-                int(mxh, c_int), 1_c_int, cbuf, [int(my, c_int)], int(mxh, c_int), 1_c_int, FFTW_BACKWARD, FFTW_MEASURE)
+                int(mxh, c_int), 1_c_int, cbuf, [int(my, c_int)], int(mxh, c_int), 1_c_int, FFTW_BACKWARD, flags)
             p(6) = fftw_plan_many_dft_c2r(1_c_int, [int(mx, c_int)], int(ny, c_int), cbuf, [int(mxh, c_int)], &
-                1_c_int, int(mxh, c_int), rbuf, [int(mx, c_int)], 1_c_int, int(mx, c_int), FFTW_MEASURE)
+                1_c_int, int(mxh, c_int), rbuf, [int(mx, c_int)], 1_c_int, int(mx, c_int), flags)
         end if
+        all_made = .true.
+        do k = 1, nplans
+            all_made = all_made .and. c_associated(p(k))
+        end do
         do k = 1, size(p)
             if (c_associated(p(k))) call fftw_destroy_plan(p(k))
         end do
         !$omp end critical (fc_fftw_planner)
-    end subroutine prime_fft_plans
+    end function product_plans
 
 end module fc_fft_effort

@@ -25,6 +25,7 @@ module fc_fftw
     public :: fftw_plan_many_dft_r2c, fftw_plan_many_dft_c2r, fftw_plan_many_dft, fftw_execute_dft
     public :: fftw_destroy_plan, fftw_plan_dft_r2c_1d, fftw_plan_dft_c2r_1d, fftw_plan_dft_1d
     public :: fftw_alloc_real, fftw_alloc_complex, fftw_free, c_f_pointer, c_size_t, fftw_forget_wisdom
+    public :: fftw_import_wisdom_from_filename, fftw_export_wisdom_to_filename, FFTW_WISDOM_ONLY, c_null_char
     public :: FFTW_ESTIMATE, FFTW_MEASURE, FFTW_UNALIGNED, FFTW_DESTROY_INPUT, FFTW_FORWARD, FFTW_BACKWARD
 
 end module fc_fftw

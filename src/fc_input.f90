@@ -135,6 +135,7 @@ module fc_input
         integer :: max_levels = 5                  !! most grids visited by the accuracy target
         character(len=16) :: model = 'auto'        !! 'auto': apply model reductions; 'full': never
         integer :: threads = 0                     !! threads (0: OMP_NUM_THREADS, else 1)
+        character(len=path_len) :: fft_wisdom = ''  !! FFTW wisdom file: read, and written when plans are measured
         ! &output
         character(len=path_len) :: dir = 'out'     !! output directory
         logical :: table = .true.                  !! write the element table
@@ -457,14 +458,16 @@ contains
         integer :: maxit, inner_maxit, inner_k, max_levels, threads
         logical :: precondition, precondition_tangential, deflation, target_pmax
         character(len=16) :: model, rolling
+        character(len=path_len) :: fft_wisdom
         namelist /solver/ normal, tangential, tol, maxit, inner_maxit, precondition, precondition_tangential, &
-            deflation, inner_k, cycle, omega, beta, target, target_pmax, max_levels, model, smoother, strip, rolling, threads
+            deflation, inner_k, cycle, omega, beta, target, target_pmax, max_levels, model, smoother, strip, rolling, threads, &
+            fft_wisdom
         normal = s%normal_solver; tangential = s%tangential; tol = s%tol; maxit = s%maxit
         inner_maxit = s%inner_maxit; precondition = s%precondition
         precondition_tangential = s%precondition_tangential
         deflation = s%deflation; inner_k = s%inner_k; cycle = s%cycle; omega = s%omega; beta = s%beta
         target = s%target; target_pmax = s%target_pmax; max_levels = s%max_levels; model = s%model
-        smoother = s%smoother; strip = s%strip; rolling = s%rolling; threads = s%threads
+        smoother = s%smoother; strip = s%strip; rolling = s%rolling; threads = s%threads; fft_wisdom = s%fft_wisdom
         read (text, nml=solver, iostat=ios, iomsg=iomsg)
         if (ios /= 0) return
         s%normal_solver = lower(normal); s%tangential = lower(tangential); s%tol = tol
@@ -473,6 +476,7 @@ contains
         s%deflation = deflation; s%inner_k = inner_k; s%cycle = cycle; s%omega = omega; s%beta = beta
         s%target = target; s%target_pmax = target_pmax; s%max_levels = max_levels; s%model = lower(model)
         s%smoother = lower(smoother); s%strip = lower(strip); s%rolling = lower(rolling); s%threads = threads
+        s%fft_wisdom = fft_wisdom
     end subroutine read_solver_group
 
     subroutine read_output_group(text, s, ios, iomsg)
@@ -504,7 +508,7 @@ contains
         case ('tangential'); keys = 'mu xi eta phi fx fy mu_kinetic dq nsteps sweep sweep_from sweep_to sweep_n'
         case ('solver')
             keys = 'normal tangential tol maxit inner_maxit inner_k precondition precondition_tangential deflation '// &
-                'cycle omega beta smoother strip target target_pmax max_levels model rolling threads'
+                'cycle omega beta smoother strip target target_pmax max_levels model rolling threads fft_wisdom'
         case ('output');     keys = 'dir table table_format'
         case default;        keys = ''
         end select

@@ -86,7 +86,7 @@ contains
         case ('kind', 'cycle', 'strip', 'model'); kind = 'string'; maxlen = 16
         case ('smoother', 'sweep', 'table_format'); kind = 'string'; maxlen = 8
         case ('rolling'); kind = 'string'; maxlen = 16
-        case ('ic_file', 'ic_file2', 'file', 'dir'); kind = 'string'; maxlen = 256
+        case ('ic_file', 'ic_file2', 'file', 'dir', 'fft_wisdom'); kind = 'string'; maxlen = 256
         case default; kind = ''
         end select
     end function kind_of

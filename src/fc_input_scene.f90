@@ -76,6 +76,7 @@ contains
         c%settings%rolling%solver = trim(s%rolling)
         c%settings%rolling%tol = s%tol; c%settings%rolling%maxit = s%maxit
         c%threads = s%threads
+        c%fft_wisdom = s%fft_wisdom
     end function build_case
 
     !> Report notes on keys a validated case gives but does not use.

@@ -54,6 +54,7 @@ module fc_scene
         integer :: max_levels = 5                    !! most grids visited by the accuracy target
         logical :: reduce = .true.                   !! model reductions allowed
         integer :: threads = 0                       !! threads of the solve (0: OMP_NUM_THREADS, else 1)
+        character(len=path_len) :: fft_wisdom = ''   !! FFTW wisdom file ('': FFTW_ESTIMATE plans only)
     end type fc_case
 
     public :: case_setup, is_line_contact, is_tangential

@@ -5,6 +5,7 @@ module test_driver
     use fc_kinds, only: dp
     use fc_testing, only: error_type, unittest_type, new_unittest, check
     use fc_driver, only: run_driver
+    use fc_fftw, only: fftw_forget_wisdom
     implicit none
     private
 
@@ -42,6 +43,7 @@ contains
             new_unittest('tangential_case', test_tangential_case), &
             new_unittest('tangential_prescribed_force', test_tangential_force), &
             new_unittest('tangcg_vs_convexgs', test_tangcg_vs_convexgs), &
+            new_unittest('fft_wisdom_file', test_fft_wisdom_file), &
             new_unittest('tangential_normal_not_converged', test_tangential_normal_not_converged), &
             new_unittest('tangential_ignored_for_normal', test_tangential_ignored), &
             new_unittest('tangential_same_as_normal_plus', test_tangential_synonym), &
@@ -542,6 +544,46 @@ contains
         call check(error, json_num(j1, 'nslip') == json_num(j2, 'nslip'), 'same slip area')
         call cleanup(dir)
     end subroutine test_tangcg_vs_convexgs
+
+    !> `&solver fft_wisdom`: the first run measures the grid's plans and writes the file, a
+    !! second run reads it and measures nothing (the file is unchanged); the forces equal a
+    !! run without wisdom to rounding; a file that is not wisdom, and a file that cannot be
+    !! created, are errors naming the key, the value and the reason.
+    subroutine test_fft_wisdom_file(error)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: code
+        character(len=:), allocatable :: errors, dir, plain, first, again, w1, w2
+        real(dp) :: scale
+        call run_text(cattaneo_case('plain'), code, errors, dir)
+        call check(error, code == 0, 'without wisdom: exit code 0 expected, errors: '//errors)
+        if (allocated(error)) return
+        plain = read_all(dir//'/plain.json')
+        call run_again(dir, cattaneo_case('first')//"&solver fft_wisdom = '"//dir//"/plans.fftw' /"//nl, code, errors)
+        call check(error, code == 0 .and. exists(dir//'/plans.fftw'), 'first run: exit 0 and the file written, errors: '//errors)
+        if (allocated(error)) return
+        w1 = read_all(dir//'/plans.fftw')
+        call check(error, index(w1, '(fftw-3') == 1, 'the file holds FFTW wisdom')
+        first = read_all(dir//'/first.json')
+        scale = 0.4_dp*json_num(plain, 'fn')
+        call check(error, abs(json_num(first, 'fx') - json_num(plain, 'fx')) <= 1e-10_dp*scale .and. &
+            abs(json_num(first, 'fy') - json_num(plain, 'fy')) <= 1e-10_dp*scale, 'measured plans: forces equal to rounding')
+        call fftw_forget_wisdom()
+        call run_again(dir, cattaneo_case('again')//"&solver fft_wisdom = '"//dir//"/plans.fftw' /"//nl, code, errors)
+        w2 = read_all(dir//'/plans.fftw')
+        again = read_all(dir//'/again.json')
+        call check(error, code == 0 .and. w1 == w2, 'second run: read, nothing measured, the file unchanged')
+        call check(error, json_num(again, 'fx') == json_num(first, 'fx'), 'second run: the same plans, the same forces')
+        call execute_command_line("echo 'not wisdom' > '"//dir//"/bad.fftw'")
+        call run_again(dir, cattaneo_case('bad')//"&solver fft_wisdom = '"//dir//"/bad.fftw' /"//nl, code, errors)
+        call check(error, code == 1 .and. index(errors, "&solver fft_wisdom = '"//dir//"/bad.fftw'") > 0 .and. &
+            index(errors, 'cannot read it as wisdom') > 0, 'not wisdom: exit 1 naming key and value, got: '//errors)
+        call run_again(dir, cattaneo_case('nodir')//"&solver fft_wisdom = '"//dir//"/no/such/dir/p.fftw' /"//nl, &
+            code, errors)
+        call check(error, code == 1 .and. index(errors, 'cannot create the wisdom file') > 0, &
+            'unwritable path: exit 1, got: '//errors)
+        call fftw_forget_wisdom()
+        call cleanup(dir)
+    end subroutine test_fft_wisdom_file
 
     !> The normal stage fails: JSON and CSV written, status not_converged, tangential not run.
     subroutine test_tangential_normal_not_converged(error)
