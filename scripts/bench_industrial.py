@@ -16,7 +16,10 @@ noise of our baseline measurement and assume the issue's ratios transfer to this
 
 Usage (repository root):
   python3 scripts/bench_industrial.py --base /tmp/base/bin/fastcontact \\
-      --new build/.../app/fastcontact [--repeat 3] [--out doc/bench_industrial.csv]
+      --new build/.../app/fastcontact [--repeat 3] [--out doc/bench_industrial.csv] \\
+      [--new-wisdom /tmp/plans.fftw]
+With --new-wisdom the new build's cases read FFTW wisdom (measured plans) from that file;
+one untimed run per case writes it first (&solver fft_wisdom).
 Writes the per-run rows to OUT with suffix _runs.csv and the summary to OUT.
 """
 import argparse
@@ -85,6 +88,9 @@ def main():
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--out", default="doc/bench_industrial.csv")
     ap.add_argument("--cases", default=",".join(ISSUE_RATIOS))
+    ap.add_argument("--new-wisdom", default="",
+                    help="FFTW wisdom file for the new build's cases (&solver fft_wisdom): one untimed "
+                         "run per case first measures the plans and writes it; the timed runs read it")
     args = ap.parse_args()
     cases = args.cases.split(",")
     work = tempfile.mkdtemp(prefix="fc_bench_industrial_")
@@ -95,12 +101,19 @@ def main():
             nml = os.path.join(work, f"{name}_{int(tables)}.nml")
             with open(nml, "w") as f:
                 f.write(case_text(name, tables))
+            nml_of = {"base": nml, "new": nml}
+            if args.new_wisdom:
+                nml_of["new"] = os.path.join(work, f"{name}_{int(tables)}_wisdom.nml")
+                with open(nml_of["new"], "w") as f:
+                    f.write(case_text(name, tables) +
+                            f"&solver fft_wisdom = '{os.path.abspath(args.new_wisdom)}' /\n")
+                run_once(builds[1][1], nml_of["new"], os.path.join(work, "warmup"))   # measures once, untimed
             for rep in range(args.repeat):
                 order = builds if rep % 2 == 0 else builds[::-1]
                 for label, exe in order:
                     outdir = os.path.join(work, label)
                     os.makedirs(outdir, exist_ok=True)
-                    cpu, wall, rss, code, err = run_once(exe, nml, outdir)
+                    cpu, wall, rss, code, err = run_once(exe, nml_of[label], outdir)
                     with open(os.path.join(outdir, name + ".json")) as f:
                         js = json.load(f)
                     row = dict(case=name, tables=int(tables), build=label, rep=rep + 1, cpu_s=round(cpu, 4),

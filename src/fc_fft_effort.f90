@@ -54,7 +54,6 @@ contains
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
         logical :: exists
-        integer(c_int) :: ok
         integer :: u, ios
         stat = 0; errmsg = ''; measured = .false.
         inquire (file=path, exist=exists)
@@ -67,27 +66,35 @@ contains
                 return
             end if
             close (u, status='delete')
-        else
-            !$omp critical (fc_fftw_planner)
-            ok = fftw_import_wisdom_from_filename(trim(path)//c_null_char)
-            !$omp end critical (fc_fftw_planner)
-            if (ok == 0) then
-                stat = FC_ERR_FFT_WISDOM
-                errmsg = 'the file exists but FFTW cannot read it as wisdom (delete it to measure again)'
-                return
-            end if
+        else if (.not. wisdom_file(path, read=.true.)) then
+            stat = FC_ERR_FFT_WISDOM
+            errmsg = 'the file exists but FFTW cannot read it as wisdom (delete it to measure again)'
+            return
         end if
         if (fft_plans_in_wisdom(nx, ny, periodic)) return
         call prime_fft_plans(nx, ny, periodic)
         measured = .true.
-        !$omp critical (fc_fftw_planner)
-        ok = fftw_export_wisdom_to_filename(trim(path)//c_null_char)
-        !$omp end critical (fc_fftw_planner)
-        if (ok == 0) then
+        if (.not. wisdom_file(path, read=.false.)) then
             stat = FC_ERR_FFT_WISDOM
             errmsg = 'cannot write the wisdom file (does its directory exist?)'
         end if
     end subroutine use_fft_wisdom
+
+    !> Read FFTW's wisdom from `path` (merged with what the process has) or write it there;
+    !! .false. when FFTW reports a failure.
+    logical function wisdom_file(path, read) result(ok)
+        character(len=*), intent(in) :: path
+        logical, intent(in) :: read
+        integer(c_int) :: done
+        !$omp critical (fc_fftw_planner)
+        if (read) then
+            done = fftw_import_wisdom_from_filename(trim(path)//c_null_char)
+        else
+            done = fftw_export_wisdom_to_filename(trim(path)//c_null_char)
+        end if
+        !$omp end critical (fc_fftw_planner)
+        ok = done /= 0
+    end function wisdom_file
 
     !> Plan (with `flags`) and destroy the transforms of the products on an nx×ny grid;
     !! .true. when every plan was made (with FFTW_WISDOM_ONLY: all were in the wisdom).
