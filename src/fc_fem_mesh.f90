@@ -5,6 +5,9 @@
 !! quarter block [−L,0]³ (`tensor`: hexahedra, `tprism`: prisms).  Mesh1 (nested boxes) is
 !! [[fc_fem_shell]], Mesh2 (extruded prisms) [[fc_fem_extruded]].
 !!
+!! Size (~640 lines): the `&fem` record with its validation and the deck parts every mesh
+!! writes are one concern for the three mesh writers; the tensor meshes are its smallest user.
+!!
 !! Tensor meshes (per axis, coordinates increasing from −L to 0): a uniform "cube" region
 !! [−l, 0] with m = l/h_s cells of size h_s = h_c/(h_c/h_s), then cells growing by the
 !! stretching factor f up to −L (the last cell absorbs the remainder); `tensor` uses these

@@ -21,7 +21,7 @@
 !! grid size/spacing and the material are unchanged; the previous solution warm-starts the
 !! next call and, in the transient modes, is the previous state (u', p') of the step.
 !!
-!! Size (~850 lines): one bind(C) routine with its argument checks per entry of the
+!! Size (~890 lines): one bind(C) routine with its argument checks per entry of the
 !! documented API (31 entries), kept together so that this module, include/fc_legacy.h and
 !! doc/legacy_api.md list the same surface.  The handles live in [[fc_legacy_registry]];
 !! every calculation goes through the library's orchestrator [[solve_contact]].
