@@ -88,7 +88,7 @@ contains
         character(len=msg_len) :: errmsg
         character(len=:), allocatable :: case_file
         integer, allocatable :: last(:), mine(:)
-        integer :: stat, nmine, zero
+        integer :: stat, nmine, zero, req
         integer(MPI_ADDRESS_KIND) :: base, wsize
         call mpi_comm_rank(comm, rank, ierr)
         call mpi_comm_size(comm, nprocs, ierr)
@@ -137,6 +137,10 @@ contains
             nmine = nmine + 1; mine(nmine) = k
         end do
         call ops%destroy()
+        ! wait for the others without spinning (MPI_Win_free's own barrier would), so that a
+        ! rank done early leaves its core to ranks still solving on an oversubscribed node
+        call mpi_ibarrier(comm, req, ierr)
+        call wait_politely(req)
         call mpi_win_free(win, ierr)
         ! ---- outcomes to rank 0, printed in case order
         if (rank == 0) then
