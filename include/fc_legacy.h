@@ -44,6 +44,7 @@ void fc_set_influence_file(const int *h, const char *path, const char *path2, in
 void fc_set_reuse(const int *h, const int *reuse_operators, const int *warm_start, int *ierr);
 /* FFT planning effort: 0 FFTW_ESTIMATE (default), 1 FFTW_MEASURE once per grid (doc/legacy_api.md) */
 void fc_set_fft_effort(const int *h, const int *effort, int *ierr);
+void fc_set_fft_wisdom(const int *h, const char *path, int *ierr);
 /* steady-state rolling in +x: creepages xi, eta [-], spin phi [1/mm] (doc/rolling.md) */
 void fc_set_rolling(const int *h, const double *xi, const double *eta, const double *phi, int *ierr);
 void fc_set_rolling_forces(const int *h, const double *fx, const double *fy, const double *phi, int *ierr);

@@ -100,10 +100,10 @@ contains
             ! measured plans for the case's grid (the thread count above is part of the wisdom);
             ! operators built from here on use them
             block
-                logical :: measured
-                call use_fft_wisdom(trim(s%fft_wisdom), s%nx, s%ny, s%periodic, measured, stat, errmsg)
+                logical :: new_plans
+                call use_fft_wisdom(trim(s%fft_wisdom), s%nx, s%ny, s%periodic, new_plans, stat, errmsg)
                 if (stat /= 0) return
-                if (measured) then
+                if (new_plans) then
                     call ops%normal%destroy(); call ops%tangential%destroy()
                 end if
             end block

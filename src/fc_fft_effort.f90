@@ -43,19 +43,22 @@ contains
     end function fft_plans_in_wisdom
 
     !> Wisdom file `path` for an nx×ny grid: read it when it exists, measure the grid's plans
-    !! when the wisdom lacks them and then write the file (created or extended).  `measured`
-    !! says whether plans were measured.  stat = FC_ERR_FFT_WISDOM when the file exists but
-    !! is not FFTW wisdom, or cannot be written.
-    subroutine use_fft_wisdom(path, nx, ny, periodic, measured, stat, errmsg)
+    !! when neither the process nor the file has them, and write the file unless it already
+    !! held them.  `new_plans`: the process did not have the grid's plans before this call
+    !! (operators built earlier on estimated plans should be rebuilt).  stat =
+    !! FC_ERR_FFT_WISDOM when the file exists but is not FFTW wisdom, or cannot be written.
+    subroutine use_fft_wisdom(path, nx, ny, periodic, new_plans, stat, errmsg)
         character(len=*), intent(in) :: path
         integer, intent(in) :: nx, ny
         logical, intent(in) :: periodic
-        logical, intent(out) :: measured
+        logical, intent(out) :: new_plans
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
-        logical :: exists
+        logical :: exists, had
         integer :: u, ios
-        stat = 0; errmsg = ''; measured = .false.
+        stat = 0; errmsg = ''
+        had = fft_plans_in_wisdom(nx, ny, periodic)
+        new_plans = .not. had
         inquire (file=path, exist=exists)
         if (.not. exists) then
             ! can the file be written?  Asked before the measurement, which takes seconds
@@ -71,9 +74,9 @@ contains
             errmsg = 'the file exists but FFTW cannot read it as wisdom (delete it to measure again)'
             return
         end if
-        if (fft_plans_in_wisdom(nx, ny, periodic)) return
-        call prime_fft_plans(nx, ny, periodic)
-        measured = .true.
+        ! the plans came from the file alone: it is complete, leave it as it is
+        if (exists .and. .not. had .and. fft_plans_in_wisdom(nx, ny, periodic)) return
+        if (.not. fft_plans_in_wisdom(nx, ny, periodic)) call prime_fft_plans(nx, ny, periodic)
         if (.not. wisdom_file(path, read=.false.)) then
             stat = FC_ERR_FFT_WISDOM
             errmsg = 'cannot write the wisdom file (does its directory exist?)'

@@ -21,7 +21,7 @@
 !! grid size/spacing and the material are unchanged; the previous solution warm-starts the
 !! next call and, in the transient modes, is the previous state (u', p') of the step.
 !!
-!! Size (~890 lines): one bind(C) routine with its argument checks per entry of the
+!! Size (~940 lines): one bind(C) routine with its argument checks per entry of the
 !! documented API (31 entries), kept together so that this module, include/fc_legacy.h and
 !! doc/legacy_api.md list the same surface.  The handles live in [[fc_legacy_registry]];
 !! every calculation goes through the library's orchestrator [[solve_contact]].
@@ -42,7 +42,7 @@ module fc_legacy
     use fc_icfile, only: fc_ic_set
     use fc_icfile_load, only: load_influence_source
     use fc_threads, only: set_thread_count, max_threads_allowed
-    use fc_fft_effort, only: prime_fft_plans
+    use fc_fft_effort, only: prime_fft_plans, use_fft_wisdom
     implicit none
     private
 
@@ -54,7 +54,7 @@ module fc_legacy
     public :: fc_get_tractions, fc_get_slip, fc_get_gap, fc_get_status_array, fc_get_iterations
     public :: fc_get_rebuilds, fc_get_grid_size, fc_get_error_message, fc_get_nhandles
     public :: fc_set_influence_file
-    public :: fc_set_periodic, fc_set_threads, fc_set_fft_effort
+    public :: fc_set_periodic, fc_set_threads, fc_set_fft_effort, fc_set_fft_wisdom
     public :: shift_along_x
     public :: FCL_OK, FCL_INVALID_HANDLE, FCL_ORDER, FCL_INVALID_VALUE, FCL_NOT_CONVERGED, FCL_DIVERGED
     public :: FCL_ARRAY_SIZE, FCL_INTERNAL, FCL_FROM_REST, FCL_CONTINUE, FCL_ROLLING
@@ -152,19 +152,20 @@ contains
         if (stat /= 0) then
             call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_influence_file: '//trim(msg)); return
         end if
-    contains
-        function c_string(c) result(f)
-            character(kind=c_char), intent(in) :: c(*)
-            character(len=:), allocatable :: f
-            integer :: n
-            n = 0
-            do while (c(n + 1) /= c_null_char .and. n < 4096)
-                n = n + 1
-            end do
-            allocate (character(len=n) :: f)
-            f = transfer(c(1:n), f)
-        end function c_string
     end subroutine fc_set_influence_file
+
+    !> A null-terminated C string (at most 4096 characters) as a Fortran string.
+    function c_string(c) result(f)
+        character(kind=c_char), intent(in) :: c(*)
+        character(len=:), allocatable :: f
+        integer :: n
+        n = 0
+        do while (c(n + 1) /= c_null_char .and. n < 4096)
+            n = n + 1
+        end do
+        allocate (character(len=n) :: f)
+        f = transfer(c(1:n), f)
+    end function c_string
 
     !> Potential contact area [xmin,xmax]×[ymin,ymax] [mm] with nx×ny elements.  A changed
     !! element count or size rebuilds the operators and drops the previous state; moving
@@ -528,6 +529,25 @@ contains
         s%fft_effort = effort
     end subroutine fc_set_fft_effort
 
+    !> FFTW wisdom file (null-terminated path; '' : none): at the next calculation on a grid
+    !! the file is read, the grid's plans are measured when it lacks them and the file is
+    !! written; the operators are rebuilt once on the measured plans.  So only the first
+    !! simulation on a machine pays for the measurement (~1 s at 240×200), later ones read
+    !! the plans.  Errors (a file that is not wisdom, a path that cannot be created) come at
+    !! that calculation, FCL_INVALID_VALUE naming the file.  Takes precedence over
+    !! fc_set_fft_effort.
+    subroutine fc_set_fft_wisdom(handle, path, ierr) bind(C, name='fc_set_fft_wisdom')
+        integer(c_int), intent(in) :: handle
+        character(kind=c_char), intent(in) :: path(*)
+        integer(c_int), intent(out) :: ierr
+        type(legacy_state), pointer :: s
+        call lookup(handle, 'fc_set_fft_wisdom', s, ierr)
+        if (ierr /= FCL_OK) return
+        s%fft_wisdom = c_string(path)
+        if (len(s%fft_wisdom) == 0) deallocate (s%fft_wisdom)
+        s%fft_primed = -1
+    end subroutine fc_set_fft_wisdom
+
     !> Periodic half-space (1) or not (0, default): the grid is one cell of a surface repeated
     !! in x and y (even nx, ny; normal contact with a prescribed force).
     subroutine fc_set_periodic(handle, periodic, ierr) bind(C, name='fc_set_periodic')
@@ -618,7 +638,15 @@ contains
         end if
         s%has_result = .false.
         call set_thread_count(s%threads)
-        if (s%fft_effort == 1) call measure_plans(s)
+        if (allocated(s%fft_wisdom)) then
+            call wisdom_plans(s, stat, msg)
+            if (stat /= 0) then
+                call fail(s, ierr, FCL_INVALID_VALUE, "fc_calculate: FFT wisdom file '"//s%fft_wisdom//"': "//trim(msg))
+                return
+            end if
+        else if (s%fft_effort == 1) then
+            call measure_plans(s)
+        end if
         if (s%heap_cells /= s%grid%nx*s%grid%ny) call keep_work_arrays(s)
         ! --- the solve: operators reused while grid spacing and material match; the previous
         !     state (warm start, u', p') advances only when every stage converged.  The
@@ -665,6 +693,24 @@ contains
         deallocate (block)
         s%heap_cells = s%grid%nx*s%grid%ny
     end subroutine keep_work_arrays
+
+    !> Plans of the handle's grid from its wisdom file (measured and written when the file
+    !! lacks them), once per grid shape; operators built before are dropped so that they
+    !! are rebuilt on the plans.
+    subroutine wisdom_plans(s, stat, msg)
+        type(legacy_state), intent(inout) :: s
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: msg
+        logical :: new_plans
+        stat = 0; msg = ''
+        if (s%fft_primed(1) == s%grid%nx .and. s%fft_primed(2) == s%grid%ny .and. &
+            (s%fft_primed(3) == 1 .eqv. s%ops%periodic)) return
+        call use_fft_wisdom(s%fft_wisdom, s%grid%nx, s%grid%ny, s%ops%periodic, new_plans, stat, msg)
+        if (stat /= 0) return
+        s%fft_primed = [s%grid%nx, s%grid%ny, merge(1, 0, s%ops%periodic)]
+        call s%ops%normal%destroy()
+        call s%ops%tangential%destroy()
+    end subroutine wisdom_plans
 
     !> FFTW_MEASURE plans for the handle's grid shape, once per shape; operators built on
     !! estimated plans are dropped so that they are rebuilt on the measured ones.

@@ -59,6 +59,7 @@ module fc_legacy_registry
         logical :: busy = .false.                  !! fc_calculate running (guards against a second caller)
         integer :: fft_effort = 0                  !! 0: FFTW_ESTIMATE, 1: FFTW_MEASURE (fc_set_fft_effort)
         integer :: fft_primed(3) = -1              !! nx, ny, periodic of the last measured plans
+        character(len=:), allocatable :: fft_wisdom  !! FFTW wisdom file (fc_set_fft_wisdom; unallocated: none)
         integer :: heap_cells = -1                 !! nx·ny for which the heap was told to keep work arrays
         ! --- result of the last calculation ---
         logical :: has_result = .false.

@@ -11,6 +11,7 @@ module test_legacy
     use fc_contact, only: solve_normal_tangential
     use fc_driver, only: run_driver
     use fc_testing
+    use fc_fftw, only: fftw_forget_wisdom
     implicit none
     private
     public :: collect_legacy
@@ -35,6 +36,7 @@ contains
             new_unittest('warm_start_and_reuse', test_warm_start), &
             new_unittest('rebuild_each_call_same_result', test_no_reuse), &
             new_unittest('fft_effort_measure_same_result', test_fft_effort), &
+            new_unittest('fft_wisdom_file', test_fft_wisdom), &
             new_unittest('quadratic_gap_follows_new_radii', test_gap_radii), &
             new_unittest('hysteresis_load_unload_reload', test_hysteresis), &
             new_unittest('continue_zero_increment_keeps_state', test_continue_still), &
@@ -449,6 +451,70 @@ contains
         call check(error, index(last_message(h(0)), 'effort = 2') > 0, 'message names the value')
         call fc_finalize(h(0), ierr); call fc_finalize(h(1), ierr)
     end subroutine test_fft_effort
+
+    !> fc_set_fft_wisdom: the first handle's calculation measures the grid's plans and writes
+    !! the file (forces equal the estimated plans' to 1e−10); a second handle, the process
+    !! wisdom forgotten, reads the file and measures nothing (file unchanged, same forces);
+    !! a file that is not wisdom fails the calculation naming the file, and '' switches it off.
+    subroutine test_fft_wisdom(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: path = 'build/test_legacy_wisdom.fftw', bad = 'build/test_legacy_bad.fftw'
+        integer :: h(0:2), ierr, k, u
+        real(dp) :: fn(0:2), fx(0:2), fy(0:2), mz
+        character(len=:), allocatable :: w1, w2
+        call execute_command_line('rm -f '//path)
+        do k = 0, 2
+            call cattaneo_handle(h(k), 16, 12, 1e-10_dp)
+            if (k > 0) then
+                call fc_set_fft_wisdom(h(k), path//c_null_char, ierr)
+                call check(error, ierr == 0, 'fc_set_fft_wisdom accepted: '//last_message(h(k)))
+            end if
+            call fc_set_shifts(h(k), case_xi(4), case_eta(4), case_phi(4), ierr)
+            if (k == 2) then
+                w1 = slurp(path)
+                call fftw_forget_wisdom()
+            end if
+            call fc_calculate(h(k), ierr)
+            call check(error, ierr == 0, 'calculate')
+            call fc_get_forces(h(k), fn(k), fx(k), fy(k), mz, ierr)
+        end do
+        w2 = slurp(path)
+        call check(error, index(w1, '(fftw-3') == 1, 'first calculation wrote the wisdom file')
+        call check(error, w1 == w2, 'second handle read the file and measured nothing')
+        call check(error, fx(1), fx(0), 'Fx measured = estimated', rel=1e-10_dp)
+        call check(error, fy(1), fy(0), 'Fy measured = estimated', rel=1e-10_dp)
+        call check(error, fx(2) == fx(1) .and. fy(2) == fy(1), 'plans from the file: the same forces')
+        open (newunit=u, file=bad, status='replace', action='write')
+        write (u, '(a)') 'not wisdom'
+        close (u)
+        call fc_set_fft_wisdom(h(0), bad//c_null_char, ierr)
+        call fc_calculate(h(0), ierr)
+        call check(error, ierr == FCL_INVALID_VALUE .and. index(last_message(h(0)), bad) > 0, &
+            'a file that is not wisdom: FCL_INVALID_VALUE naming it, got: '//last_message(h(0)))
+        call fc_set_fft_wisdom(h(0), c_null_char, ierr)
+        call fc_calculate(h(0), ierr)
+        call check(error, ierr == 0, "'' switches the file off")
+        do k = 0, 2
+            call fc_finalize(h(k), ierr)
+        end do
+        call fftw_forget_wisdom()
+    contains
+        function slurp(f) result(t)
+            character(len=*), intent(in) :: f
+            character(len=:), allocatable :: t
+            character(len=512) :: line
+            integer :: v, ios
+            t = ''
+            open (newunit=v, file=f, status='old', action='read', iostat=ios)
+            if (ios /= 0) return
+            do
+                read (v, '(a)', iostat=ios) line
+                if (ios /= 0) exit
+                t = t//trim(line)//new_line('a')
+            end do
+            close (v)
+        end function slurp
+    end subroutine test_fft_wisdom
 
     !> The quadratic gap is cached per grid and radii: new radii after a calculation give the
     !! result of a fresh handle with those radii (approach for the same force).
