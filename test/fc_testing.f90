@@ -31,7 +31,7 @@ module fc_testing
         module procedure check_logical, check_real
     end interface check
 
-    public :: check, new_unittest, run_suite, rel_diff
+    public :: check, new_unittest, run_suite, rel_diff, file_lines
 
 contains
 
@@ -108,5 +108,23 @@ contains
             if (allocated(error)) deallocate (error)
         end do
     end subroutine run_suite
+
+    !> A text file's lines (trailing blanks trimmed, at most 4096 characters each), each
+    !! ended by a newline; '' when the file cannot be opened.
+    function file_lines(path) result(text)
+        character(len=*), intent(in) :: path
+        character(len=:), allocatable :: text
+        character(len=4096) :: line
+        integer :: u, ios
+        text = ''
+        open (newunit=u, file=path, status='old', action='read', iostat=ios)
+        if (ios /= 0) return
+        do
+            read (u, '(a)', iostat=ios) line
+            if (ios /= 0) exit
+            text = text//trim(line)//new_line('a')
+        end do
+        close (u)
+    end function file_lines
 
 end module fc_testing

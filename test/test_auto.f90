@@ -6,7 +6,7 @@
 !! by [[solve_case_auto]] in-process.
 module test_auto
     use fc_kinds, only: dp, msg_len, pi
-    use fc_testing, only: error_type, unittest_type, new_unittest, check
+    use fc_testing, only: error_type, unittest_type, new_unittest, check, read_all => file_lines
     use fc_namelist, only: fc_case_chunk, read_case_file
     use fc_input, only: fc_case_input, apply_case, namelist_keys
     use fc_input_validate, only: validate_case
@@ -772,22 +772,6 @@ contains
         call run_driver(args, code, report_unit=urep, error_unit=uerr)
         close (urep); close (uerr)
     end function run_in_tmp
-
-    function read_all(path) result(text)
-        character(len=*), intent(in) :: path
-        character(len=:), allocatable :: text
-        character(len=4096) :: line
-        integer :: u, ios
-        text = ''
-        open (newunit=u, file=path, status='old', action='read', iostat=ios)
-        if (ios /= 0) return
-        do
-            read (u, '(a)', iostat=ios) line
-            if (ios /= 0) exit
-            text = text//trim(line)//nl
-        end do
-        close (u)
-    end function read_all
 
     logical function exists(path)
         character(len=*), intent(in) :: path

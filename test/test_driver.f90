@@ -3,7 +3,7 @@
 !! The driver runs in-process on small grids; files go to a unique directory under /tmp.
 module test_driver
     use fc_kinds, only: dp
-    use fc_testing, only: error_type, unittest_type, new_unittest, check
+    use fc_testing, only: error_type, unittest_type, new_unittest, check, read_all => file_lines
     use fc_driver, only: run_driver
     use fc_fftw, only: fftw_forget_wisdom
     implicit none
@@ -128,22 +128,6 @@ contains
         dir = '/tmp/fc_test_driver_'//trim(tag)
         call execute_command_line("mkdir -p '"//dir//"'")
     end function new_dir
-
-    function read_all(path) result(text)
-        character(len=*), intent(in) :: path
-        character(len=:), allocatable :: text
-        character(len=2048) :: line
-        integer :: u, ios
-        text = ''
-        open (newunit=u, file=path, status='old', action='read', iostat=ios)
-        if (ios /= 0) return
-        do
-            read (u, '(a)', iostat=ios) line
-            if (ios /= 0) exit
-            text = text//trim(line)//nl
-        end do
-        close (u)
-    end function read_all
 
     logical function exists(path)
         character(len=*), intent(in) :: path

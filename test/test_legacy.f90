@@ -471,14 +471,14 @@ contains
             end if
             call fc_set_shifts(h(k), case_xi(4), case_eta(4), case_phi(4), ierr)
             if (k == 2) then
-                w1 = slurp(path)
+                w1 = file_lines(path)
                 call fftw_forget_wisdom()
             end if
             call fc_calculate(h(k), ierr)
             call check(error, ierr == 0, 'calculate')
             call fc_get_forces(h(k), fn(k), fx(k), fy(k), mz, ierr)
         end do
-        w2 = slurp(path)
+        w2 = file_lines(path)
         call check(error, index(w1, '(fftw-3') == 1, 'first calculation wrote the wisdom file')
         call check(error, w1 == w2, 'second handle read the file and measured nothing')
         call check(error, fx(1), fx(0), 'Fx measured = estimated', rel=1e-10_dp)
@@ -498,22 +498,6 @@ contains
             call fc_finalize(h(k), ierr)
         end do
         call fftw_forget_wisdom()
-    contains
-        function slurp(f) result(t)
-            character(len=*), intent(in) :: f
-            character(len=:), allocatable :: t
-            character(len=512) :: line
-            integer :: v, ios
-            t = ''
-            open (newunit=v, file=f, status='old', action='read', iostat=ios)
-            if (ios /= 0) return
-            do
-                read (v, '(a)', iostat=ios) line
-                if (ios /= 0) exit
-                t = t//trim(line)//new_line('a')
-            end do
-            close (v)
-        end function slurp
     end subroutine test_fft_wisdom
 
     !> The quadratic gap is cached per grid and radii: new radii after a calculation give the

@@ -4,7 +4,7 @@
 !! (declarations and body); `readme_in_sync` reads README.md and fails when a statement of
 !! the README's example is missing from this file, so the two cannot drift apart.
 module test_readme
-    use fc_testing, only: error_type, unittest_type, new_unittest, check
+    use fc_testing, only: error_type, unittest_type, new_unittest, check, file_text => file_lines
     implicit none
     private
     public :: collect_readme
@@ -85,21 +85,5 @@ contains
         close (u)
         call check(error, nlines >= 10, 'README.md: the library example (```fortran block) was not found')
     end subroutine readme_in_sync
-
-    function file_text(path) result(text)
-        character(len=*), intent(in) :: path
-        character(len=:), allocatable :: text
-        character(len=512) :: line
-        integer :: u, ios
-        text = ''
-        open (newunit=u, file=path, status='old', action='read', iostat=ios)
-        if (ios /= 0) return
-        do
-            read (u, '(a)', iostat=ios) line
-            if (ios /= 0) exit
-            text = text//trim(line)//new_line('a')
-        end do
-        close (u)
-    end function file_text
 
 end module test_readme
