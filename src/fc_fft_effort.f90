@@ -54,7 +54,7 @@ contains
         logical, intent(out) :: new_plans
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
-        logical :: exists, had
+        logical :: exists, had, have
         integer :: u, ios
         stat = 0; errmsg = ''
         had = fft_plans_in_wisdom(nx, ny, periodic)
@@ -74,9 +74,10 @@ contains
             errmsg = 'the file exists but FFTW cannot read it as wisdom (delete it to measure again)'
             return
         end if
+        have = fft_plans_in_wisdom(nx, ny, periodic)
         ! the plans came from the file alone: it is complete, leave it as it is
-        if (exists .and. .not. had .and. fft_plans_in_wisdom(nx, ny, periodic)) return
-        if (.not. fft_plans_in_wisdom(nx, ny, periodic)) call prime_fft_plans(nx, ny, periodic)
+        if (exists .and. .not. had .and. have) return
+        if (.not. have) call prime_fft_plans(nx, ny, periodic)
         if (.not. wisdom_file(path, read=.false.)) then
             stat = FC_ERR_FFT_WISDOM
             errmsg = 'cannot write the wisdom file (does its directory exist?)'

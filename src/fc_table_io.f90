@@ -450,14 +450,27 @@ contains
         character(len=*), intent(in) :: tok
         real(dp), intent(out) :: v
         logical, intent(out) :: ok
-        integer :: i, n, c, ndig, scale, ex, exsign, ios
+        integer :: ios
+        ok = .false.; v = 0
+        if (len(tok) == 0) return
+        ok = .true.
+        if (exact_decimal(tok, v)) return
+        read (tok, *, iostat=ios) v
+        ok = ios == 0 .and. index(tok, '/') == 0 .and. index(tok, '*') == 0
+    end subroutine parse_real
+
+    !> The direct conversion of [[parse_real]]: .false. (v undefined) for a token outside its
+    !! form or range, which the caller hands to the run-time library.
+    logical function exact_decimal(tok, v) result(done)
+        character(len=*), intent(in) :: tok
+        real(dp), intent(out) :: v
+        integer :: i, n, c, ndig, scale, ex, exsign
         integer(int64) :: m
         logical :: neg, seen_dot, any_digit
         integer :: ik
         real(dp), parameter :: exact_pow(0:22) = [(10.0_dp**ik, ik = 0, 22)]   ! exact in binary
+        done = .false.; v = 0
         n = len(tok)
-        ok = .false.; v = 0
-        if (n == 0) return
         i = 1; neg = .false.
         c = iachar(tok(1:1))
         if (c == 43 .or. c == 45) then       ! + -
@@ -472,7 +485,7 @@ contains
                     if (seen_dot) scale = scale - 1      ! leading zeros after the point
                 else
                     ndig = ndig + 1
-                    if (ndig > 18) goto 900               ! let the run-time library decide
+                    if (ndig > 18) return                 ! let the run-time library decide
                     m = 10*m + (c - 48)
                     if (seen_dot) scale = scale - 1
                 end if
@@ -483,25 +496,25 @@ contains
             end if
             i = i + 1
         end do
-        if (.not. any_digit) goto 900
+        if (.not. any_digit) return
         if (i <= n) then
             c = iachar(tok(i:i))
-            if (c /= 69 .and. c /= 101 .and. c /= 68 .and. c /= 100) goto 900   ! E e D d
+            if (c /= 69 .and. c /= 101 .and. c /= 68 .and. c /= 100) return   ! E e D d
             i = i + 1
-            if (i > n) goto 900
+            if (i > n) return
             exsign = 1
             c = iachar(tok(i:i))
             if (c == 43 .or. c == 45) then
                 if (c == 45) exsign = -1
                 i = i + 1
             end if
-            if (i > n) goto 900
+            if (i > n) return
             ex = 0
             do while (i <= n)
                 c = iachar(tok(i:i))
-                if (c < 48 .or. c > 57) goto 900
+                if (c < 48 .or. c > 57) return
                 ex = 10*ex + (c - 48)
-                if (ex > 100000) goto 900
+                if (ex > 100000) return
                 i = i + 1
             end do
             scale = scale + exsign*ex
@@ -515,15 +528,11 @@ contains
                 v = real(m, dp)/exact_pow(-scale)
             end if
         else
-            goto 900
+            return
         end if
         if (neg) v = -v
-        ok = .true.
-        return
-900     continue
-        read (tok, *, iostat=ios) v
-        ok = ios == 0 .and. index(tok, '/') == 0 .and. index(tok, '*') == 0
-    end subroutine parse_real
+        done = .true.
+    end function exact_decimal
 
     !> Read `size(vals)` reals from the text file `filename`: blank, comma or tab separated,
     !! any number per line; blank lines and lines whose first non-blank character is '#' or

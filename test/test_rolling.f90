@@ -11,7 +11,7 @@ module test_rolling
     use fc_fastsim
     use fc_legacy
     use fc_driver, only: run_driver
-    use fc_testing
+    use fc_testing, file_text => file_lines
     implicit none
     private
     public :: collect_rolling
@@ -572,22 +572,6 @@ contains
     end subroutine test_driver_cases
 
     !> Whole text of a file ('' if missing).
-    function file_text(path) result(text)
-        character(len=*), intent(in) :: path
-        character(len=:), allocatable :: text
-        character(len=4096) :: line
-        integer :: u, ios
-        text = ''
-        open (newunit=u, file=path, status='old', action='read', iostat=ios)
-        if (ios /= 0) return
-        do
-            read (u, '(a)', iostat=ios) line
-            if (ios /= 0) exit
-            text = text//trim(line)//' '
-        end do
-        close (u)
-    end function file_text
-
     !> Value of `key` (with quotes) in a JSON file written by the driver.
     subroutine json_value(path, key, value)
         character(len=*), intent(in) :: path, key
