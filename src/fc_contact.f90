@@ -39,6 +39,7 @@ module fc_contact
         fc_contact_result
     use fc_influence, only: fc_ic_set, ic_set_kernel
     use fc_periodic, only: build_periodic_normal_operator, check_periodic_grid, periodic_images_default
+    use fc_threads, only: fc_thread_count
     implicit none
     private
 
@@ -107,36 +108,53 @@ contains
         type(fc_grid), intent(in) :: grid
         type(fc_material), intent(in) :: material
         logical, intent(in) :: normal, tangential   !! which operators are needed
-        integer :: stat
-        character(len=256) :: errmsg   ! a periodic grid is checked by the callers ([[solve_contact]])
+        logical :: build_n, build_t
         ops%setup_seconds_normal = 0; ops%setup_seconds_tangential = 0
-        if (normal) then
-            if (.not. (ops%reuse .and. ops%normal%matches(grid, material) .and. (ops%built_periodic .eqv. ops%periodic))) then
-                if (ops%periodic) then
-                    call build_periodic_normal_operator(ops%normal, material, grid, stat, errmsg)
-                else if (allocated(ops%ic%a)) then
-                    call build_normal_operator(ops%normal, material, grid, ops%ic)
-                else
-                    call build_normal_operator(ops%normal, material, grid)
-                end if
-                ops%built_periodic = ops%periodic
-                ops%builds_normal = ops%builds_normal + 1
-                ops%setup_seconds_normal = ops%normal%setup_seconds
-            end if
-            ops%normal%grid = grid
+        build_n = .false.; build_t = .false.
+        if (normal) build_n = .not. (ops%reuse .and. ops%normal%matches(grid, material) .and. &
+            (ops%built_periodic .eqv. ops%periodic))
+        if (tangential) build_t = .not. (ops%reuse .and. ops%tangential%matches(grid, material))
+        if (build_n .and. build_t .and. fc_thread_count() > 1) then
+            ! The two builds are independent: with several threads they run side by side, each
+            ! on one thread (the loops and transforms inside are nested regions).  Their serial
+            ! parts (FFTW's first planning, allocation and first touch) then overlap; the same
+            ! operators result (the element loops have no reductions, the plans are the same).
+            !$omp parallel sections num_threads(2)
+            !$omp section
+            call build_normal()
+            !$omp section
+            call build_tangential()
+            !$omp end parallel sections
+        else
+            if (build_n) call build_normal()
+            if (build_t) call build_tangential()
         end if
-        if (tangential) then
-            if (.not. (ops%reuse .and. ops%tangential%matches(grid, material))) then
-                if (allocated(ops%ic%a)) then
-                    call build_tangential_operator(ops%tangential, material, grid, ops%ic)
-                else
-                    call build_tangential_operator(ops%tangential, material, grid)
-                end if
-                ops%builds_tangential = ops%builds_tangential + 1
-                ops%setup_seconds_tangential = ops%tangential%setup_seconds
+        if (normal) ops%normal%grid = grid
+        if (tangential) ops%tangential%grid = grid
+    contains
+        subroutine build_normal()
+            integer :: stat
+            character(len=256) :: errmsg   ! a periodic grid is checked by the callers ([[solve_contact]])
+            if (ops%periodic) then
+                call build_periodic_normal_operator(ops%normal, material, grid, stat, errmsg)
+            else if (allocated(ops%ic%a)) then
+                call build_normal_operator(ops%normal, material, grid, ops%ic)
+            else
+                call build_normal_operator(ops%normal, material, grid)
             end if
-            ops%tangential%grid = grid
-        end if
+            ops%built_periodic = ops%periodic
+            ops%builds_normal = ops%builds_normal + 1
+            ops%setup_seconds_normal = ops%normal%setup_seconds
+        end subroutine build_normal
+        subroutine build_tangential()
+            if (allocated(ops%ic%a)) then
+                call build_tangential_operator(ops%tangential, material, grid, ops%ic)
+            else
+                call build_tangential_operator(ops%tangential, material, grid)
+            end if
+            ops%builds_tangential = ops%builds_tangential + 1
+            ops%setup_seconds_tangential = ops%tangential%setup_seconds
+        end subroutine build_tangential
     end subroutine ensure_operators
 
     subroutine operators_destroy(self)

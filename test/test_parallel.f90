@@ -13,6 +13,8 @@ module test_parallel
     use fc_tangcg, only: fc_tangential_operator, fc_tangential_settings, fc_tangential_result, build_tangential_operator, &
         solve_tangential
     use fc_driver, only: run_driver
+    use fc_contact, only: fc_contact_operators, fc_contact_loading, fc_contact_settings, fc_contact_result, solve_contact, &
+        FC_PROBLEM_TANGENTIAL
     use, intrinsic :: iso_c_binding, only: c_int, c_double
     use fc_legacy, only: fc_init, fc_finalize, fc_set_material, fc_set_grid, fc_set_gap_quadratic, fc_set_gap_array, &
         fc_set_normal_force, fc_calculate, fc_get_pmax, fc_set_periodic, fc_set_threads, fc_get_error_message, FCL_OK, &
@@ -29,6 +31,7 @@ contains
         tests = [ &
             new_unittest('threads_same_result', test_threads_same), &
             new_unittest('threads_same_result_cattaneo', test_threads_same_cattaneo), &
+            new_unittest('threads_concurrent_operator_builds', test_threads_orchestrator), &
             new_unittest('threads_count_bounds', test_thread_bounds), &
             new_unittest('periodic_wavy_full_contact', test_wavy), &
             new_unittest('periodic_operator_is_circulant', test_circulant), &
@@ -135,6 +138,58 @@ contains
         write (*, '(a,2es10.2)') '    threads_same_result_cattaneo: max |dp|/pmax, max |dpt|/(mu pmax) = ', &
             maxval(abs(n1%pn - n2%pn))/n1%pmax, max(maxval(abs(t1%px - t2%px)), maxval(abs(t1%py - t2%py)))/tmax
     end subroutine test_threads_same_cattaneo
+
+    !> The orchestrator with two threads builds the normal and the tangential operators side
+    !! by side ([[ensure_operators]]): the same Cattaneo problem as above through
+    !! `solve_contact` with fresh operators on 1 and 2 threads gives each operator built once
+    !! and the same solution (iterations, areas; pressures and tractions to 1e−10 of their
+    !! maxima, as above: only the solvers' threaded sums differ).
+    subroutine test_threads_orchestrator(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_material) :: mat
+        type(fc_grid) :: grid
+        type(fc_contact_loading) :: load
+        type(fc_contact_settings) :: set
+        type(fc_contact_result) :: r(2)
+        integer :: stat, nt0, nt
+        character(len=256) :: em
+        real(dp), allocatable :: h0(:, :)
+        if (.not. fc_openmp_enabled()) then
+            write (*, '(a)') '    threads_concurrent_operator_builds: built without OpenMP, nothing to compare'
+            return
+        end if
+        nt0 = fc_thread_count()
+        mat%g1 = 200; mat%g2 = 200; mat%nu1 = 0.42_dp; mat%nu2 = 0.42_dp
+        call combine_material(mat, stat, em)
+        call make_grid(grid, 192, 176, -1.2857_dp, 1.2857_dp, -1.2857_dp, 1.2857_dp, stat, em)
+        h0 = quadratic_gap(grid, 50.0_dp, 50.0_dp)
+        load%problem = FC_PROBLEM_TANGENTIAL
+        load%normal%force_prescribed = .true.; load%normal%fn = 9.1954_dp
+        load%tangential%mu = 0.4_dp
+        load%tangential%xi = 0.0021_dp; load%tangential%eta = 0.0010_dp; load%tangential%phi = 0.003_dp
+        do nt = 1, 2
+            block
+                type(fc_contact_operators) :: ops
+                call set_thread_count(nt)
+                call solve_contact(ops, grid, mat, h0, load, set, r(nt), stat, em)
+                call check(error, stat == 0, 'solve_contact: '//trim(em))
+                if (allocated(error)) exit
+                call check(error, ops%builds_normal == 1 .and. ops%builds_tangential == 1, &
+                    'each operator built once')
+                call ops%destroy()
+            end block
+            if (allocated(error)) exit
+        end do
+        call set_thread_count(nt0)
+        if (allocated(error)) return
+        call check(error, all([r(1)%status, r(2)%status] == FC_CONVERGED), 'converged with 1 and 2 threads')
+        call check(error, r(1)%normal%iterations == r(2)%normal%iterations .and. &
+            r(1)%tangential%iterations == r(2)%tangential%iterations, 'same iteration counts')
+        call check(error, r(1)%tangential%nslip == r(2)%tangential%nslip, 'same slip area')
+        call check(error, maxval(abs(r(1)%normal%pn - r(2)%normal%pn)), 0.0_dp, 'pressure', abs=1e-10_dp*r(1)%normal%pmax)
+        call check(error, max(maxval(abs(r(1)%tangential%px - r(2)%tangential%px)), &
+            maxval(abs(r(1)%tangential%py - r(2)%tangential%py))), 0.0_dp, 'tractions', abs=1e-10_dp*0.4_dp*r(1)%normal%pmax)
+    end subroutine test_threads_orchestrator
 
     subroutine test_thread_bounds(error)
         type(error_type), allocatable, intent(out) :: error
