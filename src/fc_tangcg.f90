@@ -22,10 +22,12 @@
 !! Stopping criterion (thesis eq. 4.49): ‖p^k − p^{k−1}‖_rms/‖p^k‖_rms < tol, with an
 !! unchanged subdivision.
 !!
-!! Size (~800 lines): TangCG and ConvexGS share the loading, the result, the status and the
+!! Size (~890 lines): TangCG and ConvexGS share the loading, the result, the status and the
 !! slip bookkeeping of thesis ch. 4 (also used by the rolling solvers); kept in one home like
 !! CONTACT's `tangcg` (the operator is in [[fc_tangcg_operator]], the preconditioner in
-!! [[fc_tangprec]], the prescribed-force loop in [[fc_force_newton]]).
+!! [[fc_tangprec]], the prescribed-force loop in [[fc_force_newton]]).  TangCG's element
+!! loops (iteration, elastic start, subdivision checks) are written out as column loops so
+!! that OpenMP can share them (doc/parallel.md); that is most of the length beyond 600.
 module fc_tangcg
     use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
     use fc_kinds
@@ -306,7 +308,7 @@ contains
         type(fc_tangential_settings), intent(in) :: settings
         type(fc_tangential_result), intent(inout) :: res
         real(dp), dimension(size(g, 1), size(g, 2)) :: px, py, sx, sy, ux, uy, dax, day, zx, zy, vax, vay, &
-            vsx, vsy, qsx, qsy, qax, qay, pox, poy, dox, doy, mx, my, tnorm
+            vsx, vsy, qsx, qsy, qax, qay, pox, poy, dox, doy, mx, my
         logical, dimension(size(g, 1), size(g, 2)) :: adh, slp
         real(dp) :: axx, ayy, alpha, beta, zd_old, zd, denom, change, num, t
         integer :: it, inner, nmoved, i, j, nx, ny
@@ -328,7 +330,7 @@ contains
             ! traction reaches the bound starts in slip
             call subdivide_start()
             call top%apply(px, py, ux, uy)
-            sx = wx + ux; sy = wy + uy
+            call set_slip()
         end if
         allocate (hist(settings%maxit))
         changed = .true.; converged = .false.
@@ -502,7 +504,7 @@ contains
             check_now = inner >= settings%inner_k .or. change < settings%tol
             if (check_now .and. any(slp)) then
                 call top%apply(px, py, ux, uy)
-                sx = wx + ux; sy = wy + uy
+                call set_slip()
             else
                 !$omp parallel do default(shared) private(i) schedule(static) if(par)
                 do j = 1, ny
@@ -520,24 +522,37 @@ contains
                 ! thesis step 11.1: adhesion elements above the bound go to slip (a rounding
                 ! excess of 1e−12 relative is not a violation: an element on the circle with
                 ! s = 0 would otherwise alternate between the two sets)
-                nmoved = count(adh .and. px**2 + py**2 > (1 + 1.0e-12_dp)*g**2)
+                nmoved = 0
+                !$omp parallel do default(shared) private(i, t) reduction(+:nmoved) schedule(static) if(par)
+                do j = 1, ny
+                    do i = 1, nx
+                        if (adh(i, j) .and. px(i, j)**2 + py(i, j)**2 > (1 + 1.0e-12_dp)*g(i, j)**2) then
+                            slp(i, j) = .true.; adh(i, j) = .false.
+                            t = sqrt(px(i, j)**2 + py(i, j)**2)
+                            px(i, j) = g(i, j)*px(i, j)/t; py(i, j) = g(i, j)*py(i, j)/t
+                            nmoved = nmoved + 1
+                        end if
+                    end do
+                end do
+                !$omp end parallel do
                 if (nmoved > 0) then
-                    where (adh .and. px**2 + py**2 > (1 + 1.0e-12_dp)*g**2)
-                        slp = .true.; adh = .false.
-                        tnorm = sqrt(px**2 + py**2)
-                        px = g*px/tnorm; py = g*py/tnorm
-                    end where
                     call top%apply(px, py, ux, uy)
-                    sx = wx + ux; sy = wy + uy
+                    call set_slip()
                     changed = .true.
                 end if
                 ! thesis step 11.2: slip elements whose traction does not oppose the slip go to adhesion
-                if (any(slp .and. px*sx + py*sy > 0)) then
-                    where (slp .and. px*sx + py*sy > 0)
-                        adh = .true.; slp = .false.
-                    end where
-                    changed = .true.
-                end if
+                nmoved = 0
+                !$omp parallel do default(shared) private(i) reduction(+:nmoved) schedule(static) if(par)
+                do j = 1, ny
+                    do i = 1, nx
+                        if (slp(i, j) .and. px(i, j)*sx(i, j) + py(i, j)*sy(i, j) > 0) then
+                            adh(i, j) = .true.; slp(i, j) = .false.
+                            nmoved = nmoved + 1
+                        end if
+                    end do
+                end do
+                !$omp end parallel do
+                if (nmoved > 0) changed = .true.
                 ! thesis step 11.3: convergence
                 if (.not. changed .and. change < settings%tol) then
                     converged = .true.
@@ -561,17 +576,22 @@ contains
         !! slip, projected on the circle (1e−8 slack: a converged start has its slip
         !! tractions on the bound up to rounding); a zero bound carries no traction.
         subroutine subdivide_start()
-            adh = contact; slp = .false.
-            where (contact .and. g > 0 .and. px**2 + py**2 >= (1 - 1.0e-8_dp)*g**2)
-                slp = .true.; adh = .false.
-            end where
-            where (slp)
-                tnorm = sqrt(px**2 + py**2)
-                px = g*px/tnorm; py = g*py/tnorm
-            end where
-            where (contact .and. .not. g > 0)
-                adh = .false.; slp = .false.; px = 0; py = 0
-            end where
+            real(dp) :: tn
+            !$omp parallel do default(shared) private(i, tn) schedule(static) if(par)
+            do j = 1, ny
+                do i = 1, nx
+                    adh(i, j) = contact(i, j); slp(i, j) = .false.
+                    if (.not. contact(i, j)) cycle
+                    if (.not. g(i, j) > 0) then
+                        adh(i, j) = .false.; px(i, j) = 0; py(i, j) = 0
+                    else if (px(i, j)**2 + py(i, j)**2 >= (1 - 1.0e-8_dp)*g(i, j)**2) then
+                        slp(i, j) = .true.; adh(i, j) = .false.
+                        tn = sqrt(px(i, j)**2 + py(i, j)**2)
+                        px(i, j) = g(i, j)*px(i, j)/tn; py(i, j) = g(i, j)*py(i, j)/tn
+                    end if
+                end do
+            end do
+            !$omp end parallel do
         end subroutine subdivide_start
 
         !> Cold start with the FFT preconditioner.  The full-adhesion estimate e = −M w (M the
@@ -588,53 +608,91 @@ contains
         !! and six with A.
         subroutine cold_start()
             logical, allocatable :: qadh(:, :), qslp(:, :)
-            real(dp) :: c, scl
+            real(dp) :: c, scl, zu, zw
             integer :: cand
             ! work arrays of the iteration, free until it starts, hold the candidates:
             ! estimate (zx, zy), candidate 1 before its local step (vsx, vsy; u: qsx, qsy),
             ! best so far (qax, qay; u: pox, poy)
             allocate (badh, bslp, qadh, qslp, mold=adh)
-            where (contact)
-                dax = -wx; day = -wy
-            elsewhere
-                dax = 0; day = 0
-            end where
+            !$omp parallel do default(shared) private(i) schedule(static) if(par)
+            do j = 1, ny
+                do i = 1, nx
+                    if (contact(i, j)) then
+                        dax(i, j) = -wx(i, j); day(i, j) = -wy(i, j)
+                    else
+                        dax(i, j) = 0; day(i, j) = 0
+                    end if
+                end do
+            end do
+            !$omp end parallel do
             call apply_block_inverse(top, dax, day, zx, zy)
-            where (.not. contact)
-                zx = 0; zy = 0
-            end where
+            !$omp parallel do default(shared) private(i) schedule(static) if(par)
+            do j = 1, ny
+                do i = 1, nx
+                    if (.not. contact(i, j)) then
+                        zx(i, j) = 0; zy(i, j) = 0
+                    end if
+                end do
+            end do
+            !$omp end parallel do
             call top%apply(zx, zy, ux, uy)
+            zu = 0; zw = 0
+            !$omp parallel do default(shared) private(i) reduction(+:zu, zw) schedule(static) if(par)
+            do j = 1, ny
+                do i = 1, nx
+                    zu = zu + (zx(i, j)*ux(i, j) + zy(i, j)*uy(i, j))
+                    zw = zw + (zx(i, j)*wx(i, j) + zy(i, j)*wy(i, j))
+                end do
+            end do
+            !$omp end parallel do
             c = 1
-            if (sum(zx*ux + zy*uy) > 0) c = -sum(zx*wx + zy*wy)/sum(zx*ux + zy*uy)
+            if (zu > 0) c = -zw/zu
             if (.not. (c > 0 .and. c < 1)) c = 1
             jbest = huge(1.0_dp)
             do cand = 1, 2
                 scl = 1
                 if (cand == 2) scl = c
-                px = scl*zx; py = scl*zy
+                !$omp parallel do default(shared) private(i) schedule(static) if(par)
+                do j = 1, ny
+                    do i = 1, nx
+                        px(i, j) = scl*zx(i, j); py(i, j) = scl*zy(i, j)
+                    end do
+                end do
+                !$omp end parallel do
                 call subdivide_start()
                 call top%apply(px, py, ux, uy)
-                sx = wx + ux; sy = wy + uy
+                call set_slip()
                 if (cand == 1) then
-                    vsx = px; vsy = py; qsx = ux; qsy = uy; qadh = adh; qslp = slp
+                    call copy_pair(px, py, vsx, vsy); call copy_pair(ux, uy, qsx, qsy)
+                    qadh = adh; qslp = slp
                     call local_decision(.true.)
                     call keep()
-                    px = vsx; py = vsy; ux = qsx; uy = qsy; adh = qadh; slp = qslp
-                    sx = wx + ux; sy = wy + uy
+                    call copy_pair(vsx, vsy, px, py); call copy_pair(qsx, qsy, ux, uy)
+                    adh = qadh; slp = qslp
+                    call set_slip()
                 end if
                 call local_decision(.false.)
                 call keep()
             end do
-            px = qax; py = qay; adh = badh; slp = bslp; ux = pox; uy = poy
-            sx = wx + ux; sy = wy + uy
+            call copy_pair(qax, qay, px, py); call copy_pair(pox, poy, ux, uy)
+            adh = badh; slp = bslp
+            call set_slip()
         end subroutine cold_start
 
         !> Keep (px, py) as the best cold-start candidate if its energy is the lowest so far.
         subroutine keep()
             real(dp) :: jv
-            jv = sum(0.5_dp*(px*ux + py*uy) + px*wx + py*wy)
+            jv = 0
+            !$omp parallel do default(shared) private(i) reduction(+:jv) schedule(static) if(par)
+            do j = 1, ny
+                do i = 1, nx
+                    jv = jv + (0.5_dp*(px(i, j)*ux(i, j) + py(i, j)*uy(i, j)) + px(i, j)*wx(i, j) + py(i, j)*wy(i, j))
+                end do
+            end do
+            !$omp end parallel do
             if (jv < jbest) then
-                jbest = jv; qax = px; qay = py; badh = adh; bslp = slp; pox = ux; poy = uy
+                jbest = jv; badh = adh; bslp = slp
+                call copy_pair(px, py, qax, qay); call copy_pair(ux, uy, pox, poy)
             end if
         end subroutine keep
 
@@ -644,10 +702,10 @@ contains
         !! exceeds the bound, else adhesion (keeping its traction); then u and s recomputed.
         subroutine local_decision(all)
             logical, intent(in) :: all
-            integer :: i, j
             real(dp) :: stx, sty, tx, ty
-            do j = 1, size(g, 2)
-                do i = 1, size(g, 1)
+            !$omp parallel do default(shared) private(i, stx, sty, tx, ty) schedule(static) if(par)
+            do j = 1, ny
+                do i = 1, nx
                     if (.not. (slp(i, j) .or. (all .and. adh(i, j) .and. g(i, j) > 0))) cycle
                     stx = sx(i, j) - axx*px(i, j); sty = sy(i, j) - ayy*py(i, j)
                     tx = -stx/axx; ty = -sty/ayy
@@ -659,9 +717,34 @@ contains
                     end if
                 end do
             end do
+            !$omp end parallel do
             call top%apply(px, py, ux, uy)
-            sx = wx + ux; sy = wy + uy
+            call set_slip()
         end subroutine local_decision
+
+        !> s = w + u (elementwise; threaded on large grids).
+        subroutine set_slip()
+            !$omp parallel do default(shared) private(i) schedule(static) if(par)
+            do j = 1, ny
+                do i = 1, nx
+                    sx(i, j) = wx(i, j) + ux(i, j); sy(i, j) = wy(i, j) + uy(i, j)
+                end do
+            end do
+            !$omp end parallel do
+        end subroutine set_slip
+
+        !> (bx, by) = (ax, ay) (threaded on large grids).
+        subroutine copy_pair(ax, ay, bx, by)
+            real(dp), intent(in) :: ax(:, :), ay(:, :)
+            real(dp), intent(out) :: bx(:, :), by(:, :)
+            !$omp parallel do default(shared) private(i) schedule(static) if(par)
+            do j = 1, ny
+                do i = 1, nx
+                    bx(i, j) = ax(i, j); by(i, j) = ay(i, j)
+                end do
+            end do
+            !$omp end parallel do
+        end subroutine copy_pair
     end subroutine run_tangcg
 
     !> (zx, zy) = M (dx, dy) with M the FFT preconditioner of [[fc_tangprec]] (one forward
