@@ -48,17 +48,16 @@ module fc_auto
     use fc_kinds, only: dp, i8, FC_CONVERGED, status_name
     use fc_influence, only: fc_material, combine_material
     use fc_norm, only: fc_normal_result
-    use fc_tangcg, only: fc_tangential_result, fc_tangential_loading
+    use fc_tangcg_types, only: fc_tangential_result, fc_tangential_loading
     use fc_contact, only: set_influence_coefficients, clear_influence_coefficients, &
         fc_contact_operators, fc_contact_loading, fc_contact_settings, fc_contact_result, &
-        solve_contact, FC_PROBLEM_TANGENTIAL, FC_PROBLEM_ROLLING
-    use fc_rolling_batch, only: is_rolling_sequence, rolling_sequence
+        solve_contact, rolling_sequence, FC_PROBLEM_TANGENTIAL, FC_PROBLEM_ROLLING
     use fc_fmg, only: fc_quadratic_surface, fc_punch_rough_surface, fc_wavy_surface
     use fc_icfile, only: fc_ic_set
     use fc_icfile_load, only: load_influence_source
     use fc_errors, only: FC_ERR_UNSUPPORTED, FC_ERR_IC_FILE
     use fc_strings, only: fmt_int, fmt_real, append_line
-    use fc_scene, only: fc_case, case_setup, is_tangential, is_line_contact
+    use fc_scene, only: fc_case, case_setup, is_tangential, is_line_contact, is_rolling_sequence
     use fc_case_result, only: fc_level, fc_auto_outcome
     use fc_auto_estimate, only: richardson_estimate, level_estimate, certify_coarsest, target_quantities, &
         estimate_safety, estimate_safety_h2, h2_ratio_low, h2_ratio_high
@@ -333,7 +332,7 @@ contains
             load%px_start = px0; load%py_start = py0
         end if
         if (tang .and. is_rolling_sequence(sl)) then
-            call rolling_sequence(sl, ops, out%grid, mat, out%h0, load, settings, res, out%sequence, stat, errmsg)
+            call rolling_sequence(sl%rolling, ops, out%grid, mat, out%h0, load, settings, res, out%sequence, stat, errmsg)
         else if (use_fmg) then
             call fmg_solve()
         else

@@ -1,5 +1,6 @@
 !> One orchestrator for every contact solve: normal, tangential, coupled (Panagiotopoulos
-!! process for dissimilar materials, K ≠ 0) and transient sequences (shift or rolling steps).
+!! process for dissimilar materials, K ≠ 0), transient steps (shift or rolling) and the
+!! rolling sequences of a case ([[rolling_sequence]]: creep-force sweeps, transient rolling).
 !!
 !! The batch driver (through [[fc_auto]]), the flat API ([[fc_legacy_api]]) and the
 !! `fastcontact` facade all call [[solve_contact]]; nothing else runs the
@@ -15,9 +16,9 @@
 !!   in the transient modes, the previous displacements u' and tractions p' of the step.
 !! * [[fc_contact_result]]: the normal and tangential results and the process counters.
 !!
-!! The problem kinds, [[fc_normal_loading]], [[fc_contact_settings]] and [[fc_contact_result]]
-!! are defined in [[fc_contact_types]] (so that the case description and the outputs need
-!! not sit above the solvers) and re-exported here.
+!! The types (problem kinds, transient modes, loadings, settings, operators, state, result)
+!! are defined in [[fc_contact_types]] (so that the case description, the outputs and the
+!! flat API's handle registry need not sit above the solvers) and re-exported here.
 !!
 !! Coupling (thesis §4.4): with K ≠ 0 the normal displacement A^zx·px + A^zy·py of the
 !! tangential tractions enters the normal problem and the tangential displacement A^xz·pn of
@@ -25,7 +26,7 @@
 !! pressure and tractions change by less than 10·max(tol_n, tol_t) (relative RMS), at most
 !! [[max_rounds]] rounds.  With K = 0 one normal and one tangential solve.
 module fc_contact
-    use fc_kinds, only: dp, pi, FC_CONVERGED, FC_NOT_CONVERGED, FC_ERROR
+    use fc_kinds, only: dp, i8, pi, FC_CONVERGED, FC_NOT_CONVERGED, FC_ERROR
     use fc_errors, only: FC_ERR_VALUE, FC_ERR_NOT_READY, FC_ERR_SHAPE, FC_ERR_UNSUPPORTED, FC_ERR_FRICTION_BOUND
     use fc_geometry, only: fc_grid, h_no_contact
     use fc_influence, only: fc_material
@@ -33,71 +34,24 @@ module fc_contact
     use fc_tangcg, only: fc_tangential_operator, fc_tangential_settings, fc_tangential_result, fc_tangential_loading, &
         build_tangential_operator, solve_tangential_loading, coupling_displacements, EL_EXTERIOR, EL_ADHESION, EL_SLIP
     use fc_fmg, only: fc_fmg_settings, fc_fmg_stats, fc_surface, solve_normal_fmg
-    use fc_rolling, only: fc_rolling_loading, solve_rolling_loading
+    use fc_rolling, only: fc_rolling_loading, solve_rolling_loading, fc_rolling_case
     use fc_contact_types, only: FC_PROBLEM_NORMAL, FC_PROBLEM_TANGENTIAL, FC_PROBLEM_ROLLING, fc_normal_loading, &
-        fc_contact_settings, &
-        fc_contact_result
+        fc_contact_settings, fc_contact_result, fc_contact_loading, fc_contact_operators, fc_contact_state, &
+        FC_FROM_REST, FC_TRANSIENT_SHIFT, FC_TRANSIENT_ROLLING
     use fc_influence, only: fc_ic_set, ic_set_kernel
     use fc_periodic, only: build_periodic_normal_operator, check_periodic_grid, periodic_images_default
     use fc_threads, only: fc_thread_count
     implicit none
     private
 
-    !> Transient modes: how the previous state of a sequence enters the step.
-    integer, parameter, public :: FC_FROM_REST = 0          !! u' = 0: a steady (static) problem; warm start only
-    integer, parameter, public :: FC_TRANSIENT_SHIFT = 1    !! u', p' = previous step (shift sequence)
-    integer, parameter, public :: FC_TRANSIENT_ROLLING = 2  !! u', p' = previous step moved by the rolling step dq
-
     integer, parameter, public :: max_rounds = 50  !! most Panagiotopoulos rounds
 
-    !> Everything prescribed for one solve.
-    type, public :: fc_contact_loading
-        integer :: problem = FC_PROBLEM_NORMAL            !! FC_PROBLEM_NORMAL or FC_PROBLEM_TANGENTIAL
-        type(fc_normal_loading) :: normal                 !! approach or force
-        type(fc_tangential_loading) :: tangential         !! friction, shifts or forces, spin
-        real(dp), allocatable :: px_start(:, :), py_start(:, :)  !! tangential warm start [N/mm²] (both or none)
-        integer :: transient = FC_FROM_REST               !! how a [[fc_contact_state]] enters the step
-        real(dp) :: dq = 0                                !! rolling step [mm] (FC_TRANSIENT_ROLLING)
-        real(dp) :: mu_kinetic = -1                       !! FC_PROBLEM_ROLLING: kinetic friction (< 0: = mu)
-    end type fc_contact_loading
-
-    !> Influence operators of one grid and material, reused while they match.
-    type, public :: fc_contact_operators
-        type(fc_normal_operator) :: normal          !! A^zz and its preconditioner
-        type(fc_tangential_operator) :: tangential  !! tangential (and coupling) blocks
-        logical :: reuse = .true.                   !! .false.: rebuild at every solve (checks, benchmarks)
-        logical :: periodic = .false.               !! normal operator of the periodic half-space ([[fc_periodic]])
-        logical :: built_periodic = .false.         !! the normal operator held is the periodic one
-        integer :: builds_normal = 0                !! normal operator builds so far
-        integer :: builds_tangential = 0            !! tangential operator builds so far
-        real(dp) :: setup_seconds_normal = 0        !! set-up time of the last [[ensure_operators]] (0: reused)
-        real(dp) :: setup_seconds_tangential = 0    !! same for the tangential operator
-        !> combined influence coefficients from a file ([[set_influence_coefficients]]); when
-        !! allocated they replace the half-space kernels for every block
-        type(fc_ic_set) :: ic
-    contains
-        procedure :: destroy => operators_destroy
-    end type fc_contact_operators
-
-    !> Previous solution of a sequence of solves.
-    type, public :: fc_contact_state
-        logical :: warm_start = .true.              !! start from the previous solution
-        logical :: has_normal = .false.             !! pn holds a converged previous pressure
-        logical :: has_tangential = .false.         !! px … fy hold a converged previous tangential state
-        real(dp), allocatable :: pn(:, :)           !! previous pressure [N/mm²]
-        real(dp), allocatable :: px(:, :), py(:, :) !! previous tractions p' [N/mm²]
-        real(dp), allocatable :: ux(:, :), uy(:, :) !! previous tangential displacement differences u' [mm]
-        integer, allocatable :: el(:, :)            !! previous element states
-        real(dp) :: xi = 0, eta = 0                 !! previous shift [mm]
-        real(dp) :: fx = 0, fy = 0                  !! previous tangential forces [N]
-    contains
-        procedure :: reset => state_reset
-    end type fc_contact_state
-
     public :: FC_PROBLEM_NORMAL, FC_PROBLEM_TANGENTIAL, FC_PROBLEM_ROLLING, fc_normal_loading, fc_contact_settings, &
-        fc_contact_result
+        fc_contact_result, fc_contact_loading, fc_contact_operators, fc_contact_state, &
+        FC_FROM_REST, FC_TRANSIENT_SHIFT, FC_TRANSIENT_ROLLING
     public :: solve_contact, ensure_operators, solve_normal_tangential, shift_along_x, fc_tangential_loading
     public :: set_influence_coefficients, clear_influence_coefficients
+    public :: rolling_sequence
 
 contains
 
@@ -157,12 +111,6 @@ contains
         end subroutine build_tangential
     end subroutine ensure_operators
 
-    subroutine operators_destroy(self)
-        class(fc_contact_operators), intent(inout) :: self
-        call self%normal%destroy()
-        call self%tangential%destroy()
-    end subroutine operators_destroy
-
     !> Use the combined coefficients `ic` (content 'combined', validated) for every block
     !! from now on; the operators are rebuilt at the next solve.  FMG, which needs
     !! coefficients on coarser grids, is refused while a set is in use.
@@ -186,12 +134,6 @@ contains
         if (allocated(ops%ic%a)) deallocate (ops%ic%a)
         call ops%normal%destroy(); call ops%tangential%destroy()
     end subroutine clear_influence_coefficients
-
-    !> Forget the previous solution (keeps `warm_start`).
-    subroutine state_reset(self)
-        class(fc_contact_state), intent(inout) :: self
-        self%has_normal = .false.; self%has_tangential = .false.
-    end subroutine state_reset
 
     !> Solve one contact problem on `grid` with undeformed distance `h0` [mm] (without the
     !! approach).  Operators in `ops` are built or reused.  With `state`, the previous
@@ -600,5 +542,90 @@ contains
             if (w > 0 .and. i0 + 1 >= 1 .and. i0 + 1 <= nx) g(i, :) = g(i, :) + w*f(i0 + 1, :)
         end do
     end subroutine shift_along_x
+
+    !> Run the rolling sequence `seq` (a creep-force sweep or transient rolling, from the
+    !! case's [[fc_rolling_case]]) with the loading and settings prepared for one solve
+    !! (`load_in%problem` = FC_PROBLEM_ROLLING for a sweep, its creepages `load_in%tangential`;
+    !! the transient run sets its own shifts creepage·dq).  `res`: the last point or step; `rows`: one row per point/step
+    !! (last column: the status code; written as its name).  The sequence
+    !! stops at the first point or step that does not converge.
+    subroutine rolling_sequence(seq, ops, grid, mat, h0, load_in, settings, res, rows, stat, errmsg)
+        type(fc_rolling_case), intent(in) :: seq
+        type(fc_contact_operators), intent(inout) :: ops
+        type(fc_grid), intent(in) :: grid
+        type(fc_material), intent(in) :: mat
+        real(dp), intent(in) :: h0(:, :)
+        type(fc_contact_loading), intent(in) :: load_in
+        type(fc_contact_settings), intent(in) :: settings
+        type(fc_contact_result), intent(out) :: res
+        real(dp), allocatable, intent(out) :: rows(:, :)
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        type(fc_contact_loading) :: load
+        type(fc_contact_state) :: state
+        real(dp) :: dq, value, mufn, secs
+        integer :: k, n
+        integer(i8) :: t0, t1, rate
+        stat = 0; errmsg = ''
+        load = load_in
+        state%warm_start = .true.
+        if (seq%transient) then
+            dq = seq%dq
+            if (dq == 0) dq = grid%dx
+            n = seq%nsteps
+            if (n == 0) n = max(1, ceiling(4*(grid%xmax - grid%xmin)/dq))
+            load%problem = FC_PROBLEM_TANGENTIAL
+            load%transient = FC_TRANSIENT_ROLLING
+            load%dq = dq
+            load%tangential%force_prescribed = .false.
+            load%tangential%xi = load_in%tangential%xi*dq; load%tangential%eta = load_in%tangential%eta*dq
+            load%tangential%phi = load_in%tangential%phi*dq
+            allocate (rows(n, 12))
+        else
+            n = seq%sweep_n
+            allocate (rows(n, 14))
+        end if
+        rows = 0
+        do k = 1, n
+            if (.not. seq%transient) then
+                value = seq%sweep_from + (seq%sweep_to - seq%sweep_from)*(k - 1)/real(n - 1, dp)
+                select case (seq%sweep)
+                case ('xi'); load%tangential%xi = value
+                case ('eta'); load%tangential%eta = value
+                case ('phi'); load%tangential%phi = value
+                case ('fx'); load%tangential%fx = value
+                case ('fy'); load%tangential%fy = value
+                end select
+            end if
+            call system_clock(t0, rate)
+            call solve_contact(ops, grid, mat, h0, load, settings, res, stat, errmsg, state=state)
+            call system_clock(t1)
+            if (stat /= 0) then
+                rows = rows(1:k - 1, :)
+                return
+            end if
+            secs = real(t1 - t0, dp)/rate
+            mufn = load%tangential%mu*res%normal%fn
+            if (.not. mufn > 0) mufn = 1
+            associate (t => res%tangential)
+                if (seq%transient) then
+                    rows(k, :) = [real(k, dp), k*dq, t%fx, t%fy, t%mz, t%fx/mufn, t%fy/mufn, real(t%nadh, dp), &
+                                  real(t%nslip, dp), real(t%iterations, dp), secs, real(res%status, dp)]
+                else
+                    rows(k, :) = [value, t%xi, t%eta, t%phi, t%fx, t%fy, t%mz, t%fx/mufn, t%fy/mufn, real(t%nadh, dp), &
+                                  real(t%nslip, dp), real(t%iterations, dp), secs, real(res%status, dp)]
+                end if
+            end associate
+            if (res%status /= FC_CONVERGED) then
+                rows = rows(1:k, :)
+                exit
+            end if
+        end do
+        if (seq%transient) then
+            ! report the creepages (the steps used creepage·dq as shifts)
+            res%tangential%xi = load_in%tangential%xi; res%tangential%eta = load_in%tangential%eta
+            res%tangential%phi = load_in%tangential%phi
+        end if
+    end subroutine rolling_sequence
 
 end module fc_contact

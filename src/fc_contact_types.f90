@@ -1,11 +1,14 @@
-!> The value types of a contact solve — problem kinds, normal loading, settings of both
-!! stages, result — apart from the orchestrator [[fc_contact]] that uses them, so that the
-!! case description ([[fc_scene]]) and the outputs ([[fc_case_result]]) depend on the solver
+!> The types of a contact solve — problem kinds, transient modes, loadings, settings of both
+!! stages, the operators and state kept between solves, the result — apart from the
+!! orchestrator [[fc_contact]] that uses them, so that the case description ([[fc_scene]]),
+!! the outputs ([[fc_case_result]]) and the flat API's handle registry depend on the solver
 !! types only, not on the solve.  [[fc_contact]] re-exports everything here.
 module fc_contact_types
     use fc_kinds, only: dp, FC_ERROR
-    use fc_norm, only: fc_normal_settings, fc_normal_result
-    use fc_tangcg, only: fc_tangential_settings, fc_tangential_result
+    use fc_influence, only: fc_ic_set
+    use fc_norm, only: fc_normal_settings, fc_normal_result, fc_normal_operator
+    use fc_tangcg_operator, only: fc_tangential_operator
+    use fc_tangcg_types, only: fc_tangential_settings, fc_tangential_result, fc_tangential_loading
     use fc_fmg_levels, only: fc_fmg_settings
     use fc_rolling_base, only: fc_rolling_settings
     implicit none
@@ -17,7 +20,6 @@ module fc_contact_types
     !> normal, then steady-state rolling in +x (`tangential%xi, eta, phi` are creepages [-, -, 1/mm])
     integer, parameter, public :: FC_PROBLEM_ROLLING = 3
 
-
     !> Normal loading: prescribed approach δ or total force Fn, and an optional start pressure.
     type, public :: fc_normal_loading
         logical :: force_prescribed = .false.   !! .true.: fn, else approach
@@ -26,7 +28,6 @@ module fc_contact_types
         real(dp), allocatable :: p_start(:, :)  !! warm start [N/mm²] (zeroed where contact is impossible)
     end type fc_normal_loading
 
-
     !> Solver settings of both stages.
     type, public :: fc_contact_settings
         type(fc_normal_settings) :: normal          !! solver 'bccg', 'norm' or 'fmg'
@@ -34,7 +35,6 @@ module fc_contact_types
         type(fc_fmg_settings) :: fmg                !! used when normal%solver = 'fmg'
         type(fc_rolling_settings) :: rolling        !! FC_PROBLEM_ROLLING: 'gmres', 'march' or 'steadygs'
     end type fc_contact_settings
-
 
     !> Result of a contact solve ([[solve_contact]]).
     type, public :: fc_contact_result
@@ -52,5 +52,67 @@ module fc_contact_types
         real(dp) :: convergence_factor = -1         !! FMG: convergence factor (−1: not FMG)
     end type fc_contact_result
 
+    !> Transient modes: how the previous state of a sequence enters the step.
+    integer, parameter, public :: FC_FROM_REST = 0          !! u' = 0: a steady (static) problem; warm start only
+    integer, parameter, public :: FC_TRANSIENT_SHIFT = 1    !! u', p' = previous step (shift sequence)
+    integer, parameter, public :: FC_TRANSIENT_ROLLING = 2  !! u', p' = previous step moved by the rolling step dq
+
+    !> Everything prescribed for one solve.
+    type, public :: fc_contact_loading
+        integer :: problem = FC_PROBLEM_NORMAL            !! FC_PROBLEM_NORMAL or FC_PROBLEM_TANGENTIAL
+        type(fc_normal_loading) :: normal                 !! approach or force
+        type(fc_tangential_loading) :: tangential         !! friction, shifts or forces, spin
+        real(dp), allocatable :: px_start(:, :), py_start(:, :)  !! tangential warm start [N/mm²] (both or none)
+        integer :: transient = FC_FROM_REST               !! how a [[fc_contact_state]] enters the step
+        real(dp) :: dq = 0                                !! rolling step [mm] (FC_TRANSIENT_ROLLING)
+        real(dp) :: mu_kinetic = -1                       !! FC_PROBLEM_ROLLING: kinetic friction (< 0: = mu)
+    end type fc_contact_loading
+
+    !> Influence operators of one grid and material, reused while they match.
+    type, public :: fc_contact_operators
+        type(fc_normal_operator) :: normal          !! A^zz and its preconditioner
+        type(fc_tangential_operator) :: tangential  !! tangential (and coupling) blocks
+        logical :: reuse = .true.                   !! .false.: rebuild at every solve (checks, benchmarks)
+        logical :: periodic = .false.               !! normal operator of the periodic half-space ([[fc_periodic]])
+        logical :: built_periodic = .false.         !! the normal operator held is the periodic one
+        integer :: builds_normal = 0                !! normal operator builds so far
+        integer :: builds_tangential = 0            !! tangential operator builds so far
+        real(dp) :: setup_seconds_normal = 0        !! set-up time of the last [[ensure_operators]] (0: reused)
+        real(dp) :: setup_seconds_tangential = 0    !! same for the tangential operator
+        !> combined influence coefficients from a file ([[set_influence_coefficients]]); when
+        !! allocated they replace the half-space kernels for every block
+        type(fc_ic_set) :: ic
+    contains
+        procedure :: destroy => operators_destroy
+    end type fc_contact_operators
+
+    !> Previous solution of a sequence of solves.
+    type, public :: fc_contact_state
+        logical :: warm_start = .true.              !! start from the previous solution
+        logical :: has_normal = .false.             !! pn holds a converged previous pressure
+        logical :: has_tangential = .false.         !! px … fy hold a converged previous tangential state
+        real(dp), allocatable :: pn(:, :)           !! previous pressure [N/mm²]
+        real(dp), allocatable :: px(:, :), py(:, :) !! previous tractions p' [N/mm²]
+        real(dp), allocatable :: ux(:, :), uy(:, :) !! previous tangential displacement differences u' [mm]
+        integer, allocatable :: el(:, :)            !! previous element states
+        real(dp) :: xi = 0, eta = 0                 !! previous shift [mm]
+        real(dp) :: fx = 0, fy = 0                  !! previous tangential forces [N]
+    contains
+        procedure :: reset => state_reset
+    end type fc_contact_state
+
+contains
+
+    subroutine operators_destroy(self)
+        class(fc_contact_operators), intent(inout) :: self
+        call self%normal%destroy()
+        call self%tangential%destroy()
+    end subroutine operators_destroy
+
+    !> Forget the previous solution (keeps `warm_start`).
+    subroutine state_reset(self)
+        class(fc_contact_state), intent(inout) :: self
+        self%has_normal = .false.; self%has_tangential = .false.
+    end subroutine state_reset
 
 end module fc_contact_types

@@ -23,7 +23,7 @@ module fc_driver
     use fc_geometry, only: fc_grid
     use fc_influence, only: fc_material
     use fc_contact, only: fc_contact_operators, FC_PROBLEM_ROLLING
-    use fc_rolling_batch, only: write_sequence_csv, sweep_header, steps_header
+    use fc_sequence_csv, only: write_sequence_csv, sweep_header, steps_header
     use fc_driver_strip, only: solve_strip_case
     use fc_hertz, only: hertz_from_approach, hertz_from_force
     use fc_namelist, only: fc_case_chunk, read_case_file

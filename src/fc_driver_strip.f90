@@ -5,7 +5,7 @@
 module fc_driver_strip
     use fc_kinds, only: dp, FC_ERROR, status_name
     use fc_geometry, only: fc_grid
-    use fc_tangcg, only: EL_EXTERIOR, EL_ADHESION
+    use fc_tangcg_types, only: EL_EXTERIOR, EL_ADHESION
     use fc_mg2d, only: fc_strip_problem, fc_mg2d_settings, fc_mg2d_result, strip_model_problem, solve_strip_mg, &
         solve_strip_fft_rsm
     use fc_input, only: fc_case_input, strip_model_index, is_given

@@ -15,7 +15,7 @@ module fc_legacy_registry
     use fc_strings, only: fmt_int
     use fc_geometry, only: fc_grid
     use fc_influence, only: fc_material
-    use fc_contact, only: fc_contact_loading, fc_contact_settings, fc_contact_operators, fc_contact_state, &
+    use fc_contact_types, only: fc_contact_loading, fc_contact_settings, fc_contact_operators, fc_contact_state, &
         fc_contact_result
     use fc_threads, only: set_thread_count
     implicit none

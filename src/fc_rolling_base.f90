@@ -5,7 +5,8 @@
 module fc_rolling_base
     use fc_kinds
     use fc_geometry, only: fc_grid
-    use fc_tangcg, only: fc_tangential_operator, fc_tangential_result, EL_ADHESION, EL_SLIP
+    use fc_tangcg_operator, only: fc_tangential_operator
+    use fc_tangcg_types, only: fc_tangential_result, EL_ADHESION, EL_SLIP
     implicit none
     private
 

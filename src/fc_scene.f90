@@ -11,8 +11,9 @@ module fc_scene
     use fc_geometry, only: fc_grid, fc_rough_params, make_grid, quadratic_gap, punch_rough_gap, wavy_gap, &
         read_gap_table, h_no_contact
     use fc_influence, only: fc_material, combine_material
-    use fc_tangcg, only: fc_tangential_loading
-    use fc_contact_types, only: fc_normal_loading, fc_contact_settings, FC_PROBLEM_NORMAL, FC_PROBLEM_TANGENTIAL
+    use fc_tangcg_types, only: fc_tangential_loading
+    use fc_contact_types, only: fc_normal_loading, fc_contact_settings, FC_PROBLEM_NORMAL, FC_PROBLEM_TANGENTIAL, &
+        FC_PROBLEM_ROLLING
     use fc_rolling_base, only: fc_rolling_case
     implicit none
     private
@@ -57,9 +58,15 @@ module fc_scene
         character(len=path_len) :: fft_wisdom = ''   !! FFTW wisdom file ('': FFTW_ESTIMATE plans only)
     end type fc_case
 
-    public :: case_setup, is_line_contact, is_tangential
+    public :: case_setup, is_line_contact, is_tangential, is_rolling_sequence
 
 contains
+
+    !> Whether the case is a rolling sequence (creep-force sweep or transient rolling).
+    pure logical function is_rolling_sequence(c)
+        type(fc_case), intent(in) :: c
+        is_rolling_sequence = c%rolling%transient .or. (c%problem == FC_PROBLEM_ROLLING .and. len_trim(c%rolling%sweep) > 0)
+    end function is_rolling_sequence
 
     !> Whether the case solves the tangential problem too.
     pure logical function is_tangential(c)

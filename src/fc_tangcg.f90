@@ -34,55 +34,16 @@ module fc_tangcg
     use fc_geometry, only: fc_grid
     use fc_influence
     use fc_tangcg_operator, only: fc_tangential_operator, build_tangential_operator, coupling_displacements
+    use fc_tangcg_types
     use fc_threads, only: omp_min_elements
     use fc_force_newton, only: fc_force_newton_t
     implicit none
     private
 
-    integer, parameter, public :: EL_EXTERIOR = 0, EL_ADHESION = 1, EL_SLIP = 2  !! element status
-
-    !> Settings of the tangential solvers.
-    type, public :: fc_tangential_settings
-        character(len=8) :: solver = 'tangcg'   !! 'tangcg' or 'convexgs'
-        real(dp) :: tol = 1.0e-5_dp              !! relative traction change, eq. (4.49)
-        integer :: maxit = 2000                  !! TangCG inner iterations / ConvexGS sweeps
-        integer :: inner_k = 3                   !! TangCG: NLCG iterations between subdivision checks
-        logical :: precondition = .true.         !! TangCG: preconditioner on
-        character(len=8) :: preconditioner = 'fft'  !! TangCG: 'fft' (block Toeplitz inverse on adhesion,
-                                                 !! diagonal on slip, elastic start) or 'diagonal' (eq. 4.43)
-    end type fc_tangential_settings
-
-    !> Result of a tangential solve.
-    type, public :: fc_tangential_result
-        real(dp), allocatable :: px(:, :), py(:, :)  !! tangential tractions on body 1 [N/mm²]
-        real(dp), allocatable :: sx(:, :), sy(:, :)  !! slip s = w + u − u' + offset [mm]
-        real(dp), allocatable :: ux(:, :), uy(:, :)  !! tangential displacement differences A·p [mm]
-        integer, allocatable :: state(:, :)          !! EL_EXTERIOR, EL_ADHESION, EL_SLIP
-        real(dp) :: xi = 0, eta = 0, phi = 0         !! rigid shift used [mm, mm, rad]
-        real(dp) :: fx = 0, fy = 0                   !! tangential forces [N]
-        real(dp) :: mz = 0                           !! moment Σ (x·py − y·px)·dx·dy [N·mm]
-        integer :: ncon = 0, nadh = 0, nslip = 0
-        integer :: status = FC_ERROR
-        integer :: iterations = 0        !! TangCG inner iterations / ConvexGS sweeps (all force steps)
-        integer :: outer_iterations = 0  !! subdivision checks (TangCG) / force-loop steps
-        integer :: matvecs = 0           !! combined 2×2 block products by FFT
-        real(dp) :: residual = huge(1.0_dp)  !! final relative traction change (4.49)
-        real(dp) :: cpu_seconds = 0
-        character(len=msg_len) :: message = ''
-        real(dp), allocatable :: history(:)  !! relative traction change per iteration
-    end type fc_tangential_result
-
-    !> Tangential loading: friction and either the rigid shift (ξ, η) or the forces (Fx, Fy);
-    !! the spin φ is always prescribed (doc/namelist.md `&tangential`).
-    type, public :: fc_tangential_loading
-        real(dp) :: mu = 0                    !! coefficient of friction
-        real(dp) :: xi = 0, eta = 0           !! prescribed shifts [mm] (force_prescribed = .false.)
-        real(dp) :: phi = 0                   !! spin shift [rad]
-        real(dp) :: fx = 0, fy = 0            !! prescribed tangential forces [N] (force_prescribed)
-        logical :: force_prescribed = .false.
-    end type fc_tangential_loading
-
-    ! the operator (fc_tangcg_operator) is part of this module's interface
+    ! the value types (fc_tangcg_types) and the operator (fc_tangcg_operator) are part of this
+    ! module's interface
+    public :: EL_EXTERIOR, EL_ADHESION, EL_SLIP
+    public :: fc_tangential_settings, fc_tangential_result, fc_tangential_loading
     public :: fc_tangential_operator, build_tangential_operator, coupling_displacements
     public :: solve_tangential
     public :: solve_tangential_loading
