@@ -1,28 +1,30 @@
 !> fastcontact-bench-mg2d: one 2D strip solve (thesis ch. 3) per process, for whole-process
 !! CPU timing (`/usr/bin/time -f %U`) of the strip multigrid at large n.
 !!
-!! Usage: fastcontact-bench-mg2d [--mp 1|2|3] [--k K] [--cycle 11|10|01] [--one-grid] [--repeat R]
+!! Usage: fastcontact-bench-mg2d [--mp 1|2|3] [--k K] [--cycle 11|10|01] [--one-grid] [--repeat R] [--threads N]
 !!   --mp       model problem (default 1)
 !!   --k        n = 2^K unknowns (default 20)
 !!   --cycle    V(1,1) (11, default), V(1,0) (10) or V(0,1) (01)
 !!   --one-grid the one-grid FFT+RSM solver instead of multigrid
 !!   --repeat   solve R times in the process (default 1)
+!!   --threads  threads for the FFTs and element loops (default 0: OMP_NUM_THREADS, else 1)
 !! Prints one line per solve: mp, n, cycle, iterations, factor, residual, status and the
 !! solver's own wall time (set-up included), then the process CPU time of all solves.
 program fastcontact_bench_mg2d
     use fc_kinds, only: dp, status_name
     use fc_mg2d, only: fc_strip_problem, fc_mg2d_settings, fc_mg2d_result, strip_model_problem
     use fc_mg2d, only: solve_strip_mg, solve_strip_fft_rsm
+    use fc_threads, only: set_thread_count
     implicit none
     type(fc_strip_problem) :: prob
     type(fc_mg2d_settings) :: set
     type(fc_mg2d_result) :: res
     character(len=256) :: arg, msg
-    integer :: mp, k, cyc, rep, r, iarg, ios, stat
+    integer :: mp, k, cyc, rep, r, iarg, ios, stat, nthreads
     logical :: one_grid
     real :: c0, c1
 
-    mp = 1; k = 20; cyc = 11; rep = 1; one_grid = .false.
+    mp = 1; k = 20; cyc = 11; rep = 1; one_grid = .false.; nthreads = 0
     iarg = 1
     do while (iarg <= command_argument_count())
         call get_command_argument(iarg, arg)
@@ -31,9 +33,11 @@ program fastcontact_bench_mg2d
         case ('--k'); call int_arg(k, 2, 24)
         case ('--cycle'); call int_arg(cyc, 1, 11)
         case ('--repeat'); call int_arg(rep, 1, 1000)
+        case ('--threads'); call int_arg(nthreads, 0, 1024)
         case ('--one-grid'); one_grid = .true.
         case default
-            write (*, '(a)') 'usage: fastcontact-bench-mg2d [--mp M] [--k K] [--cycle 11|10|01] [--one-grid] [--repeat R]'
+            write (*, '(a)') 'usage: fastcontact-bench-mg2d [--mp M] [--k K] [--cycle 11|10|01] [--one-grid] [--repeat R] '// &
+                '[--threads N]'
             error stop 2
         end select
         iarg = iarg + 1
@@ -46,6 +50,7 @@ program fastcontact_bench_mg2d
         write (*, '(a,i0,a)') 'fastcontact-bench-mg2d: --cycle ', cyc, ' is not 11, 10 or 01'
         error stop 2
     end select
+    call set_thread_count(nthreads)
     call cpu_time(c0)
     do r = 1, rep
         call strip_model_problem(mp, 2**k, prob, stat, msg)

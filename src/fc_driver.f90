@@ -36,6 +36,7 @@ module fc_driver
         FC_ERR_GRID, FC_ERR_IC_FILE, FC_ERR_MODEL_RANGE, FC_ERR_FFT_WISDOM
     use fc_output, only: fc_case_summary, write_case_json, write_case_csv, write_case_npy, write_case_report
     use fc_auto, only: fc_auto_outcome, solve_case_auto
+    use fc_threads, only: set_thread_count
     implicit none
     private
 
@@ -372,6 +373,7 @@ contains
             real(dp), allocatable :: px(:, :), zero(:, :)
             integer, allocatable :: el(:, :)
             case_status = 1
+            call set_thread_count(kase%threads)    ! before the strip levels' FFT plans are made
             call solve_strip_case(state, kase, s, sgrid, px, el, final_status, stat, errmsg)
             if (stat /= 0) then
                 call case_error(); return

@@ -42,6 +42,7 @@ module fc_mg2d
     use fc_influence
     use fc_mg2d_ops, only: strip_fft, strip_kernel, strip_toeplitz_inverse
     use fc_lapack, only: solve_spd, eigenvalues_general
+    use fc_threads, only: omp_min_elements
     implicit none
     private
 
@@ -319,13 +320,17 @@ contains
             call lv%fft%product(lv%sa, lv%x, lv%d)
             hier%work = hier%work + lv%cost
             if (lv%all_con) then
+                !$omp parallel do default(shared) schedule(static) if(lv%n > omp_min_elements)
                 do i = 1, lv%n
                     lv%d(i) = lv%r(i) - lv%d(i)
                 end do
+                !$omp end parallel do
             else
+                !$omp parallel do default(shared) schedule(static) if(lv%n > omp_min_elements)
                 do i = 1, lv%n
                     lv%d(i) = merge(lv%r(i) - lv%d(i), 0.0_dp, lv%con(i))
                 end do
+                !$omp end parallel do
             end if
         end associate
     end subroutine defect
@@ -342,9 +347,11 @@ contains
             hier%work = hier%work + lv%cost
             select case (smoother)
             case ('fft-rsm')
+                !$omp parallel do default(shared) schedule(static) if(lv%n > omp_min_elements)
                 do i = 1, lv%n
                     if (lv%con(i)) lv%x(i) = lv%x(i) + (lv%t(i) - lv%shift(i)*lv%d(i))
                 end do
+                !$omp end parallel do
             case ('fft-sd')
                 ! P y = y − Ā Z E⁻¹ Zᵀ y  (eq. 3.14 with precomputed Ā Z)
                 where (.not. lv%con) lv%t = 0
@@ -395,19 +402,23 @@ contains
             call defect(hier, l)
         end do
         associate (fine => hier%lev(l), coarse => hier%lev(l - 1))
+            !$omp parallel do default(shared) schedule(static) if(coarse%n > omp_min_elements)
             do i = 1, coarse%n                                      ! eq. (3.12)
                 coarse%r(i) = merge(0.5_dp*(fine%d(2*i - 1) + fine%d(2*i)), 0.0_dp, coarse%con(i))
+                coarse%x(i) = 0
+                coarse%d(i) = coarse%r(i)
             end do
-            coarse%x = 0
-            coarse%d = coarse%r
+            !$omp end parallel do
         end associate
         call vcycle(hier, l - 1, settings, stat, errmsg)
         if (stat /= 0) return
         associate (fine => hier%lev(l), coarse => hier%lev(l - 1))
+            !$omp parallel do default(shared) schedule(static) if(coarse%n > omp_min_elements)
             do i = 1, coarse%n                                      ! eq. (3.13)
                 if (fine%con(2*i - 1)) fine%x(2*i - 1) = fine%x(2*i - 1) + coarse%x(i)
                 if (fine%con(2*i)) fine%x(2*i) = fine%x(2*i) + coarse%x(i)
             end do
+            !$omp end parallel do
         end associate
         call defect(hier, l)
         do k = 1, settings%nu2

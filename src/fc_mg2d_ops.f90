@@ -17,6 +17,7 @@ module fc_mg2d_ops
     use fc_geometry, only: fc_grid
     use fc_influence, only: fc_material, ic_kernel, IC_ZZ, IC_XX, IC_YY
     use fc_fftw
+    use fc_threads, only: fftw_threads_for_size, omp_min_elements
     implicit none
     private
 
@@ -46,14 +47,18 @@ contains
     subroutine strip_fft_init(self, n)
         class(strip_fft), intent(inout) :: self
         integer, intent(in) :: n
+        integer :: saved
+        saved = 1
         call self%destroy()
         self%n = n; self%m = 2*n
         self%raw = fftw_alloc_real(int(self%m + 2, c_size_t))
         call c_f_pointer(self%raw, self%buf, [self%m + 2])
         call c_f_pointer(self%raw, self%cbuf, [n + 1])
         !$omp critical (fc_fftw_planner)
+        call fftw_threads_for_size(self%m, saved)
         self%pf = fftw_plan_dft_r2c_1d(int(self%m, c_int), self%buf, self%cbuf, FFTW_ESTIMATE)
         self%pb = fftw_plan_dft_c2r_1d(int(self%m, c_int), self%cbuf, self%buf, FFTW_ESTIMATE)
+        call fftw_threads_for_size(-1, saved)
         !$omp end critical (fc_fftw_planner)
         self%buf = 0
     end subroutine strip_fft_init
@@ -66,15 +71,19 @@ contains
         real(dp), intent(out) :: sym(0:)
         integer :: n, d
         n = self%n
-        self%buf(1:n) = c(0:n - 1)
-        self%buf(n + 1) = 0
-        do d = 1, n - 1
-            self%buf(self%m - d + 1) = c(d)
+        !$omp parallel do default(shared) schedule(static) if(n > omp_min_elements)
+        do d = 0, n - 1
+            self%buf(d + 1) = c(d)
+            if (d > 0) self%buf(self%m - d + 1) = c(d)
         end do
+        !$omp end parallel do
+        self%buf(n + 1) = 0
         call fftw_execute_dft_r2c(self%pf, self%buf, self%cbuf)
+        !$omp parallel do default(shared) schedule(static) if(n > omp_min_elements)
         do d = 0, n
             sym(d) = self%buf(2*d + 1)/self%m
         end do
+        !$omp end parallel do
     end subroutine strip_fft_symbol
 
     !> y = T x for the symmetric Toeplitz matrix of symbol `sym` (from [[strip_fft_symbol]]).
@@ -84,16 +93,28 @@ contains
         real(dp), intent(in) :: x(:)
         real(dp), intent(out) :: y(:)
         integer :: n, k
+        logical :: par
         n = self%n
-        self%buf(1:n) = x
-        self%buf(n + 1:) = 0
+        par = n > omp_min_elements     ! element loops threaded on large levels (elementwise: same results)
+        !$omp parallel do default(shared) schedule(static) if(par)
+        do k = 1, n
+            self%buf(k) = x(k); self%buf(n + k) = 0
+        end do
+        !$omp end parallel do
+        self%buf(2*n + 1:) = 0
         call fftw_execute_dft_r2c(self%pf, self%buf, self%cbuf)
+        !$omp parallel do default(shared) schedule(static) if(par)
         do k = 0, n
             self%buf(2*k + 1) = self%buf(2*k + 1)*sym(k)
             self%buf(2*k + 2) = self%buf(2*k + 2)*sym(k)
         end do
+        !$omp end parallel do
         call fftw_execute_dft_c2r(self%pb, self%cbuf, self%buf)
-        y = self%buf(1:n)
+        !$omp parallel do default(shared) schedule(static) if(par)
+        do k = 1, n
+            y(k) = self%buf(k)
+        end do
+        !$omp end parallel do
     end subroutine strip_fft_product
 
     subroutine strip_fft_destroy(self)
@@ -137,6 +158,7 @@ contains
         allocate (f1(0:n), f2(0:n))
         hy = grid%dy/2
         c = 1/(pi*mat%g)
+        !$omp parallel do default(shared) private(u) schedule(static) if(n > omp_min_elements)
         do i = 1, n
             u = (i - 0.5_dp)*grid%dx
             f1(i) = u*asinh(hy/u) + hy*asinh(u/hy)      ! ∫∫ 1/ρ
@@ -146,10 +168,13 @@ contains
             case default; f2(i) = 0
             end select
         end do
+        !$omp end parallel do
         f1(0) = -f1(1); f2(0) = -f2(1)
+        !$omp parallel do default(shared) schedule(static) if(n > omp_min_elements)
         do i = 0, n - 1
             a(i) = 2*c*((1 - mat%nu)*(f1(i + 1) - f1(i)) + mat%nu*(f2(i + 1) - f2(i)))
         end do
+        !$omp end parallel do
     end subroutine strip_kernel
 
     ! ---- Toeplitz inverse ----------------------------------------------------------------------
@@ -174,50 +199,73 @@ contains
         real(dp), pointer, contiguous :: rbuf(:)
         complex(dp), pointer, contiguous :: cbuf(:)
         type(c_ptr) :: pf, pb, raw
-        real(dp) :: smax
-        logical :: complex_fft
+        real(dp) :: smax, smin
+        logical :: complex_fft, par
+        integer :: saved
+        saved = 1
         nn = 2*n - 1
+        par = n > omp_min_elements      ! element loops threaded on large levels (same results)
         complex_fft = largest_prime_factor(nn) > 2048
         if (complex_fft) then
             raw = fftw_alloc_complex(int(nn, c_size_t))
             call c_f_pointer(raw, cbuf, [nn])
             !$omp critical (fc_fftw_planner)
+            call fftw_threads_for_size(nn, saved)
             pf = fftw_plan_dft_1d(int(nn, c_int), cbuf, cbuf, FFTW_FORWARD, FFTW_ESTIMATE)
+            call fftw_threads_for_size(-1, saved)
             !$omp end critical (fc_fftw_planner)
             pb = c_null_ptr
+            !$omp parallel do default(shared) schedule(static) if(par)
             do d = -(n - 1), n - 1
                 cbuf(modulo(d, nn) + 1) = a(d)
             end do
+            !$omp end parallel do
             call fftw_execute_dft(pf, cbuf, cbuf)
-            smax = maxval(real(cbuf, dp))
-            if (present(min_symbol)) min_symbol = minval(real(cbuf, dp))/smax
+            call symbol_range(real(cbuf, dp), smax, smin)
+            if (present(min_symbol)) min_symbol = smin/smax
             ! the symbol is real (even circulant); the inverse transform of a real even
             ! sequence is its forward transform divided by the size
-            cbuf = 1/cmplx(max(real(cbuf, dp), 1.0e-12_dp*smax), 0.0_dp, dp)/real(nn, dp)
+            !$omp parallel do default(shared) schedule(static) if(par)
+            do d = 1, nn
+                cbuf(d) = 1/cmplx(max(real(cbuf(d), dp), 1.0e-12_dp*smax), 0.0_dp, dp)/real(nn, dp)
+            end do
+            !$omp end parallel do
             call fftw_execute_dft(pf, cbuf, cbuf)
+            !$omp parallel do default(shared) schedule(static) if(par)
             do d = -(n - 1), n - 1
                 m(d) = real(cbuf(modulo(d, nn) + 1), dp)
             end do
+            !$omp end parallel do
         else
             ! in place: nn reals padded to nn + 1 = 2(nn/2 + 1)
             raw = fftw_alloc_real(int(nn + 1, c_size_t))
             call c_f_pointer(raw, rbuf, [nn + 1])
             call c_f_pointer(raw, cbuf, [nn/2 + 1])
             !$omp critical (fc_fftw_planner)
+            call fftw_threads_for_size(nn, saved)
             pf = fftw_plan_dft_r2c_1d(int(nn, c_int), rbuf, cbuf, FFTW_ESTIMATE)
             pb = fftw_plan_dft_c2r_1d(int(nn, c_int), cbuf, rbuf, FFTW_ESTIMATE)
+            call fftw_threads_for_size(-1, saved)
             !$omp end critical (fc_fftw_planner)
+            !$omp parallel do default(shared) schedule(static) if(par)
             do d = -(n - 1), n - 1
                 rbuf(modulo(d, nn) + 1) = a(d)
             end do
+            !$omp end parallel do
             call fftw_execute_dft_r2c(pf, rbuf, cbuf)
-            smax = maxval(real(cbuf, dp))
-            if (present(min_symbol)) min_symbol = minval(real(cbuf, dp))/smax
-            cbuf = 1/cmplx(max(real(cbuf, dp), 1.0e-12_dp*smax), 0.0_dp, dp)/real(nn, dp)
+            call symbol_range(real(cbuf, dp), smax, smin)
+            if (present(min_symbol)) min_symbol = smin/smax
+            !$omp parallel do default(shared) schedule(static) if(par)
+            do d = 1, size(cbuf)
+                cbuf(d) = 1/cmplx(max(real(cbuf(d), dp), 1.0e-12_dp*smax), 0.0_dp, dp)/real(nn, dp)
+            end do
+            !$omp end parallel do
             call fftw_execute_dft_c2r(pb, cbuf, rbuf)
+            !$omp parallel do default(shared) schedule(static) if(par)
             do d = -(n - 1), n - 1
                 m(d) = rbuf(modulo(d, nn) + 1)
             end do
+            !$omp end parallel do
         end if
         !$omp critical (fc_fftw_planner)
         call fftw_destroy_plan(pf)
@@ -225,6 +273,20 @@ contains
         !$omp end critical (fc_fftw_planner)
         call fftw_free(raw)
     end subroutine strip_toeplitz_inverse
+
+    !> Largest and smallest entry of s (max and min are exact in any order).
+    subroutine symbol_range(s, smax, smin)
+        real(dp), intent(in) :: s(:)
+        real(dp), intent(out) :: smax, smin
+        integer :: k
+        smax = -huge(1.0_dp); smin = huge(1.0_dp)
+        !$omp parallel do default(shared) reduction(max:smax) reduction(min:smin) schedule(static) &
+        !$omp if(size(s) > 2*omp_min_elements)
+        do k = 1, size(s)
+            smax = max(smax, s(k)); smin = min(smin, s(k))
+        end do
+        !$omp end parallel do
+    end subroutine symbol_range
 
     !> Largest prime factor of k ≥ 1 (trial division, O(√k)).
     pure integer function largest_prime_factor(k) result(p)

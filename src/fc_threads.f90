@@ -49,11 +49,15 @@ module fc_threads
         end subroutine fftw_plan_with_nthreads
         subroutine fftw_make_planner_thread_safe() bind(C, name='fftw_make_planner_thread_safe')
         end subroutine fftw_make_planner_thread_safe
+        integer(c_int) function fftw_planner_nthreads() bind(C, name='fftw_planner_nthreads')
+            import :: c_int
+        end function fftw_planner_nthreads
     end interface
 
     logical, save :: fftw_threads_ready = .false.   ! set once, before any threaded plan
 
     public :: set_thread_count, fc_thread_count, fc_openmp_enabled, check_thread_count, fc_default_threads
+    public :: fftw_threads_for_size
 
 contains
 
@@ -125,4 +129,22 @@ contains
         ok = 0
     end subroutine set_thread_count
 
+
+    !> For one plan of a transform with `points` real points: plans made until the next call
+    !! use one thread when `points` < 2·[[fftw_thread_min_elements]] (a second thread costs
+    !! more than it saves there), else the count of the last [[set_thread_count]]; returns
+    !! the planner's previous count in `saved`, to restore with
+    !! `call fftw_threads_for_size(-1, saved)`.  Call inside the critical section
+    !! `fc_fftw_planner`; without OpenMP it does nothing.
+    subroutine fftw_threads_for_size(points, saved)
+        integer, intent(in) :: points     !! transform size; < 0: restore `saved`
+        integer, intent(inout) :: saved   !! the planner's count before the call
+        !$ if (.not. fftw_threads_ready) return
+        !$ if (points < 0) then
+        !$     call fftw_plan_with_nthreads(int(max(saved, 1), c_int))
+        !$ else
+        !$     saved = int(fftw_planner_nthreads())
+        !$     if (points < 2*fftw_thread_min_elements) call fftw_plan_with_nthreads(1_c_int)
+        !$ end if
+    end subroutine fftw_threads_for_size
 end module fc_threads
