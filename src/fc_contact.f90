@@ -25,6 +25,10 @@
 !! the pressure enters the slip.  Rounds alternate normal and tangential solves until
 !! pressure and tractions change by less than 10·max(tol_n, tol_t) (relative RMS), at most
 !! [[max_rounds]] rounds.  With K = 0 one normal and one tangential solve.
+!!
+!! Size (~630 lines): the operators' construction, the rounds of both stages with their
+!! transient bookkeeping, and the sequences of solves (loops of [[solve_contact]]) are the
+!! one orchestrator; its types are in [[fc_contact_types]].
 module fc_contact
     use fc_kinds, only: dp, i8, pi, FC_CONVERGED, FC_NOT_CONVERGED, FC_ERROR
     use fc_errors, only: FC_ERR_VALUE, FC_ERR_NOT_READY, FC_ERR_SHAPE, FC_ERR_UNSUPPORTED, FC_ERR_FRICTION_BOUND

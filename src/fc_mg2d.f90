@@ -34,7 +34,7 @@
 !! The products, coefficients and the Toeplitz inverse are [[fc_mg2d_ops]]'s: per level one
 !! in-place FFT plan pair shared by A and M, made with the hierarchy together with the work
 !! arrays, so that the cycles allocate nothing (doc/multigrid.md, "Performance at 2^20").
-!! Size: ~670 lines; the solvers and the two spectral analyses share the private level
+!! Size: ~690 lines; the solvers and the two spectral analyses share the private level
 !! type and cycle routines, so they stay in one module.
 module fc_mg2d
     use fc_kinds

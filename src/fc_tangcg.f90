@@ -22,7 +22,7 @@
 !! Stopping criterion (thesis eq. 4.49): ‖p^k − p^{k−1}‖_rms/‖p^k‖_rms < tol, with an
 !! unchanged subdivision.
 !!
-!! Size (~890 lines): TangCG and ConvexGS share the loading, the result, the status and the
+!! Size (~850 lines): TangCG and ConvexGS share the loading, the result, the status and the
 !! slip bookkeeping of thesis ch. 4 (also used by the rolling solvers); kept in one home like
 !! CONTACT's `tangcg` (the operator is in [[fc_tangcg_operator]], the preconditioner in
 !! [[fc_tangprec]], the prescribed-force loop in [[fc_force_newton]]).  TangCG's element
