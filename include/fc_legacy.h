@@ -35,6 +35,7 @@ void fc_set_normal_force(const int *h, const double *fn, int *ierr);
 void fc_set_friction(const int *h, const double *mu, int *ierr);
 void fc_set_shifts(const int *h, const double *xi, const double *eta, const double *phi, int *ierr);
 void fc_set_forces(const int *h, const double *fx, const double *fy, const double *phi, int *ierr);
+/* precondition: 0 off, 1 on (FFT preconditioners as circulants on the grid, default), 2 on (Toeplitz form) */
 void fc_set_solver(const int *h, const int *normal_solver, const int *tangential_solver, const double *tol,
                    const int *maxit, const int *inner_k, const int *precondition, int *ierr);
 void fc_set_transient(const int *h, const int *mode, int *ierr);

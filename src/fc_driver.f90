@@ -259,6 +259,7 @@ contains
                 s%setup_seconds_tangential = s%outcome%result%setup_seconds_tangential
                 s%status = status_name(res%status); s%message = res%message
                 s%solver = kase%settings%normal%solver; s%solver_normal = kase%settings%normal%solver
+                s%fft_preconditioner = kase%settings%normal%prec_form
                 s%status_normal = status_name(res%status)
                 s%fn = res%fn; s%approach = res%approach; s%pmax = res%pmax
                 s%ncon = res%ncon; s%nadh = res%ncon; s%nslip = 0

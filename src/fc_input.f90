@@ -125,6 +125,7 @@ module fc_input
         logical :: deflation = .false.             !! BCCG coarse correction
         integer :: inner_k = 3                     !! TangCG inner iterations K
         logical :: precondition_tangential = .true.  !! TangCG diagonal preconditioner
+        character(len=16) :: fft_preconditioner = 'circulant'  !! form of the FFT preconditioners: 'circulant', 'toeplitz'
         character(len=16) :: cycle = 'V(1,1)'      !! multigrid cycle 'V(n1,n2)' (fmg and strip MG)
         real(dp) :: omega = 0.8_dp                 !! fmg: damping of the Gauss–Seidel smoother, (0, 2)
         real(dp) :: beta = 0.003_dp                !! fmg: initial-area parameter of eq. (2.17), ≥ 0
@@ -457,17 +458,18 @@ contains
         real(dp) :: tol, omega, beta, target
         integer :: maxit, inner_maxit, inner_k, max_levels, threads
         logical :: precondition, precondition_tangential, deflation, target_pmax
-        character(len=16) :: model, rolling
+        character(len=16) :: model, rolling, fft_preconditioner
         character(len=path_len) :: fft_wisdom
         namelist /solver/ normal, tangential, tol, maxit, inner_maxit, precondition, precondition_tangential, &
             deflation, inner_k, cycle, omega, beta, target, target_pmax, max_levels, model, smoother, strip, rolling, threads, &
-            fft_wisdom
+            fft_wisdom, fft_preconditioner
         normal = s%normal_solver; tangential = s%tangential; tol = s%tol; maxit = s%maxit
         inner_maxit = s%inner_maxit; precondition = s%precondition
         precondition_tangential = s%precondition_tangential
         deflation = s%deflation; inner_k = s%inner_k; cycle = s%cycle; omega = s%omega; beta = s%beta
         target = s%target; target_pmax = s%target_pmax; max_levels = s%max_levels; model = s%model
         smoother = s%smoother; strip = s%strip; rolling = s%rolling; threads = s%threads; fft_wisdom = s%fft_wisdom
+        fft_preconditioner = s%fft_preconditioner
         read (text, nml=solver, iostat=ios, iomsg=iomsg)
         if (ios /= 0) return
         s%normal_solver = lower(normal); s%tangential = lower(tangential); s%tol = tol
@@ -476,7 +478,7 @@ contains
         s%deflation = deflation; s%inner_k = inner_k; s%cycle = cycle; s%omega = omega; s%beta = beta
         s%target = target; s%target_pmax = target_pmax; s%max_levels = max_levels; s%model = lower(model)
         s%smoother = lower(smoother); s%strip = lower(strip); s%rolling = lower(rolling); s%threads = threads
-        s%fft_wisdom = fft_wisdom
+        s%fft_wisdom = fft_wisdom; s%fft_preconditioner = lower(fft_preconditioner)
     end subroutine read_solver_group
 
     subroutine read_output_group(text, s, ios, iomsg)
@@ -508,7 +510,8 @@ contains
         case ('tangential'); keys = 'mu xi eta phi fx fy mu_kinetic dq nsteps sweep sweep_from sweep_to sweep_n'
         case ('solver')
             keys = 'normal tangential tol maxit inner_maxit inner_k precondition precondition_tangential deflation '// &
-                'cycle omega beta smoother strip target target_pmax max_levels model rolling threads fft_wisdom'
+                'cycle omega beta smoother strip target target_pmax max_levels model rolling threads fft_wisdom '// &
+                'fft_preconditioner'
         case ('output');     keys = 'dir table table_format'
         case default;        keys = ''
         end select

@@ -59,6 +59,7 @@ contains
             ts%solver = trim(s%tangential)
             ts%tol = s%tol; ts%maxit = s%maxit; ts%inner_k = s%inner_k
             ts%precondition = s%precondition_tangential
+            ns%prec_form = trim(s%fft_preconditioner); ts%prec_form = trim(s%fft_preconditioner)
             call fmg_cycle_from_name(s%cycle, fmg%nu1, fmg%nu2, stat, msg)
             fmg%omega = s%omega; fmg%beta = s%beta; fmg%smoother = trim(s%smoother)
             fmg%tol = s%tol; fmg%maxit = s%maxit
@@ -75,6 +76,7 @@ contains
         c%rolling%fastsim = s%model == 'fastsim'
         c%settings%rolling%solver = trim(s%rolling)
         c%settings%rolling%tol = s%tol; c%settings%rolling%maxit = s%maxit
+        c%settings%rolling%prec_form = trim(s%fft_preconditioner)
         c%threads = s%threads
         c%fft_wisdom = s%fft_wisdom
     end function build_case

@@ -378,6 +378,12 @@ contains
         case default
             errmsg = "&solver tangential = '"//trim(s%tangential)//"': unknown solver; use 'tangcg' or 'convexgs'"; return
         end select
+        select case (s%fft_preconditioner)
+        case ('circulant', 'toeplitz')
+        case default
+            errmsg = "&solver fft_preconditioner = '"//trim(s%fft_preconditioner)//"': use 'circulant' (the default) "// &
+                "or 'toeplitz'"; return
+        end select
         if (s%inner_k < 1 .or. s%inner_k > max_iterations) then
             errmsg = '&solver inner_k = '//fmt_int(s%inner_k)//': must lie in [1, '//fmt_int(max_iterations)// &
                 '] (TangCG iterations between subdivision checks)'

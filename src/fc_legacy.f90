@@ -411,7 +411,9 @@ contains
 
     !> Solver choice and tolerances.  normal_solver: 0 or 1 = BCCG, 2 = NORM; tangential_solver:
     !! 0 or 1 = TangCG, 2 = ConvexGS; tol > 0 (both problems); maxit ≥ 1; inner_k ≥ 1
-    !! (TangCG); precondition 0/1 (BCCG and TangCG).
+    !! (TangCG); precondition 0 (off), 1 (BCCG's and TangCG's FFT preconditioners as their
+    !! circulants on the grid, the default) or 2 (as the Toeplitz inverses on the doubled
+    !! grid); doc/solvers.md, "Preconditioner form".
     subroutine fc_set_solver(handle, normal_solver, tangential_solver, tol, maxit, inner_k, precondition, ierr) &
         bind(C, name='fc_set_solver')
         integer(c_int), intent(in) :: handle
@@ -441,9 +443,9 @@ contains
             call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_solver: inner_k = '//fmt_int(inner_k)//' must lie in [1, '// &
                 fmt_int(max_iterations)//']'); return
         end if
-        if (precondition /= 0 .and. precondition /= 1) then
+        if (precondition < 0 .or. precondition > 2) then
             call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_solver: precondition = '//fmt_int(precondition)// &
-                ' must be 0 or 1'); return
+                ' is not 0 (off), 1 (on, circulant form) or 2 (on, Toeplitz form)'); return
         end if
         associate (ns => s%settings%normal, ts => s%settings%tangential)
             ns%solver = merge('norm    ', 'bccg    ', normal_solver == 2)
@@ -451,8 +453,11 @@ contains
             ns%tol = tol; ts%tol = tol; s%settings%rolling%tol = tol
             ns%maxit = maxit; ts%maxit = maxit; s%settings%rolling%maxit = maxit
             ts%inner_k = inner_k
-            ns%precondition = precondition == 1
-            ts%precondition = precondition == 1
+            ns%precondition = precondition >= 1
+            ts%precondition = precondition >= 1
+            ns%prec_form = merge('toeplitz ', 'circulant', precondition == 2)
+            ts%prec_form = ns%prec_form
+            s%settings%rolling%prec_form = ns%prec_form
         end associate
     end subroutine fc_set_solver
 

@@ -23,6 +23,7 @@ module fc_output
         character(len=16) :: status = 'error'        !! converged, not_converged, diverged, error
         character(len=24) :: solver = ''             !! solver(s) used: 'bccg' or 'bccg+tangcg'
         character(len=16) :: solver_normal = ''      !! normal solver
+        character(len=16) :: fft_preconditioner = '' !! form of the FFT preconditioners ('circulant', 'toeplitz')
         character(len=16) :: solver_tangential = ''  !! tangential solver ('' for problem = normal)
         logical :: tangential = .false.              !! tangential problem solved (results below valid)
         logical :: tangential_run = .false.          !! tangential stage was reached
@@ -119,6 +120,7 @@ contains
         call kv_real('setup_seconds', s%setup_seconds)
         call kv_bool('operator_built', s%operator_built)
         call kv_str('solver_normal', s%solver_normal)
+        call kv_str('fft_preconditioner', s%fft_preconditioner)
         call kv_str('status_normal', s%status_normal)
         call kv_int('iterations_normal', s%iterations_normal)
         call kv_int('outer_iterations_normal', s%outer_iterations_normal)

@@ -37,6 +37,7 @@ module fc_rolling
     use fc_geometry, only: fc_grid
     use fc_tangcg, only: fc_tangential_operator, fc_tangential_result, EL_EXTERIOR, EL_ADHESION, EL_SLIP, &
         finish_force_loop, finish_status, traction_change
+    use fc_tangcg_operator, only: apply_block_inverse
     use fc_rolling_base
     use fc_rolling_refsolvers, only: run_steadygs, run_march
     use fc_force_newton, only: fc_force_newton_t
@@ -121,6 +122,10 @@ contains
         end if
         if (.not. (settings%forcing > 0 .and. settings%forcing < 1)) then
             stat = FC_ERR_VALUE; write (errmsg, '(a,g0.6,a)') 'solver: forcing = ', settings%forcing, ' must be in (0, 1)'; return
+        end if
+        if (settings%prec_form /= 'circulant' .and. settings%prec_form /= 'toeplitz') then
+            stat = FC_ERR_VALUE
+            errmsg = "solver: prec_form = '"//trim(settings%prec_form)//"' is not one of 'circulant', 'toeplitz'"; return
         end if
         if (settings%solver /= 'gmres' .and. settings%solver /= 'steadygs' .and. settings%solver /= 'march') then
             stat = FC_ERR_VALUE
@@ -453,18 +458,13 @@ contains
             end if
         end subroutine precondition
 
-        !> (zx, zy) = M (dx, dy), M TangCG's FFT block inverse of A (top%prec): two forward
-        !! and two inverse transforms on the operator's buffers.
+        !> (zx, zy) = M (dx, dy), M TangCG's FFT block inverse of A (top%prec) in the form of
+        !! `settings%prec_form`.
         subroutine block_inverse(dx, dy, rzx, rzy)
             real(dp), intent(in) :: dx(:, :), dy(:, :)
             real(dp), intent(out) :: rzx(:, :), rzy(:, :)
-            call top%a_xx%forward(dx, top%spec_x)
-            call top%a_xx%forward(dy, top%spec_y)
-            top%work = top%spec_x*top%prec%mxx + top%spec_y*top%prec%mxy
-            call top%a_xx%backward(top%work, rzx)
-            top%work = top%spec_x*top%prec%mxy + top%spec_y*top%prec%myy
-            call top%a_xx%backward(top%work, rzy)
-            top%nproducts = top%nproducts + 1   ! as costly as a product: counted with them
+            call apply_block_inverse(top, dx, dy, rzx, rzy, circulant=settings%prec_form == 'circulant')
+            top%nproducts = top%nproducts + 1   ! counted with the products
         end subroutine block_inverse
 
         !> q = P·J·v for a direction v in primary variables, into (qx, qy).  One pass builds

@@ -20,6 +20,9 @@ module fc_rolling_base
         !> GMRES left preconditioner of the adhesion rows: 'fft' (run sums along x, then TangCG's
         !! FFT block inverse of A on the adhesion area) or 'runsum' (run sums, diagonal scaling)
         character(len=8) :: preconditioner = 'fft'
+        !> 'fft': applied as the Strang circulant of the block inverse on the grid ('circulant')
+        !! or as the block inverse itself on the doubled grid ('toeplitz'), as TangCG's
+        character(len=9) :: prec_form = 'circulant'
         !> GMRES: Eisenstat–Walker's superlinear forcing term once the subdivision has settled
         !! (.false.: the constant `forcing` throughout)
         logical :: adaptive_forcing = .true.

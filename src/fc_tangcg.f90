@@ -33,7 +33,8 @@ module fc_tangcg
     use fc_kinds
     use fc_geometry, only: fc_grid
     use fc_influence
-    use fc_tangcg_operator, only: fc_tangential_operator, build_tangential_operator, coupling_displacements
+    use fc_tangcg_operator, only: fc_tangential_operator, build_tangential_operator, coupling_displacements, &
+        apply_block_inverse
     use fc_tangcg_types
     use fc_threads, only: omp_min_elements
     use fc_force_newton, only: fc_force_newton_t
@@ -88,6 +89,11 @@ contains
         end if
         if (settings%solver /= 'tangcg' .and. settings%solver /= 'convexgs') then
             stat = FC_ERR_VALUE; errmsg = "solver: tangential = '"//trim(settings%solver)//"' is not one of 'tangcg', 'convexgs'"
+            return
+        end if
+        if (settings%prec_form /= 'circulant' .and. settings%prec_form /= 'toeplitz') then
+            stat = FC_ERR_VALUE
+            errmsg = "solver: prec_form = '"//trim(settings%prec_form)//"' is not one of 'circulant', 'toeplitz'"
             return
         end if
         allocate (wx(nx, ny), wy(nx, ny), g(nx, ny))
@@ -273,7 +279,7 @@ contains
         logical, dimension(size(g, 1), size(g, 2)) :: adh, slp
         real(dp) :: axx, ayy, alpha, beta, zd_old, zd, denom, change, num, t
         integer :: it, inner, nmoved, i, j, nx, ny
-        logical :: changed, converged, check_now, fft_prec, par
+        logical :: changed, converged, check_now, fft_prec, par, circulant
         real(dp), allocatable :: hist(:)
         logical, allocatable :: badh(:, :), bslp(:, :)  ! subdivision of the best cold-start candidate
         real(dp) :: jbest
@@ -284,6 +290,7 @@ contains
         par = nx*ny > omp_min_elements
         px = res%px; py = res%py
         fft_prec = settings%precondition .and. settings%preconditioner == 'fft'
+        circulant = settings%prec_form == 'circulant'
         if (fft_prec .and. .not. any(contact .and. (px /= 0 .or. py /= 0))) then
             call cold_start()
         else
@@ -330,7 +337,7 @@ contains
             if (fft_prec) then
                 ! adhesion: block Toeplitz inverse of A (masked); slip: the inverse of the
                 ! reduced Jacobian's diagonal (as below, without the scaling to A^xx_II)
-                call apply_block_inverse(top, mx, my, zx, zy)
+                call apply_block_inverse(top, mx, my, zx, zy, circulant)
                 !$omp parallel do default(shared) private(i) schedule(static) if(par)
                 do j = 1, ny
                     do i = 1, nx
@@ -586,7 +593,7 @@ contains
                 end do
             end do
             !$omp end parallel do
-            call apply_block_inverse(top, dax, day, zx, zy)
+            call apply_block_inverse(top, dax, day, zx, zy, circulant=.false.)
             !$omp parallel do default(shared) private(i) schedule(static) if(par)
             do j = 1, ny
                 do i = 1, nx
@@ -707,31 +714,6 @@ contains
             !$omp end parallel do
         end subroutine copy_pair
     end subroutine run_tangcg
-
-    !> (zx, zy) = M (dx, dy) with M the FFT preconditioner of [[fc_tangprec]] (one forward
-    !! transform per component, two inverse transforms).
-    subroutine apply_block_inverse(top, dx, dy, zx, zy)
-        type(fc_tangential_operator), intent(inout) :: top
-        real(dp), intent(in) :: dx(:, :), dy(:, :)
-        real(dp), intent(out) :: zx(:, :), zy(:, :)
-        integer :: j
-        logical :: par
-        par = size(top%work) > omp_min_elements
-        call top%a_xx%forward(dx, top%spec_x)
-        call top%a_xx%forward(dy, top%spec_y)
-        !$omp parallel do default(shared) schedule(static) if(par)
-        do j = 1, size(top%work, 2)
-            top%work(:, j) = top%spec_x(:, j)*top%prec%mxx(:, j) + top%spec_y(:, j)*top%prec%mxy(:, j)
-        end do
-        !$omp end parallel do
-        call top%a_xx%backward(top%work, zx)
-        !$omp parallel do default(shared) schedule(static) if(par)
-        do j = 1, size(top%work, 2)
-            top%work(:, j) = top%spec_x(:, j)*top%prec%mxy(:, j) + top%spec_y(:, j)*top%prec%myy(:, j)
-        end do
-        !$omp end parallel do
-        call top%a_xx%backward(top%work, zy)
-    end subroutine apply_block_inverse
 
     !> ConvexGS: block Gauss–Seidel over the contact elements (thesis §4.2.4).
     subroutine run_convexgs(top, contact, g, wx, wy, settings, res)

@@ -9,6 +9,7 @@ module fc_tangcg_operator
     use fc_influence
     use, intrinsic :: iso_c_binding, only: c_loc, c_associated
     use fc_tangprec, only: fc_block_inverse, build_block_inverse
+    use fc_threads, only: omp_min_elements
     implicit none
     private
 
@@ -24,6 +25,10 @@ module fc_tangcg_operator
         type(fc_bttb) :: a_zx, a_zy         !! u_z from p_t (built only when K ≠ 0)
         complex(dp), allocatable :: spec_x(:, :), spec_y(:, :), work(:, :)
         type(fc_block_inverse) :: prec      !! TangCG's FFT preconditioner (fc_tangprec)
+        !> The preconditioner's Strang circulant on the grid (blocks M^xx, M^xy, M^yy, periodic,
+        !! sharing one plan set; made on first use by [[apply_block_inverse]])
+        type(fc_bttb) :: c_xx, c_xy, c_yy
+        complex(dp), allocatable :: cspec_x(:, :), cspec_y(:, :), cwork(:, :)
         integer :: nproducts = 0            !! combined 2×2 block products
         real(dp) :: setup_seconds = 0
     contains
@@ -35,7 +40,7 @@ module fc_tangcg_operator
         generic :: assignment(=) => tangential_assign
     end type fc_tangential_operator
 
-    public :: build_tangential_operator, coupling_displacements
+    public :: build_tangential_operator, coupling_displacements, apply_block_inverse
 
 contains
 
@@ -116,6 +121,8 @@ contains
         call self%a_zx%destroy(); call self%a_zy%destroy()
         if (allocated(self%spec_x)) deallocate (self%spec_x, self%spec_y, self%work)
         self%prec = fc_block_inverse()
+        call self%c_xx%destroy(); call self%c_xy%destroy(); call self%c_yy%destroy()
+        if (allocated(self%cspec_x)) deallocate (self%cspec_x, self%cspec_y, self%cwork)
     end subroutine tangential_destroy
 
     !> Whether the built blocks serve `grid` and `material`: same element count and size
@@ -149,6 +156,10 @@ contains
         call copy_bttb(lhs%a_zy, rhs%a_zy, plans_from=lhs%a_xx)
         if (allocated(rhs%spec_x)) allocate (lhs%spec_x, lhs%spec_y, lhs%work, mold=rhs%spec_x)
         lhs%prec = rhs%prec
+        call copy_bttb(lhs%c_xx, rhs%c_xx)
+        call copy_bttb(lhs%c_xy, rhs%c_xy, plans_from=lhs%c_xx)
+        call copy_bttb(lhs%c_yy, rhs%c_yy, plans_from=lhs%c_xx)
+        if (allocated(rhs%cspec_x)) allocate (lhs%cspec_x, lhs%cspec_y, lhs%cwork, mold=rhs%cspec_x)
     contains
         logical function same_object(a, b)
             class(fc_tangential_operator), intent(in), target :: a
@@ -156,6 +167,60 @@ contains
             same_object = c_associated(c_loc(a%setup_seconds), c_loc(b%setup_seconds))
         end function same_object
     end subroutine tangential_assign
+
+    !> (zx, zy) = M (dx, dy), M the FFT block preconditioner of [[fc_tangprec]] (TangCG's, and
+    !! the steady rolling solver's): with `circulant`, M's Strang circulant on the grid
+    !! (periodic transforms of nx×ny points; made on first use), else M itself on the doubled
+    !! grid.  Two forward and two inverse transforms either way.
+    subroutine apply_block_inverse(top, dx, dy, zx, zy, circulant)
+        type(fc_tangential_operator), intent(inout) :: top
+        real(dp), intent(in) :: dx(:, :), dy(:, :)
+        real(dp), intent(out) :: zx(:, :), zy(:, :)
+        logical, intent(in) :: circulant
+        integer :: j
+        logical :: par
+        if (circulant) then
+            if (.not. top%c_xx%built()) call make_circulant()
+            call top%c_xx%forward(dx, top%cspec_x)
+            call top%c_xx%forward(dy, top%cspec_y)
+            call spectrum_pair_product(top%c_xx, top%cspec_x, top%c_xy, top%cspec_y, top%cwork)
+            call top%c_xx%backward(top%cwork, zx)
+            call spectrum_pair_product(top%c_xy, top%cspec_x, top%c_yy, top%cspec_y, top%cwork)
+            call top%c_xx%backward(top%cwork, zy)
+            return
+        end if
+        par = size(top%work) > omp_min_elements
+        call top%a_xx%forward(dx, top%spec_x)
+        call top%a_xx%forward(dy, top%spec_y)
+        !$omp parallel do default(shared) schedule(static) if(par)
+        do j = 1, size(top%work, 2)
+            top%work(:, j) = top%spec_x(:, j)*top%prec%mxx(:, j) + top%spec_y(:, j)*top%prec%mxy(:, j)
+        end do
+        !$omp end parallel do
+        call top%a_xx%backward(top%work, zx)
+        !$omp parallel do default(shared) schedule(static) if(par)
+        do j = 1, size(top%work, 2)
+            top%work(:, j) = top%spec_x(:, j)*top%prec%mxy(:, j) + top%spec_y(:, j)*top%prec%myy(:, j)
+        end do
+        !$omp end parallel do
+        call top%a_xx%backward(top%work, zy)
+    contains
+        !> M's coefficients from its symbols on the doubled grid, then their Strang circulants.
+        subroutine make_circulant()
+            real(dp), allocatable :: k(:, :)
+            integer :: nx, ny
+            nx = top%grid%nx; ny = top%grid%ny
+            call kernel_of_even_symbol(top%a_xx, top%prec%mxx, k)
+            call strang_circulant(k, nx, ny, top%c_xx)
+            call kernel_of_even_symbol(top%a_xx, top%prec%mxy, k)
+            call strang_circulant(k, nx, ny, top%c_xy, plans_from=top%c_xx)
+            call kernel_of_even_symbol(top%a_xx, top%prec%myy, k)
+            call strang_circulant(k, nx, ny, top%c_yy, plans_from=top%c_xx)
+            if (allocated(top%cspec_x)) deallocate (top%cspec_x, top%cspec_y, top%cwork)
+            allocate (top%cspec_x(nx/2 + 1, ny))
+            allocate (top%cspec_y, top%cwork, mold=top%cspec_x)
+        end subroutine make_circulant
+    end subroutine apply_block_inverse
 
     !> True when the normal and tangential problems are coupled (K ≠ 0).
     pure logical function tangential_coupled(self)

@@ -18,6 +18,10 @@ module fc_tangcg_types
         logical :: precondition = .true.         !! TangCG: preconditioner on
         character(len=8) :: preconditioner = 'fft'  !! TangCG: 'fft' (block Toeplitz inverse on adhesion,
                                                  !! diagonal on slip, elastic start) or 'diagonal' (eq. 4.43)
+        !> 'fft' preconditioner applied as its Strang circulant on the grid ('circulant',
+        !! periodic transforms of nx×ny points) or as the block Toeplitz inverse itself on the
+        !! doubled grid ('toeplitz'); doc/solvers.md
+        character(len=9) :: prec_form = 'circulant'
     end type fc_tangential_settings
 
     !> Result of a tangential solve.

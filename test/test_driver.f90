@@ -26,6 +26,7 @@ contains
             new_unittest('failed_case_not_inherited', test_failed_not_inherited), &
             new_unittest('not_converged_status', test_not_converged), &
             new_unittest('unknown_key', test_unknown_key), &
+            new_unittest('fft_preconditioner_key', test_fft_preconditioner_key), &
             new_unittest('unknown_group', test_unknown_group), &
             new_unittest('wrong_type', test_wrong_type), &
             new_unittest('missing_geometry_kind', test_missing_kind), &
@@ -312,6 +313,32 @@ contains
         call expect_bad(error, replace(base_case('bad'), 'nx = 16', 'nx = 16, nz = 4'), &
             [character(len=16) :: '&grid', 'nz', '4'])
     end subroutine test_unknown_key
+
+    !> `&solver fft_preconditioner`: both forms run the Cattaneo case to the same forces
+    !! (tol 1e−5: 1e−4 of μFn) with the preconditioner applied; another value is refused
+    !! naming the group, key and value.
+    subroutine test_fft_preconditioner_key(error)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: code
+        character(len=:), allocatable :: errors, dir, jc, jt
+        call run_text(cattaneo_case('pf')//"&solver fft_preconditioner = 'circulant' /"//nl, code, errors, dir)
+        call check(error, code == 0, 'circulant: exit code 0 expected, errors: '//errors)
+        if (allocated(error)) return
+        jc = read_all(dir//'/pf.json')
+        call run_text(cattaneo_case('pf')//"&solver fft_preconditioner = 'toeplitz' /"//nl, code, errors, dir)
+        call check(error, code == 0, 'toeplitz: exit code 0 expected, errors: '//errors)
+        if (allocated(error)) return
+        jt = read_all(dir//'/pf.json')
+        call check(error, json_num(jc, 'precond_applications_normal') > 0 .and. &
+            json_num(jt, 'precond_applications_normal') > 0, 'preconditioned in both forms')
+        call check(error, index(jc, '"fft_preconditioner": "circulant"') > 0 .and. &
+            index(jt, '"fft_preconditioner": "toeplitz"') > 0, 'form recorded in the JSON')
+        call check(error, abs(json_num(jc, 'fy') - json_num(jt, 'fy')) <= 1e-4_dp*0.4_dp*9.1954_dp .and. &
+            abs(json_num(jc, 'mz') - json_num(jt, 'mz')) <= 1e-4_dp*0.4_dp*9.1954_dp, 'same forces')
+        if (allocated(error)) return
+        call expect_bad(error, cattaneo_case('bad')//"&solver fft_preconditioner = 'doubled' /"//nl, &
+            [character(len=20) :: '&solver', 'fft_preconditioner', 'doubled'])
+    end subroutine test_fft_preconditioner_key
 
     subroutine test_unknown_group(error)
         type(error_type), allocatable, intent(out) :: error

@@ -762,6 +762,11 @@ contains
         call check(error, ierr == FCL_INVALID_VALUE .and. index(last_message(h), 'normal_solver = 7') > 0, 'solver code')
         call fc_set_solver(h, 1, 1, 1e-8_dp, 100, 0, 1, ierr)
         call check(error, ierr == FCL_INVALID_VALUE .and. index(last_message(h), 'inner_k') > 0, 'inner_k = 0')
+        call fc_set_solver(h, 1, 1, 1e-8_dp, 100, 3, 3, ierr)
+        call check(error, ierr == FCL_INVALID_VALUE .and. index(last_message(h), 'precondition = 3') > 0, &
+            'precondition = 3: '//last_message(h))
+        call fc_set_solver(h, 1, 1, 1e-8_dp, 100, 3, 2, ierr)
+        call check(error, ierr == FCL_OK, 'precondition = 2 (Toeplitz form) accepted')
         call fc_set_transient(h, 5, ierr)
         call check(error, ierr == FCL_INVALID_VALUE .and. index(last_message(h), 'mode = 5') > 0, 'transient mode')
         call fc_set_material(h, g_cat, g_cat, nu_cat, nu_cat, ierr)

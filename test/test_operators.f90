@@ -24,6 +24,8 @@ contains
             new_unittest('blocks_share_one_plan_set', test_shared_plans), &
             new_unittest('real_symbols_even_odd', test_real_symbols), &
             new_unittest('kernel_exact_reflections', test_kernel_reflections), &
+            new_unittest('strang_circulant_wraps_kernel', test_strang_circulant), &
+            new_unittest('kernel_of_even_symbol_inverts', test_kernel_of_symbol), &
             new_unittest('final_binding_releases_plans', test_final_binding) ]
     end subroutine collect_operators
 
@@ -173,6 +175,66 @@ contains
         call check(error, maxval(abs(aimag(sym))) == 0, 'inverse symbol real')
         call op%destroy()
     end subroutine test_real_symbols
+
+    !> Strang's circulant on even and odd grid sizes (8×7): the wrapped coefficients are the
+    !! kernel's for |offset| < n/2 and the mean of ±n/2 on the shared slot; an even block stays
+    !! even (real symbol), A^xy (odd in x and in y) stays even, A^xz (odd in x only) odd with the
+    !! Nyquist column zero; the FFT product equals the direct periodic sum.
+    subroutine test_strang_circulant(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_material) :: mat
+        type(fc_grid) :: grid
+        type(fc_bttb) :: circ
+        real(dp), allocatable :: k(:, :), x(:, :), y(:, :), yd(:, :)
+        integer, parameter :: blocks(3) = [IC_ZZ, IC_XY, IC_XZ], parity(3) = [SYMBOL_EVEN, SYMBOL_EVEN, SYMBOL_ODD]
+        integer :: stat, b, i, j, nx, ny
+        character(len=200) :: msg, label
+        call dissimilar(mat)
+        nx = 8; ny = 7
+        call make_grid(grid, nx, ny, -1.0_dp, 1.0_dp, -1.0_dp, 0.5_dp, stat, msg)
+        allocate (x(nx, ny), y(nx, ny), yd(nx, ny))
+        do j = 1, ny
+            do i = 1, nx
+                x(i, j) = sin(0.7_dp*i) + cos(1.3_dp*j) + 0.1_dp*i*j
+            end do
+        end do
+        do b = 1, 3
+            write (label, '(a,i0)') 'block ', blocks(b)
+            call ic_kernel(blocks(b), mat, grid, k)
+            call strang_circulant(k, nx, ny, circ)
+            call check(error, circ%periodic .and. circ%parity == parity(b), trim(label)//' periodic, parity kept')
+            call check(error, circ%kernel(1, 2), k(1, 2), trim(label)//' slot (1, 2) = offset (1, 2)', rel=1e-15_dp)
+            call check(error, circ%kernel(6, 5), k(-2, -2), trim(label)//' slot (6, 5) = offset (-2, -2)', rel=1e-15_dp)
+            call check(error, circ%kernel(4, 3), 0.5_dp*(k(4, 3) + k(-4, 3)), trim(label)//' Nyquist slot: mean of +-n/2', &
+                abs=1e-15_dp*maxval(abs(k)))
+            call circ%apply(x, y)
+            call circ%apply_direct(x, yd)
+            call check(error, maxval(abs(y - yd)) <= 1e-13_dp*maxval(abs(yd)), trim(label)//' FFT product = direct sum')
+            if (allocated(error)) return
+        end do
+        call check(error, all(circ%kernel(4, :) == 0), 'odd block: Nyquist column zero')
+    end subroutine test_strang_circulant
+
+    !> The coefficients recovered from a built operator's real symbol are its coefficients
+    !! (A^zz and its Toeplitz inverse, 9×7), exactly symmetric.
+    subroutine test_kernel_of_symbol(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_material) :: mat
+        type(fc_grid) :: grid
+        type(fc_bttb) :: op, prec
+        real(dp), allocatable :: k(:, :)
+        integer :: stat
+        character(len=200) :: msg
+        call dissimilar(mat)
+        call make_grid(grid, 9, 7, -1.0_dp, 1.0_dp, -1.0_dp, 0.5_dp, stat, msg)
+        call build_bttb(op, IC_ZZ, mat, grid)
+        call kernel_of_even_symbol(op, op%rsymbol, k)
+        call check(error, maxval(abs(k - op%kernel)) <= 1e-14_dp*maxval(abs(op%kernel)), 'A^zz coefficients back')
+        call check(error, all(k == k(ubound(k, 1):lbound(k, 1):-1, ubound(k, 2):lbound(k, 2):-1)), 'exactly even')
+        call build_inverse_toeplitz(IC_ZZ, mat, grid, prec, plans_from=op)
+        call kernel_of_even_symbol(op, prec%rsymbol, k)
+        call check(error, maxval(abs(k - prec%kernel)) <= 1e-13_dp*maxval(abs(prec%kernel)), 'M coefficients back')
+    end subroutine test_kernel_of_symbol
 
     !> On the thesis' Cattaneo grid (240×200, where rounding in the double differences of
     !! large antiderivative values used to leave A^xy a complex symbol) every block has its
