@@ -205,17 +205,13 @@ contains
         !$omp end parallel do
         call top%a_xx%backward(top%work, zy)
     contains
-        !> M's coefficients from its symbols on the doubled grid, then their Strang circulants.
+        !> The Strang circulants of M's blocks, from their symbols on the doubled grid.
         subroutine make_circulant()
-            real(dp), allocatable :: k(:, :)
             integer :: nx, ny
             nx = top%grid%nx; ny = top%grid%ny
-            call kernel_of_even_symbol(top%a_xx, top%prec%mxx, k)
-            call strang_circulant(k, nx, ny, top%c_xx)
-            call kernel_of_even_symbol(top%a_xx, top%prec%mxy, k)
-            call strang_circulant(k, nx, ny, top%c_xy, plans_from=top%c_xx)
-            call kernel_of_even_symbol(top%a_xx, top%prec%myy, k)
-            call strang_circulant(k, nx, ny, top%c_yy, plans_from=top%c_xx)
+            call strang_circulant_of_symbol(top%a_xx, top%prec%mxx, top%c_xx)
+            call strang_circulant_of_symbol(top%a_xx, top%prec%mxy, top%c_xy, plans_from=top%c_xx)
+            call strang_circulant_of_symbol(top%a_xx, top%prec%myy, top%c_yy, plans_from=top%c_xx)
             if (allocated(top%cspec_x)) deallocate (top%cspec_x, top%cspec_y, top%cwork)
             allocate (top%cspec_x(nx/2 + 1, ny))
             allocate (top%cspec_y, top%cwork, mold=top%cspec_x)

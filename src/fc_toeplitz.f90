@@ -79,7 +79,7 @@ module fc_toeplitz
     end type fc_bttb
 
     public :: build_bttb_from_kernel, build_bttb_periodic, inverse_toeplitz_from_kernel, fft_symbol_of_kernel
-    public :: strang_circulant, kernel_of_even_symbol
+    public :: strang_circulant, strang_circulant_of_symbol
     public :: copy_bttb, spectrum_pair_product
 
 contains
@@ -175,53 +175,36 @@ contains
         type(fc_bttb), intent(inout) :: circ
         type(fc_bttb), intent(in), optional :: plans_from   !! a periodic operator of this grid
         real(dp), allocatable :: wrapped(:, :)
-        integer :: i, j, ia(2), ja(2), ni, nj
         allocate (wrapped(0:nx - 1, 0:ny - 1))
-        do j = 0, ny - 1
-            call slot_offsets(j, ny, ja, nj)
-            do i = 0, nx - 1
-                call slot_offsets(i, nx, ia, ni)
-                wrapped(i, j) = sum(kernel(ia(1:ni), ja(1:nj)))/(ni*nj)
-            end do
-        end do
+        call wrap_strang(kernel(-(nx/2):nx/2, -(ny/2):ny/2), nx, ny, wrapped)
         call build_bttb_periodic(circ, wrapped, plans_from)
-    contains
-        !> Offsets that slot k of a period n takes: k or k − n, whichever lies in
-        !! (−n/2, n/2]; both ±n/2 for k = n/2 of an even n.
-        pure subroutine slot_offsets(k, n, off, m)
-            integer, intent(in) :: k, n
-            integer, intent(out) :: off(2), m
-            off = 0
-            if (2*k == n) then
-                off = [k, -k]; m = 2
-            else if (2*k < n) then
-                off(1) = k; m = 1
-            else
-                off(1) = k - n; m = 1
-            end if
-        end subroutine slot_offsets
     end subroutine strang_circulant
 
-    !> Coefficients kernel(−(nx−1):nx−1, −(ny−1):ny−1) of the circulant on `op`'s doubled
-    !! grid whose symbol, scaled as `op`'s (1/(mx·my) included), is the real `rsymbol`: the
-    !! inverse of building an even operator.  kernel(−i,−j) = kernel(i,j) exactly (the two
-    !! rounded values are averaged).  Uses `op`'s plans and buffers, which must not be in use.
-    subroutine kernel_of_even_symbol(op, rsymbol, kernel)
+    !> Strang's circulant ([[strang_circulant]]) of the operator whose symbol on `op`'s doubled
+    !! grid, scaled as `op`'s (1/(mx·my) included), is the real `rsymbol` — an even circulant
+    !! known by its symbol only, such as TangCG's block preconditioner.  The coefficients come
+    !! from one inverse transform on `op`'s plans and buffers (which must not be in use); the
+    !! two rounded values of each pair ±offset are averaged, so the result is exactly even.
+    subroutine strang_circulant_of_symbol(op, rsymbol, circ, plans_from)
         type(fc_bttb), intent(inout) :: op
         real(dp), intent(in) :: rsymbol(:, :)
-        real(dp), allocatable, intent(out) :: kernel(:, :)
-        integer :: nx, ny, i, j
-        nx = op%nx; ny = op%ny
+        type(fc_bttb), intent(inout) :: circ
+        type(fc_bttb), intent(in), optional :: plans_from   !! a periodic operator of this grid
+        real(dp), allocatable :: k(:, :), wrapped(:, :)
+        integer :: nx, ny, hx, hy, i, j
+        nx = op%nx; ny = op%ny; hx = nx/2; hy = ny/2
+        allocate (k(-hx:hx, -hy:hy), wrapped(0:nx - 1, 0:ny - 1))
         associate (w => op%fft)
             w%cbuf = cmplx(rsymbol, 0.0_dp, dp)
             call fftw_execute_dft_c2r(w%plan_bwd, w%cbuf, w%rbuf)
-            allocate (kernel(-(nx - 1):nx - 1, -(ny - 1):ny - 1))
-            do j = -(ny - 1), ny - 1
-                do i = -(nx - 1), nx - 1
-                    kernel(i, j) = 0.5_dp*(w%rbuf(at(i, op%mx), at(j, op%my)) + w%rbuf(at(-i, op%mx), at(-j, op%my)))
+            do j = -hy, hy
+                do i = -hx, hx
+                    k(i, j) = 0.5_dp*(w%rbuf(at(i, op%mx), at(j, op%my)) + w%rbuf(at(-i, op%mx), at(-j, op%my)))
                 end do
             end do
         end associate
+        call wrap_strang(k, nx, ny, wrapped)
+        call build_bttb_periodic(circ, wrapped, plans_from)
     contains
         !> Index of offset k in a period m (offset k sits at modulo(k, m) + 1).
         pure integer function at(k, m)
@@ -229,7 +212,42 @@ contains
             at = k + 1
             if (k < 0) at = k + m + 1
         end function at
-    end subroutine kernel_of_even_symbol
+    end subroutine strang_circulant_of_symbol
+
+    !> w(i, j), slots 0…n−1 of the period, ← k at the offset of each slot in (−n/2, n/2]; the
+    !! slot n/2 of an even n takes the mean of the offsets ±n/2 (of four at a corner).
+    pure subroutine wrap_strang(k, nx, ny, w)
+        integer, intent(in) :: nx, ny
+        real(dp), intent(in) :: k(-(nx/2):, -(ny/2):)
+        real(dp), intent(out) :: w(0:, 0:)
+        integer :: i, j, hx, hy
+        logical :: evx, evy
+        hx = nx/2; hy = ny/2
+        evx = mod(nx, 2) == 0; evy = mod(ny, 2) == 0
+        do j = 0, ny - 1
+            do i = 0, nx - 1
+                w(i, j) = k(off(i, nx), off(j, ny))
+            end do
+        end do
+        if (evx) then
+            do j = 0, ny - 1
+                w(hx, j) = 0.5_dp*(k(hx, off(j, ny)) + k(-hx, off(j, ny)))
+            end do
+        end if
+        if (evy) then
+            do i = 0, nx - 1
+                w(i, hy) = 0.5_dp*(k(off(i, nx), hy) + k(off(i, nx), -hy))
+            end do
+        end if
+        if (evx .and. evy) w(hx, hy) = 0.25_dp*(k(hx, hy) + k(-hx, hy) + k(hx, -hy) + k(-hx, -hy))
+    contains
+        pure integer function off(s, n)
+            integer, intent(in) :: s, n
+            off = s
+            if (2*s > n) off = s - n
+        end function off
+    end subroutine wrap_strang
+
 
     !> Release `op` and give it plans: shared with `plans_from` when that operator is built
     !! for the same sizes, else a new set.

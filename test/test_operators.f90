@@ -25,7 +25,7 @@ contains
             new_unittest('real_symbols_even_odd', test_real_symbols), &
             new_unittest('kernel_exact_reflections', test_kernel_reflections), &
             new_unittest('strang_circulant_wraps_kernel', test_strang_circulant), &
-            new_unittest('kernel_of_even_symbol_inverts', test_kernel_of_symbol), &
+            new_unittest('strang_circulant_of_symbol', test_strang_of_symbol), &
             new_unittest('final_binding_releases_plans', test_final_binding) ]
     end subroutine collect_operators
 
@@ -215,26 +215,36 @@ contains
         call check(error, all(circ%kernel(4, :) == 0), 'odd block: Nyquist column zero')
     end subroutine test_strang_circulant
 
-    !> The coefficients recovered from a built operator's real symbol are its coefficients
-    !! (A^zz and its Toeplitz inverse, 9×7), exactly symmetric.
-    subroutine test_kernel_of_symbol(error)
+    !> Strang's circulant made from an operator's symbol on the doubled grid equals the one
+    !! made from its coefficients (A^zz and its Toeplitz inverse, 9×8: odd and even n), to
+    !! rounding, and is exactly even.
+    subroutine test_strang_of_symbol(error)
         type(error_type), allocatable, intent(out) :: error
         type(fc_material) :: mat
         type(fc_grid) :: grid
-        type(fc_bttb) :: op, prec
-        real(dp), allocatable :: k(:, :)
-        integer :: stat
+        type(fc_bttb) :: op, prec, c1, c2
+        integer :: stat, i, j, nx, ny
         character(len=200) :: msg
+        logical :: even
         call dissimilar(mat)
-        call make_grid(grid, 9, 7, -1.0_dp, 1.0_dp, -1.0_dp, 0.5_dp, stat, msg)
+        nx = 9; ny = 8
+        call make_grid(grid, nx, ny, -1.0_dp, 1.0_dp, -1.0_dp, 0.5_dp, stat, msg)
         call build_bttb(op, IC_ZZ, mat, grid)
-        call kernel_of_even_symbol(op, op%rsymbol, k)
-        call check(error, maxval(abs(k - op%kernel)) <= 1e-14_dp*maxval(abs(op%kernel)), 'A^zz coefficients back')
-        call check(error, all(k == k(ubound(k, 1):lbound(k, 1):-1, ubound(k, 2):lbound(k, 2):-1)), 'exactly even')
+        call strang_circulant_of_symbol(op, op%rsymbol, c1)
+        call strang_circulant(op%kernel, nx, ny, c2)
+        call check(error, maxval(abs(c1%kernel - c2%kernel)) <= 1e-14_dp*maxval(abs(c2%kernel)), 'A^zz: both routes agree')
         call build_inverse_toeplitz(IC_ZZ, mat, grid, prec, plans_from=op)
-        call kernel_of_even_symbol(op, prec%rsymbol, k)
-        call check(error, maxval(abs(k - prec%kernel)) <= 1e-13_dp*maxval(abs(prec%kernel)), 'M coefficients back')
-    end subroutine test_kernel_of_symbol
+        call strang_circulant_of_symbol(op, prec%rsymbol, c1)
+        call strang_circulant(prec%kernel, nx, ny, c2)
+        call check(error, maxval(abs(c1%kernel - c2%kernel)) <= 1e-13_dp*maxval(abs(c2%kernel)), 'M: both routes agree')
+        even = .true.
+        do j = 0, ny - 1
+            do i = 0, nx - 1
+                even = even .and. c1%kernel(i, j) == c1%kernel(modulo(-i, nx), modulo(-j, ny))
+            end do
+        end do
+        call check(error, even .and. c1%parity == SYMBOL_EVEN, 'exactly even')
+    end subroutine test_strang_of_symbol
 
     !> On the thesis' Cattaneo grid (240×200, where rounding in the double differences of
     !! large antiderivative values used to leave A^xy a complex symbol) every block has its
