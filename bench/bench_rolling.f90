@@ -29,6 +29,7 @@
 !!   --forcing F  Newton–GMRES forcing term (default 0.1)
 !!   --prec P     Newton–GMRES preconditioner 'fft' (default) or 'runsum' (the earlier one)
 !!   --const-forcing  constant forcing term (the earlier rule; default: Eisenstat–Walker once settled)
+!!   --prec-form F  form of the FFT preconditioners of TangCG and GMRES: 'circulant' (default) or 'toeplitz'
 !!   --only S     run only solver S ('tangcg', 'gmres' or 'none': set-up only), for whole-process timing
 !!   --first G    start at grid G (1..4; with --grids N: grids G..N)
 !!   --repeat R   solve each case R times (the row shows the last solve, seconds summed)
@@ -63,6 +64,7 @@ program fastcontact_bench_rolling
     character(len=256) :: msg, arg, outfile
     character(len=16) :: mode
     character(len=8) :: prec = 'fft', only = ''
+    character(len=9) :: prec_form = 'circulant'
     logical :: ew = .true.
     integer :: nrep = 1, irep, gfirst = 1
     real(dp) :: tacc
@@ -81,6 +83,7 @@ program fastcontact_bench_rolling
         case ('--forcing'); k = k + 1; call get_command_argument(k, arg); read (arg, *) forcing
         case ('--prec'); k = k + 1; call get_command_argument(k, arg); prec = arg(1:8)
         case ('--const-forcing'); ew = .false.
+        case ('--prec-form'); k = k + 1; call get_command_argument(k, arg); prec_form = arg(1:9)
         case ('--first'); k = k + 1; call get_command_argument(k, arg); read (arg, *) gfirst
         case ('--only'); k = k + 1; call get_command_argument(k, arg); only = arg(1:8)
         case ('--repeat'); k = k + 1; call get_command_argument(k, arg); read (arg, *) nrep
@@ -100,6 +103,7 @@ program fastcontact_bench_rolling
     case ('curve'); call curve_study(); stop
     end select
     write (u, '(a)') 'case,solver,nx,ny,ncon,nslip,iterations,matvecs,status,fx,fy,mz,seconds'
+    ts%prec_form = prec_form
     mat%g1 = 200; mat%g2 = 200; mat%nu1 = 0.42_dp; mat%nu2 = 0.42_dp
     call combine_material(mat, stat, msg)
     do ig = max(1, gfirst), ngrids
@@ -122,6 +126,7 @@ program fastcontact_bench_rolling
             end if
             rl%mu = 0.4_dp; rl%xi = xi(c); rl%eta = eta(c); rl%phi = phi(c)
             rs%solver = 'gmres'; rs%forcing = forcing; rs%preconditioner = prec; rs%adaptive_forcing = ew
+            rs%prec_form = prec_form
             if (only == '' .or. only == 'gmres') then
                 tacc = 0
                 do irep = 1, nrep
@@ -313,6 +318,7 @@ contains
                 val = 0.006_dp*(k2 - 1)/19.0_dp
                 rl = fc_rolling_loading(); rl%mu = 0.4_dp; rl%xi = val; rl%eta = 0.001_dp; rl%phi = 0.003_dp
                 rs = fc_rolling_settings(); rs%forcing = forcing; rs%preconditioner = prec; rs%adaptive_forcing = ew
+                rs%prec_form = prec_form
                 call solve_rolling(top, nr%pn, rl, rs, tr, stat, msg, pxw, pyw)
                 pxw = tr%px; pyw = tr%py
                 warm = warm + tr%cpu_seconds

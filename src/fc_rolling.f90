@@ -261,7 +261,7 @@ contains
         real(dp), allocatable :: wkx(:, :), wky(:, :), qsx(:, :), qsy(:, :), zx(:, :), zy(:, :)
         real(dp) :: dxx, dyy, axx, gdx, yscale, change, dnorm, beta, rnorm, tol_in, h, tmp, pscale, eta_k, dnorm_prev
         integer :: it_total, newton, k, kk, nit, idle
-        logical :: changed, converged, stagnated, fft_prec, fft_prev, warm
+        logical :: changed, converged, stagnated, fft_prec, fft_prev, warm, circulant
         real(dp), parameter :: bound_slack = 1.0e-12_dp  !! relative slack on |p|² > g²
         integer, parameter :: max_idle = 20               !! Newton steps without a Krylov step
         nx = size(gs, 1); ny = size(gs, 2)
@@ -275,6 +275,7 @@ contains
         ! scaled to A^xx_II; slip rows follow the same measure
         changed = .false.; dnorm_prev = 1; fft_prec = .false.
         warm = any(contact .and. (res%px /= 0 .or. res%py /= 0))
+        circulant = settings%prec_form == 'circulant'
         px = res%px; py = res%py
         adh = contact; slp = .false.
         ! a warm start whose traction reaches the kinetic bound starts in slip (1e−8 slack
@@ -306,14 +307,16 @@ contains
             elsewhere
                 ex = 0; ey = 0
             end where
-            ! the FFT block inverse costs as much as a product per Krylov iteration: measured,
-            ! it pays where the adhesion area is nearly the whole contact (≥ 90 %), not in
-            ! partial slip; and not in the first step of a cold start, whose all-adhesion
-            ! subdivision is a guess (a more accurate full-adhesion step moved too many
-            ! elements to slip, and they came back one layer per Newton step)
+            ! the FFT block inverse pays where the adhesion area is large: as the Toeplitz
+            ! inverse (as costly as a product per Krylov iteration) from 90 % adhesion, as its
+            ! circulant on the grid (a quarter of that) from 50 % (measured, doc/rolling.md:
+            ! below, the active set's path lengthens case 5 and the slip-dominated cases pay
+            ! more products than they save); not in the first step of a cold start, whose
+            ! all-adhesion subdivision is a guess (a more accurate full-adhesion step moved too
+            ! many elements to slip, and they came back one layer per Newton step)
             fft_prev = fft_prec
             fft_prec = settings%preconditioner == 'fft' .and. top%prec%built() .and. &
-                count(adh) >= 0.9_dp*count(contact) .and. (newton > 1 .or. warm)
+                count(adh) >= merge(0.5_dp, 0.9_dp, circulant)*count(contact) .and. (newton > 1 .or. warm)
             pscale = axx
             if (fft_prec) pscale = 1
             ! slip rows of the left preconditioner: TangCG's diagonal scaling (thesis eq. 4.43
@@ -463,7 +466,7 @@ contains
         subroutine block_inverse(dx, dy, rzx, rzy)
             real(dp), intent(in) :: dx(:, :), dy(:, :)
             real(dp), intent(out) :: rzx(:, :), rzy(:, :)
-            call apply_block_inverse(top, dx, dy, rzx, rzy, circulant=settings%prec_form == 'circulant')
+            call apply_block_inverse(top, dx, dy, rzx, rzy, circulant)
             top%nproducts = top%nproducts + 1   ! counted with the products
         end subroutine block_inverse
 
