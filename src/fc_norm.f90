@@ -127,7 +127,7 @@ contains
         call build_bttb_from_kernel(nop%a_zz, kext(-(grid%nx - 1):grid%nx - 1, -(grid%ny - 1):grid%ny - 1), &
             grid%nx, grid%ny)
         ! M shares A's FFT plans and buffers (one set per grid)
-        call inverse_toeplitz_from_kernel(kext, grid%nx, grid%ny, nop%precond, plans_from=nop%a_zz)
+        call inverse_toeplitz_from_kernel(kext, grid%nx, grid%ny, nop%precond, plans_from=nop%a_zz, keep_kernel=.false.)
         call system_clock(t1)
         nop%setup_seconds = real(t1 - t0, dp)/rate
     end subroutine build_normal_operator
@@ -230,7 +230,7 @@ contains
         select case (settings%prec_form)
         case ('circulant')
             if (settings%precondition .and. settings%solver == 'bccg' .and. .not. nop%precond_circulant%built()) &
-                call strang_circulant(nop%precond%kernel, nx, ny, nop%precond_circulant)
+                call strang_circulant_of_symbol(nop%a_zz, nop%precond%rsymbol, nop%precond_circulant, keep_kernel=.false.)
         case ('toeplitz')
         case default
             stat = FC_ERR_VALUE

@@ -209,9 +209,9 @@ contains
         subroutine make_circulant()
             integer :: nx, ny
             nx = top%grid%nx; ny = top%grid%ny
-            call strang_circulant_of_symbol(top%a_xx, top%prec%mxx, top%c_xx)
-            call strang_circulant_of_symbol(top%a_xx, top%prec%mxy, top%c_xy, plans_from=top%c_xx)
-            call strang_circulant_of_symbol(top%a_xx, top%prec%myy, top%c_yy, plans_from=top%c_xx)
+            call strang_circulant_of_symbol(top%a_xx, top%prec%mxx, top%c_xx, keep_kernel=.false.)
+            call strang_circulant_of_symbol(top%a_xx, top%prec%mxy, top%c_xy, plans_from=top%c_xx, keep_kernel=.false.)
+            call strang_circulant_of_symbol(top%a_xx, top%prec%myy, top%c_yy, plans_from=top%c_xx, keep_kernel=.false.)
             if (allocated(top%cspec_x)) deallocate (top%cspec_x, top%cspec_y, top%cwork)
             allocate (top%cspec_x(nx/2 + 1, ny))
             allocate (top%cspec_y, top%cwork, mold=top%cspec_x)

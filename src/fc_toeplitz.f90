@@ -57,7 +57,9 @@ module fc_toeplitz
         integer :: nx = 0, ny = 0          !! grid size
         integer :: mx = 0, my = 0          !! circulant (embedding) size
         logical :: periodic = .false.      !! periodic convolution on the grid itself
-        real(dp), allocatable :: kernel(:, :)    !! coefficients A(dix, diy), dix ∈ [−(nx−1), nx−1] [mm/(N/mm²)]
+        !> coefficients A(dix, diy), dix ∈ [−(nx−1), nx−1] [mm/(N/mm²)]; not kept by the
+        !! preconditioners the solvers build with keep_kernel = .false.
+        real(dp), allocatable :: kernel(:, :)
         integer :: parity = SYMBOL_GENERAL       !! SYMBOL_EVEN, SYMBOL_ODD or SYMBOL_GENERAL
         real(dp), allocatable :: rsymbol(:, :)   !! even: symbol; odd: its imaginary part (scaled by 1/(mx·my))
         complex(dp), allocatable :: csymbol(:, :) !! general kernels: r2c transform of the circulant / (mx·my)
@@ -105,10 +107,11 @@ contains
 
     !> Build a periodic operator on the grid itself from the wrapped coefficients
     !! kernel(0:nx−1, 0:ny−1) (offsets taken modulo the grid).
-    subroutine build_bttb_periodic(op, kernel, plans_from)
+    subroutine build_bttb_periodic(op, kernel, plans_from, keep_kernel)
         type(fc_bttb), intent(inout) :: op
         real(dp), intent(in) :: kernel(0:, 0:)
         type(fc_bttb), intent(in), optional :: plans_from
+        logical, intent(in), optional :: keep_kernel   !! see [[drop_kernel]] (default .true.)
         integer :: nx, ny
         nx = size(kernel, 1); ny = size(kernel, 2)
         call setup_plans(op, nx, ny, nx, ny, plans_from)
@@ -116,7 +119,19 @@ contains
         allocate (op%kernel(0:nx - 1, 0:ny - 1), source=kernel)
         op%fft%rbuf = kernel
         call finish_symbol(op)
+        call drop_kernel(op, keep_kernel)
     end subroutine build_bttb_periodic
+
+    !> With `keep_kernel = .false.`, release the coefficients of an operator whose symbol is
+    !! real (even): only the oracle [[bttb_apply_direct]] reads them, and for the
+    !! preconditioners on large grids they are the largest array of all (the Toeplitz
+    !! inverse's (2nx−1)·(2ny−1) values: 33 MB at 1024²).  Kept otherwise.
+    subroutine drop_kernel(op, keep_kernel)
+        type(fc_bttb), intent(inout) :: op
+        logical, intent(in), optional :: keep_kernel
+        if (.not. present(keep_kernel)) return
+        if (.not. keep_kernel .and. op%parity == SYMBOL_EVEN .and. allocated(op%kernel)) deallocate (op%kernel)
+    end subroutine drop_kernel
 
     !> Toeplitz approximation M ≈ A⁻¹ from A's coefficients kext(−nx:nx, −ny:ny) (thesis
     !! §3.3.1, extended to 2D).  The coefficients for offsets −nx+1…nx (and likewise in y)
@@ -126,11 +141,12 @@ contains
     !! M on the grid is a principal block of that positive definite circulant, hence
     !! symmetric positive definite; symbol values are floored at 1e−8 of the maximum.
     !! (The 1D strip solver keeps the thesis' (2n−1)-circulant, [[strip_toeplitz_inverse]].)
-    subroutine inverse_toeplitz_from_kernel(kext, nx, ny, prec, min_symbol, plans_from)
+    subroutine inverse_toeplitz_from_kernel(kext, nx, ny, prec, min_symbol, plans_from, keep_kernel)
         integer, intent(in) :: nx, ny
         real(dp), intent(in) :: kext(-nx:, -ny:)
         type(fc_bttb), intent(inout) :: prec
         real(dp), intent(out), optional :: min_symbol  !! smallest symbol value / largest (diagnostic)
+        logical, intent(in), optional :: keep_kernel   !! see [[drop_kernel]] (default .true.)
         type(fc_bttb), intent(in), optional :: plans_from
         real(dp), allocatable :: mker(:, :)
         real(dp) :: smax
@@ -160,6 +176,7 @@ contains
         end associate
         call load_kernel(prec, mker)
         call finish_symbol(prec)
+        call drop_kernel(prec, keep_kernel)
     end subroutine inverse_toeplitz_from_kernel
 
     !> Strang's circulant of a Toeplitz operator: the periodic operator on the nx×ny grid
@@ -169,15 +186,16 @@ contains
     !! doubled grid.  For the FFT preconditioners M ≈ A⁻¹, whose coefficients decay much
     !! faster than A's, it preconditions nearly as well as M itself (doc/solvers.md,
     !! "Preconditioner form").  `kernel` must cover the offsets ±⌊n/2⌋.
-    subroutine strang_circulant(kernel, nx, ny, circ, plans_from)
+    subroutine strang_circulant(kernel, nx, ny, circ, plans_from, keep_kernel)
         integer, intent(in) :: nx, ny
         real(dp), intent(in) :: kernel(-(nx - 1):, -(ny - 1):)
         type(fc_bttb), intent(inout) :: circ
         type(fc_bttb), intent(in), optional :: plans_from   !! a periodic operator of this grid
+        logical, intent(in), optional :: keep_kernel        !! see [[drop_kernel]] (default .true.)
         real(dp), allocatable :: wrapped(:, :)
         allocate (wrapped(0:nx - 1, 0:ny - 1))
         call wrap_strang(kernel(-(nx/2):nx/2, -(ny/2):ny/2), nx, ny, wrapped)
-        call build_bttb_periodic(circ, wrapped, plans_from)
+        call build_bttb_periodic(circ, wrapped, plans_from, keep_kernel)
     end subroutine strang_circulant
 
     !> Strang's circulant ([[strang_circulant]]) of the operator whose symbol on `op`'s doubled
@@ -185,11 +203,12 @@ contains
     !! known by its symbol only, such as TangCG's block preconditioner.  The coefficients come
     !! from one inverse transform on `op`'s plans and buffers (which must not be in use); the
     !! two rounded values of each pair ±offset are averaged, so the result is exactly even.
-    subroutine strang_circulant_of_symbol(op, rsymbol, circ, plans_from)
+    subroutine strang_circulant_of_symbol(op, rsymbol, circ, plans_from, keep_kernel)
         type(fc_bttb), intent(inout) :: op
         real(dp), intent(in) :: rsymbol(:, :)
         type(fc_bttb), intent(inout) :: circ
         type(fc_bttb), intent(in), optional :: plans_from   !! a periodic operator of this grid
+        logical, intent(in), optional :: keep_kernel        !! see [[drop_kernel]] (default .true.)
         real(dp), allocatable :: k(:, :), wrapped(:, :)
         integer :: nx, ny, hx, hy, i, j
         nx = op%nx; ny = op%ny; hx = nx/2; hy = ny/2
@@ -204,7 +223,7 @@ contains
             end do
         end associate
         call wrap_strang(k, nx, ny, wrapped)
-        call build_bttb_periodic(circ, wrapped, plans_from)
+        call build_bttb_periodic(circ, wrapped, plans_from, keep_kernel)
     contains
         !> Index of offset k in a period m (offset k sits at modulo(k, m) + 1).
         pure integer function at(k, m)
@@ -437,7 +456,13 @@ contains
         class(fc_bttb), intent(in), target :: a
         type(fc_bttb), intent(in), target :: b
         same_storage = .false.
-        if (allocated(a%kernel) .and. allocated(b%kernel)) same_storage = c_associated(c_loc(a%kernel), c_loc(b%kernel))
+        if (allocated(a%kernel) .and. allocated(b%kernel)) then
+            same_storage = c_associated(c_loc(a%kernel), c_loc(b%kernel))
+        else if (allocated(a%rsymbol) .and. allocated(b%rsymbol)) then
+            same_storage = c_associated(c_loc(a%rsymbol), c_loc(b%rsymbol))
+        else if (allocated(a%csymbol) .and. allocated(b%csymbol)) then
+            same_storage = c_associated(c_loc(a%csymbol), c_loc(b%csymbol))
+        end if
     end function same_storage
 
     !> Release plans (when no other block uses them) and buffers.
@@ -715,6 +740,7 @@ contains
         real(dp), intent(out) :: y(:, :)
         integer :: i, j, k, l, di, dj
         real(dp) :: s
+        if (.not. allocated(self%kernel)) error stop 'fc_bttb%apply_direct: the coefficients were not kept (keep_kernel)'
         do j = 1, self%ny
             do i = 1, self%nx
                 s = 0

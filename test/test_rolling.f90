@@ -140,7 +140,8 @@ contains
     !! 30×25 scene: near full adhesion (case 2), partial slip (case 4), and warm-started from
     !! a neighbouring creepage (the warm first step uses the block inverse).  In full adhesion
     !! the block inverse must cut the Krylov iterations (it is applied: 12 against 31 when
-    !! written; asserted ≤ 2/3), and an unknown preconditioner is rejected by name.
+    !! written; asserted ≤ 2/3), the block inverse's two forms (circulant on the grid,
+    !! Toeplitz on the doubled grid) agree, and an unknown preconditioner is rejected by name.
     subroutine test_preconditioners(error)
         type(error_type), allocatable, intent(out) :: error
         type(fc_grid) :: grid
@@ -176,6 +177,13 @@ contains
             call check(error, rn%mz, rm%mz, 'Mz fft vs march', abs=ftol*l_cat)
             if (c == 1) call check(error, 3*rn%iterations <= 2*ro%iterations, &
                 'block inverse cuts the Krylov iterations in full adhesion')
+            ! the block inverse in its Toeplitz form (doubled grid) gives the same forces
+            rs_new%prec_form = 'toeplitz'
+            call solve_rolling(top, pn, rl, rs_new, rw, stat, msg)
+            rs_new%prec_form = 'circulant'
+            call check(error, stat == 0 .and. rw%status == FC_CONVERGED, 'toeplitz form: '//trim(msg)//trim(rw%message))
+            call check(error, rw%fx, rn%fx, 'Fx toeplitz vs circulant form', abs=etol)
+            call check(error, rw%fy, rn%fy, 'Fy toeplitz vs circulant form', abs=etol)
             ! warm start from the solution of a creepage 10 % larger
             rl%xi = 1.1_dp*xi(c); rl%eta = 1.1_dp*eta(c); rl%phi = 1.1_dp*phi(c)
             call solve_rolling(top, pn, rl, rs_new, rw, stat, msg)
