@@ -291,8 +291,14 @@ contains
         tangential = load%problem /= FC_PROBLEM_NORMAL
         coupled = tangential .and. material%k /= 0
         use_fmg = settings%normal%solver == 'fmg'
-        allocate (uzt(nx, ny), uxn(nx, ny), uyn(nx, ny), uxp(nx, ny), uyp(nx, ny), pxs(nx, ny), pys(nx, ny))
-        uzt = 0; uxn = 0; uyn = 0; uxp = 0; uyp = 0; pxs = 0; pys = 0
+        ! coupling displacements only when coupled, u' only in the transient modes: an
+        ! unallocated array passed to an optional argument is absent (no zero arrays per call)
+        allocate (pxs(nx, ny), pys(nx, ny))
+        pxs = 0; pys = 0
+        if (coupled) then
+            allocate (uzt(nx, ny), uxn(nx, ny), uyn(nx, ny))
+            uzt = 0; uxn = 0; uyn = 0
+        end if
         ! ---- starts: an explicit start in `load`, else the state's
         lift_slip = .false.; has_guess = .false.; guess_base = 0
         if (present(state)) call state_inputs(state)
@@ -312,7 +318,9 @@ contains
         allocate (pn_old(nx, ny), px_old(nx, ny), py_old(nx, ny))
         it_n = 0; mv_n = 0; pa_n = 0; out_n = 0; cpu_n = 0; it_t = 0; mv_t = 0; out_t = 0; cpu_t = 0
         do round = 1, max_rounds
-            if (round == 1) then
+            if (round == 1 .and. .not. coupled) then
+                call normal_stage(h0, p0)
+            else if (round == 1) then
                 call normal_stage(h0 + uzt, p0)
             else
                 pn_old = res%normal%pn
@@ -372,6 +380,7 @@ contains
             case (FC_TRANSIENT_SHIFT)
                 uxp = st%ux; uyp = st%uy; pxs = st%px; pys = st%py
             case (FC_TRANSIENT_ROLLING)
+                allocate (uxp(nx, ny), uyp(nx, ny))
                 call shift_along_x(st%ux, load%dq/grid%dx, uxp)
                 call shift_along_x(st%uy, load%dq/grid%dx, uyp)
                 call shift_along_x(st%px, load%dq/grid%dx, pxs)
@@ -504,7 +513,11 @@ contains
             st%pn = res%normal%pn; st%has_normal = .true.
             if (res%tangential_run) then
                 st%px = res%tangential%px; st%py = res%tangential%py; st%el = res%tangential%state
-                st%ux = res%tangential%ux + uxn; st%uy = res%tangential%uy + uyn
+                if (coupled) then
+                    st%ux = res%tangential%ux + uxn; st%uy = res%tangential%uy + uyn
+                else
+                    st%ux = res%tangential%ux; st%uy = res%tangential%uy
+                end if
                 st%xi = res%tangential%xi; st%eta = res%tangential%eta
                 st%fx = res%tangential%fx; st%fy = res%tangential%fy
                 st%has_tangential = .true.

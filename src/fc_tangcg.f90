@@ -157,6 +157,12 @@ contains
         integer :: nx, ny
         logical :: accepted, done
         nx = size(pn, 1); ny = size(pn, 2)
+        if (.not. load%force_prescribed) then
+            ! prescribed shifts: one solve, the optional arrays passed on as they are
+            call solve_tangential(top, pn, load%mu, settings, res, stat, errmsg, load%xi, load%eta, load%phi, &
+                                  ux_prev, uy_prev, px_start, py_start, offset_x, offset_y)
+            return
+        end if
         allocate (zx(nx, ny), zy(nx, ny), ox(nx, ny), oy(nx, ny), qx(nx, ny), qy(nx, ny))
         zx = 0; zy = 0; ox = 0; oy = 0
         if (present(ux_prev)) zx = ux_prev
@@ -166,11 +172,6 @@ contains
         qx = 0; qy = 0
         if (present(px_start)) qx = px_start
         if (present(py_start)) qy = py_start
-        if (.not. load%force_prescribed) then
-            call solve_tangential(top, pn, load%mu, settings, res, stat, errmsg, load%xi, load%eta, load%phi, &
-                                  zx, zy, qx, qy, ox, oy)
-            return
-        end if
         stat = 0; errmsg = ''
         fn = sum(max(pn, 0.0_dp))*top%grid%area()
         flimit = load%mu*fn
