@@ -229,7 +229,9 @@ contains
         end select
         select case (settings%prec_form)
         case ('circulant')
-            if (settings%precondition .and. settings%solver == 'bccg' .and. .not. nop%precond_circulant%built()) &
+            ! M's symbol is real by construction; were it not, M itself is applied
+            if (settings%precondition .and. settings%solver == 'bccg' .and. .not. nop%precond_circulant%built() &
+                .and. nop%precond%parity == SYMBOL_EVEN) &
                 call strang_circulant_of_symbol(nop%a_zz, nop%precond%rsymbol, nop%precond_circulant, keep_kernel=.false.)
         case ('toeplitz')
         case default
@@ -604,7 +606,7 @@ contains
         subroutine precondition(x, y)
             real(dp), intent(in) :: x(:, :)
             real(dp), intent(out) :: y(:, :)
-            if (settings%prec_form == 'circulant') then
+            if (settings%prec_form == 'circulant' .and. nop%precond_circulant%built()) then
                 call nop%precond_circulant%apply(x, y)
             else
                 call nop%precond%apply(x, y)
