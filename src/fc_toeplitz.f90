@@ -22,8 +22,9 @@
 !! Blocks sharing a plan set must not be applied concurrently (one set of buffers).  Plans
 !! are made and destroyed inside the critical section `fc_fftw_planner` (see fc_threads).
 !!
-!! Size (~650 lines): construction, lifetime and the products of one type share the plan
-!! set and its buffers; splitting them would make the plan set public.
+!! Size (~760 lines): construction (Strang circulants included, which read the plan set's
+!! buffers), lifetime and the products of one type share the plan set and its buffers;
+!! splitting them would make the plan set public.
 module fc_toeplitz
     use fc_kinds, only: dp
     use, intrinsic :: iso_c_binding, only: c_loc
