@@ -181,12 +181,7 @@ contains
         logical :: par
         if (circulant) then
             if (.not. top%c_xx%built()) call make_circulant()
-            call top%c_xx%forward(dx, top%cspec_x)
-            call top%c_xx%forward(dy, top%cspec_y)
-            call spectrum_pair_product(top%c_xx, top%cspec_x, top%c_xy, top%cspec_y, top%cwork)
-            call top%c_xx%backward(top%cwork, zx)
-            call spectrum_pair_product(top%c_xy, top%cspec_x, top%c_yy, top%cspec_y, top%cwork)
-            call top%c_xx%backward(top%cwork, zy)
+            call block_product(top%c_xx, top%c_xy, top%c_yy, top%cspec_x, top%cspec_y, top%cwork, dx, dy, zx, zy)
             return
         end if
         par = size(top%work) > omp_min_elements
@@ -229,14 +224,25 @@ contains
         class(fc_tangential_operator), intent(inout) :: self
         real(dp), intent(in) :: px(:, :), py(:, :)
         real(dp), intent(out) :: ux(:, :), uy(:, :)
-        call self%a_xx%forward(px, self%spec_x)
-        call self%a_xx%forward(py, self%spec_y)
-        call spectrum_pair_product(self%a_xx, self%spec_x, self%a_xy, self%spec_y, self%work)
-        call self%a_xx%backward(self%work, ux)
-        call spectrum_pair_product(self%a_xy, self%spec_x, self%a_yy, self%spec_y, self%work)
-        call self%a_xx%backward(self%work, uy)
+        call block_product(self%a_xx, self%a_xy, self%a_yy, self%spec_x, self%spec_y, self%work, px, py, ux, uy)
         self%nproducts = self%nproducts + 1
     end subroutine tangential_apply
+
+    !> (zx, zy) = [b_xx b_xy; b_xy b_yy]·(dx, dy) for three blocks on b_xx's plans: two forward
+    !! transforms into `sx`, `sy`, two symbol pairs through `w`, two inverse transforms.
+    subroutine block_product(bxx, bxy, byy, sx, sy, w, dx, dy, zx, zy)
+        type(fc_bttb), intent(inout) :: bxx
+        type(fc_bttb), intent(in) :: bxy, byy
+        complex(dp), intent(inout), contiguous :: sx(:, :), sy(:, :), w(:, :)
+        real(dp), intent(in) :: dx(:, :), dy(:, :)
+        real(dp), intent(out) :: zx(:, :), zy(:, :)
+        call bxx%forward(dx, sx)
+        call bxx%forward(dy, sy)
+        call spectrum_pair_product(bxx, sx, bxy, sy, w)
+        call bxx%backward(w, zx)
+        call spectrum_pair_product(bxy, sx, byy, sy, w)
+        call bxx%backward(w, zy)
+    end subroutine block_product
 
     !> Coupling displacements for K ≠ 0: tangential (A^xz pn, A^yz pn) and normal
     !! A^zx px + A^zy py.  Zero when the bodies are quasi-identical.
