@@ -23,12 +23,12 @@ module fc_tangcg_operator
         type(fc_bttb) :: a_xx, a_xy, a_yy   !! tangential blocks (A^yx = A^xy)
         type(fc_bttb) :: a_xz, a_yz         !! u_t from pn (built only when K ≠ 0)
         type(fc_bttb) :: a_zx, a_zy         !! u_z from p_t (built only when K ≠ 0)
-        complex(dp), allocatable :: spec_x(:, :), spec_y(:, :), work(:, :)
+        complex(dp), allocatable :: spec_x(:, :), spec_y(:, :), work(:, :), work2(:, :)
         type(fc_block_inverse) :: prec      !! TangCG's FFT preconditioner (fc_tangprec)
         !> The preconditioner's Strang circulant on the grid (blocks M^xx, M^xy, M^yy, periodic,
         !! sharing one plan set; made on first use by [[apply_block_inverse]])
         type(fc_bttb) :: c_xx, c_xy, c_yy
-        complex(dp), allocatable :: cspec_x(:, :), cspec_y(:, :), cwork(:, :)
+        complex(dp), allocatable :: cspec_x(:, :), cspec_y(:, :), cwork(:, :), cwork2(:, :)
         integer :: nproducts = 0            !! combined 2×2 block products
         real(dp) :: setup_seconds = 0
     contains
@@ -72,7 +72,7 @@ contains
             call build_block(top%a_zy, IC_ZY, top%a_xx)
         end if
         allocate (top%spec_x(top%a_xx%mx/2 + 1, top%a_xx%my))
-        allocate (top%spec_y, top%work, mold=top%spec_x)
+        allocate (top%spec_y, top%work, top%work2, mold=top%spec_x)
         top%nproducts = 0
         call system_clock(t1)
         top%setup_seconds = real(t1 - t0, dp)/rate
@@ -119,10 +119,10 @@ contains
         call self%a_xx%destroy(); call self%a_xy%destroy(); call self%a_yy%destroy()
         call self%a_xz%destroy(); call self%a_yz%destroy()
         call self%a_zx%destroy(); call self%a_zy%destroy()
-        if (allocated(self%spec_x)) deallocate (self%spec_x, self%spec_y, self%work)
+        if (allocated(self%spec_x)) deallocate (self%spec_x, self%spec_y, self%work, self%work2)
         self%prec = fc_block_inverse()
         call self%c_xx%destroy(); call self%c_xy%destroy(); call self%c_yy%destroy()
-        if (allocated(self%cspec_x)) deallocate (self%cspec_x, self%cspec_y, self%cwork)
+        if (allocated(self%cspec_x)) deallocate (self%cspec_x, self%cspec_y, self%cwork, self%cwork2)
     end subroutine tangential_destroy
 
     !> Whether the built blocks serve `grid` and `material`: same element count and size
@@ -154,12 +154,12 @@ contains
         call copy_bttb(lhs%a_yz, rhs%a_yz, plans_from=lhs%a_xx)
         call copy_bttb(lhs%a_zx, rhs%a_zx, plans_from=lhs%a_xx)
         call copy_bttb(lhs%a_zy, rhs%a_zy, plans_from=lhs%a_xx)
-        if (allocated(rhs%spec_x)) allocate (lhs%spec_x, lhs%spec_y, lhs%work, mold=rhs%spec_x)
+        if (allocated(rhs%spec_x)) allocate (lhs%spec_x, lhs%spec_y, lhs%work, lhs%work2, mold=rhs%spec_x)
         lhs%prec = rhs%prec
         call copy_bttb(lhs%c_xx, rhs%c_xx)
         call copy_bttb(lhs%c_xy, rhs%c_xy, plans_from=lhs%c_xx)
         call copy_bttb(lhs%c_yy, rhs%c_yy, plans_from=lhs%c_xx)
-        if (allocated(rhs%cspec_x)) allocate (lhs%cspec_x, lhs%cspec_y, lhs%cwork, mold=rhs%cspec_x)
+        if (allocated(rhs%cspec_x)) allocate (lhs%cspec_x, lhs%cspec_y, lhs%cwork, lhs%cwork2, mold=rhs%cspec_x)
     contains
         logical function same_object(a, b)
             class(fc_tangential_operator), intent(in), target :: a
@@ -181,7 +181,8 @@ contains
         logical :: par
         if (circulant) then
             if (.not. top%c_xx%built()) call make_circulant()
-            call block_product(top%c_xx, top%c_xy, top%c_yy, top%cspec_x, top%cspec_y, top%cwork, dx, dy, zx, zy)
+            call block_product(top%c_xx, top%c_xy, top%c_yy, top%cspec_x, top%cspec_y, top%cwork, top%cwork2, &
+                               dx, dy, zx, zy)
             return
         end if
         par = size(top%work) > omp_min_elements
@@ -207,9 +208,9 @@ contains
             call strang_circulant_of_symbol(top%a_xx, top%prec%mxx, top%c_xx, keep_kernel=.false.)
             call strang_circulant_of_symbol(top%a_xx, top%prec%mxy, top%c_xy, plans_from=top%c_xx, keep_kernel=.false.)
             call strang_circulant_of_symbol(top%a_xx, top%prec%myy, top%c_yy, plans_from=top%c_xx, keep_kernel=.false.)
-            if (allocated(top%cspec_x)) deallocate (top%cspec_x, top%cspec_y, top%cwork)
+            if (allocated(top%cspec_x)) deallocate (top%cspec_x, top%cspec_y, top%cwork, top%cwork2)
             allocate (top%cspec_x(nx/2 + 1, ny))
-            allocate (top%cspec_y, top%cwork, mold=top%cspec_x)
+            allocate (top%cspec_y, top%cwork, top%cwork2, mold=top%cspec_x)
         end subroutine make_circulant
     end subroutine apply_block_inverse
 
@@ -224,25 +225,10 @@ contains
         class(fc_tangential_operator), intent(inout) :: self
         real(dp), intent(in) :: px(:, :), py(:, :)
         real(dp), intent(out) :: ux(:, :), uy(:, :)
-        call block_product(self%a_xx, self%a_xy, self%a_yy, self%spec_x, self%spec_y, self%work, px, py, ux, uy)
+        call block_product(self%a_xx, self%a_xy, self%a_yy, self%spec_x, self%spec_y, self%work, self%work2, &
+                           px, py, ux, uy)
         self%nproducts = self%nproducts + 1
     end subroutine tangential_apply
-
-    !> (zx, zy) = [b_xx b_xy; b_xy b_yy]·(dx, dy) for three blocks on b_xx's plans: two forward
-    !! transforms into `sx`, `sy`, two symbol pairs through `w`, two inverse transforms.
-    subroutine block_product(bxx, bxy, byy, sx, sy, w, dx, dy, zx, zy)
-        type(fc_bttb), intent(inout) :: bxx
-        type(fc_bttb), intent(in) :: bxy, byy
-        complex(dp), intent(inout), contiguous :: sx(:, :), sy(:, :), w(:, :)
-        real(dp), intent(in) :: dx(:, :), dy(:, :)
-        real(dp), intent(out) :: zx(:, :), zy(:, :)
-        call bxx%forward(dx, sx)
-        call bxx%forward(dy, sy)
-        call spectrum_pair_product(bxx, sx, bxy, sy, w)
-        call bxx%backward(w, zx)
-        call spectrum_pair_product(bxy, sx, byy, sy, w)
-        call bxx%backward(w, zy)
-    end subroutine block_product
 
     !> Coupling displacements for K ≠ 0: tangential (A^xz pn, A^yz pn) and normal
     !! A^zx px + A^zy py.  Zero when the bodies are quasi-identical.

@@ -32,6 +32,11 @@ module fc_threads
     !! Cattaneo 240×200 1.41× faster than one thread (1.0× with FFTs threaded only from 512²);
     !! on a machine loaded beyond its cores they lose (doc/parallel.md §5.3).
     integer, parameter, public :: fftw_thread_min_elements = 32768
+    !> Grid cells (nx·ny) from which a 2×2 block product (tangential operator, TangCG's block
+    !! inverse) runs its x and y components side by side, one thread each, with two
+    !! threads or more (fc_toeplitz's `block_product`): products 1.2–1.3× faster than one
+    !! thread at 40×40 … 80×64, 1.6–1.9× from 120×100; below, 30×25, 1.1× (doc/parallel.md §5.3)
+    integer, parameter, public :: lanes_min_elements = 1024
     !> Element loops and vector operations of the solvers (BCCG, TangCG, the FFT products'
     !! spectral multiplications and copies) run on several threads only for arrays with more
     !! elements than this; below it a parallel region costs more than the loop (measured with

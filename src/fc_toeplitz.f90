@@ -29,7 +29,8 @@ module fc_toeplitz
     use fc_kinds, only: dp
     use, intrinsic :: iso_c_binding, only: c_loc
     use fc_fftw
-    use fc_threads, only: omp_min_elements
+    use fc_threads, only: omp_min_elements, fftw_threads_for_size, lanes_min_elements
+    !$ use omp_lib, only: omp_get_max_threads, omp_in_parallel, omp_get_thread_num, omp_get_num_threads
     implicit none
     private
 
@@ -51,7 +52,13 @@ module fc_toeplitz
         type(c_ptr) :: plan_y_bwd = c_null_ptr, plan_x_bwd = c_null_ptr
         logical :: split = .false.         !! use the padding-aware passes
         integer :: refs = 0                !! blocks using this set
+        !> two single-threaded plan sets with buffers of their own, one per thread, for
+        !! the two components of a 2×2 block product run side by side ([[block_product]]);
+        !! made on first use with two or more threads (lanes_state LANES_ON)
+        type(fc_fft_plans), pointer :: lanes(:) => null()
+        integer :: lanes_state = 0
     end type fc_fft_plans
+    integer, parameter :: LANES_NONE = 0, LANES_ON = 1
 
     !> BTTB operator: y = A x for one influence block (or preconditioner) on one grid.
     type, public :: fc_bttb
@@ -75,6 +82,7 @@ module fc_toeplitz
         procedure :: destroy => bttb_destroy
         procedure :: built => bttb_built
         procedure :: shares_plans => bttb_shares_plans
+        procedure :: lanes_on => bttb_lanes_on
         procedure :: storage_bytes => bttb_storage_bytes
         procedure, private :: bttb_assign
         generic :: assignment(=) => bttb_assign
@@ -83,7 +91,7 @@ module fc_toeplitz
 
     public :: build_bttb_from_kernel, build_bttb_periodic, inverse_toeplitz_from_kernel, fft_symbol_of_kernel
     public :: strang_circulant, strang_circulant_of_symbol
-    public :: copy_bttb, spectrum_pair_product
+    public :: copy_bttb, spectrum_pair_product, block_product
 
 contains
 
@@ -320,7 +328,7 @@ contains
     end subroutine plans_create
 
     !> Destroy the plans and free the buffers.
-    subroutine plans_free(w)
+    recursive subroutine plans_free(w)
         type(fc_fft_plans), intent(inout) :: w
         if (c_associated(w%plan_fwd)) call fftw_destroy_plan(w%plan_fwd)
         if (c_associated(w%plan_bwd)) call fftw_destroy_plan(w%plan_bwd)
@@ -333,6 +341,12 @@ contains
         w%plan_y_bwd = c_null_ptr; w%plan_x_bwd = c_null_ptr
         if (allocated(w%rbuf)) deallocate (w%rbuf)
         if (allocated(w%cbuf)) deallocate (w%cbuf)
+        if (associated(w%lanes)) then
+            call plans_free(w%lanes(1))
+            call plans_free(w%lanes(2))
+            deallocate (w%lanes)
+        end if
+        w%lanes_state = LANES_NONE
         w%refs = 0
     end subroutine plans_free
 
@@ -565,6 +579,14 @@ contains
         self%nproducts = self%nproducts + 1
     end subroutine bttb_backward
 
+    !> Whether the block products on this operator's plan set run their two components side
+    !! by side ([[block_product]]; set by the first such product).
+    logical function bttb_lanes_on(self)
+        class(fc_bttb), intent(in) :: self
+        bttb_lanes_on = .false.
+        if (associated(self%fft)) bttb_lanes_on = self%fft%lanes_state == LANES_ON
+    end function bttb_lanes_on
+
     !> Whether FFTW may execute the plans made on `buf` on `a` instead: same shape and the
     !! same alignment as FFTW counts it (`fftw_alignment_of`: the address modulo the SIMD
     !! alignment of the library's build).
@@ -656,6 +678,99 @@ contains
             call b%multiply(sb, out, add=.true.)
         end if
     end subroutine spectrum_pair_product
+
+    !> (zx, zy) = [bxx bxy; bxy byy]·(dx, dy) for three blocks on bxx's plan set: two forward
+    !! transforms into `sx`, `sy`, two symbol pairs into `w`, `w2`, two inverse transforms.
+    !! With two or more OpenMP threads (outside a parallel region) and a grid of at least
+    !! [[lanes_min_elements]] cells, the x and y components run side by side, each on one
+    !! thread with single-threaded plans (the plan set's lanes): two transforms in parallel
+    !! scale better than one threaded transform after the other, and on grids below
+    !! [[fftw_thread_min_elements]], whose transforms are not threaded at all, they are the
+    !! only parallelism of the product (doc/parallel.md §5.3).  `w2` is used only there.
+    subroutine block_product(bxx, bxy, byy, sx, sy, w, w2, dx, dy, zx, zy)
+        type(fc_bttb), intent(inout) :: bxx
+        type(fc_bttb), intent(in) :: bxy, byy
+        complex(dp), intent(inout), contiguous, target :: sx(:, :), sy(:, :), w(:, :), w2(:, :)
+        real(dp), intent(in) :: dx(:, :), dy(:, :)
+        real(dp), intent(out) :: zx(:, :), zy(:, :)
+        integer :: tid, nt
+        if (use_lanes(bxx%fft)) then
+            tid = 0; nt = 1
+            !$omp parallel num_threads(2) default(shared) firstprivate(tid, nt)
+            !$ tid = omp_get_thread_num()
+            !$ nt = omp_get_num_threads()   ! 1 if the runtime grants one thread: both on it
+            if (tid == 0) call lane_forward(bxx%fft%lanes(1), dx, sx)
+            if (tid == 1 .or. nt == 1) call lane_forward(bxx%fft%lanes(2), dy, sy)
+            !$omp barrier
+            if (tid == 0) then
+                call spectrum_pair_product(bxx, sx, bxy, sy, w)
+                call lane_backward(bxx%fft%lanes(1), w, zx)
+            end if
+            if (tid == 1 .or. nt == 1) then
+                call spectrum_pair_product(bxy, sx, byy, sy, w2)
+                call lane_backward(bxx%fft%lanes(2), w2, zy)
+            end if
+            !$omp end parallel
+            bxx%nproducts = bxx%nproducts + 2
+        else
+            call bxx%forward(dx, sx)
+            call bxx%forward(dy, sy)
+            call spectrum_pair_product(bxx, sx, bxy, sy, w)
+            call bxx%backward(w, zx)
+            call spectrum_pair_product(bxy, sx, byy, sy, w)
+            call bxx%backward(w, zy)
+        end if
+    end subroutine block_product
+
+    !> Whether [[block_product]] runs its components side by side on `w`'s lanes; makes
+    !! the lanes on first use (inside the planner's critical section).
+    logical function use_lanes(w)
+        type(fc_fft_plans), intent(inout) :: w
+        integer :: saved
+        use_lanes = .false.
+        !$ use_lanes = omp_get_max_threads() >= 2 .and. .not. omp_in_parallel()
+        if (.not. use_lanes) return
+        use_lanes = w%nx*w%ny >= lanes_min_elements
+        if (.not. use_lanes) return
+        if (w%lanes_state == LANES_NONE) then
+            !$omp critical (fc_fftw_planner)
+            allocate (w%lanes(2))
+            saved = 0
+            call fftw_threads_for_size(0, saved)       ! one thread per lane
+            call plans_create(w%lanes(1), w%nx, w%ny, w%mx, w%my)
+            call plans_create(w%lanes(2), w%nx, w%ny, w%mx, w%my)
+            call fftw_threads_for_size(-1, saved)
+            !$omp end critical (fc_fftw_planner)
+            w%lanes_state = LANES_ON
+        end if
+        use_lanes = w%lanes_state == LANES_ON
+    end function use_lanes
+
+    !> s ← FFT of x on one lane (through the lane's buffer when FFTW may not use s in its place).
+    subroutine lane_forward(l, x, s)
+        type(fc_fft_plans), intent(inout) :: l
+        real(dp), intent(in) :: x(:, :)
+        complex(dp), intent(inout), contiguous, target :: s(:, :)
+        if (fftw_compatible(s, l%cbuf)) then
+            call transform_forward_to(l, x, s)
+        else
+            call transform_forward(l, x)
+            s = l%cbuf
+        end if
+    end subroutine lane_forward
+
+    !> y ← inverse FFT of s on one lane, restricted to the grid; s is destroyed.
+    subroutine lane_backward(l, s, y)
+        type(fc_fft_plans), intent(inout) :: l
+        complex(dp), intent(inout), contiguous, target :: s(:, :)
+        real(dp), intent(out) :: y(:, :)
+        if (fftw_compatible(s, l%cbuf)) then
+            call transform_backward_from(l, s, y)
+        else
+            l%cbuf = s
+            call transform_backward(l, y)
+        end if
+    end subroutine lane_backward
 
     !> cbuf ← FFT of x zero-padded to mx×my.
     subroutine transform_forward(w, x)

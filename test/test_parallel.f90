@@ -9,9 +9,11 @@ module test_parallel
     use fc_influence, only: fc_material, combine_material
     use fc_norm, only: fc_normal_operator, fc_normal_settings, fc_normal_result, build_normal_operator, solve_normal
     use fc_periodic, only: build_periodic_normal_operator
-    use fc_threads, only: set_thread_count, fc_thread_count, check_thread_count, fc_openmp_enabled, omp_min_elements
+    use fc_threads, only: set_thread_count, fc_thread_count, check_thread_count, fc_openmp_enabled, omp_min_elements, &
+        lanes_min_elements
     use fc_tangcg, only: fc_tangential_operator, fc_tangential_settings, fc_tangential_result, build_tangential_operator, &
         solve_tangential
+    use fc_tangcg_operator, only: apply_block_inverse
     use fc_driver, only: run_driver
     use fc_mg2d, only: fc_strip_problem, fc_mg2d_settings, fc_mg2d_result, strip_model_problem, solve_strip_mg
     use fc_contact, only: fc_contact_operators, fc_contact_loading, fc_contact_settings, fc_contact_result, solve_contact, &
@@ -32,6 +34,7 @@ contains
         tests = [ &
             new_unittest('threads_same_result', test_threads_same), &
             new_unittest('threads_same_result_cattaneo', test_threads_same_cattaneo), &
+            new_unittest('threads_block_product_side_by_side', test_lanes), &
             new_unittest('threads_concurrent_operator_builds', test_threads_orchestrator), &
             new_unittest('threads_same_result_strip_mg', test_threads_strip), &
             new_unittest('threads_count_bounds', test_thread_bounds), &
@@ -140,6 +143,53 @@ contains
         write (*, '(a,2es10.2)') '    threads_same_result_cattaneo: max |dp|/pmax, max |dpt|/(mu pmax) = ', &
             maxval(abs(n1%pn - n2%pn))/n1%pmax, max(maxval(abs(t1%px - t2%px)), maxval(abs(t1%py - t2%py)))/tmax
     end subroutine test_threads_same_cattaneo
+
+    !> The 2×2 block products with two threads run their x and y components side by side
+    !! (fc_toeplitz's `block_product` on the plan set's lanes) from lanes_min_elements cells.
+    !! On 40×36 (above that, below the threaded-FFT size, so the lanes are the only
+    !! parallelism): the tangential product equals the direct O(n²) sums of the blocks to
+    !! 1e−12 of max|u| (rounding of the FFTs), and the product and TangCG's circulant block
+    !! inverse equal the one-thread results to 1e−14 (the same single-threaded transforms).
+    subroutine test_lanes(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_material) :: mat
+        type(fc_grid) :: grid
+        type(fc_tangential_operator) :: top
+        real(dp), allocatable :: px(:, :), py(:, :), ux(:, :, :), uy(:, :, :), zx(:, :, :), zy(:, :, :), dx(:, :), dy(:, :)
+        integer :: stat, nt0, nt
+        character(len=256) :: em
+        nt0 = fc_thread_count()
+        mat%g1 = 200; mat%g2 = 200; mat%nu1 = 0.42_dp; mat%nu2 = 0.42_dp
+        call combine_material(mat, stat, em)
+        call make_grid(grid, 40, 36, -1.0_dp, 1.0_dp, -0.9_dp, 0.9_dp, stat, em)
+        call check(error, grid%nx*grid%ny >= lanes_min_elements, 'grid at or above lanes_min_elements')
+        if (allocated(error)) return
+        allocate (px(40, 36), py(40, 36), dx(40, 36), dy(40, 36), ux(40, 36, 2), uy(40, 36, 2), zx(40, 36, 2), zy(40, 36, 2))
+        call random_number(px); call random_number(py)
+        px = px - 0.5_dp; py = 2*py - 0.3_dp
+        do nt = 1, 2
+            call set_thread_count(nt, grid%nx*grid%ny)
+            call build_tangential_operator(top, mat, grid)
+            call top%apply(px, py, ux(:, :, nt), uy(:, :, nt))
+            call apply_block_inverse(top, px, py, zx(:, :, nt), zy(:, :, nt), .true.)
+            if (nt == 2 .and. fc_openmp_enabled()) then
+                call check(error, top%a_xx%lanes_on(), 'two threads: the block products run on the lanes')
+            end if
+            if (nt == 2) then
+                call top%a_xx%apply_direct(px, dx); call top%a_xy%apply_direct(py, dy); dx = dx + dy
+                call check(error, maxval(abs(ux(:, :, 2) - dx)), 0.0_dp, 'side by side: x vs direct sums', &
+                    abs=1e-12_dp*maxval(abs(dx)))
+                call top%a_xy%apply_direct(px, dx); call top%a_yy%apply_direct(py, dy); dy = dx + dy
+                call check(error, maxval(abs(uy(:, :, 2) - dy)), 0.0_dp, 'side by side: y vs direct sums', &
+                    abs=1e-12_dp*maxval(abs(dy)))
+            end if
+        end do
+        call set_thread_count(nt0)
+        call check(error, max(maxval(abs(ux(:, :, 1) - ux(:, :, 2))), maxval(abs(uy(:, :, 1) - uy(:, :, 2)))), 0.0_dp, &
+            'product, 1 vs 2 threads', abs=1e-14_dp*maxval(abs(ux(:, :, 1))))
+        call check(error, max(maxval(abs(zx(:, :, 1) - zx(:, :, 2))), maxval(abs(zy(:, :, 1) - zy(:, :, 2)))), 0.0_dp, &
+            'circulant block inverse, 1 vs 2 threads', abs=1e-14_dp*maxval(abs(zx(:, :, 1))))
+    end subroutine test_lanes
 
     !> The orchestrator with two threads builds the normal and the tangential operators side
     !! by side ([[ensure_operators]]): the same Cattaneo problem as above through
