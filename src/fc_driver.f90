@@ -582,14 +582,33 @@ contains
         end select
     end subroutine library_context
 
-    !> mkdir -p DIR.
+    !> mkdir -p DIR by the C library's mkdir (each parent in turn; existing ones are
+    !! fine), not by a shell: a child process cost every run about 2 ms.  stat ≠ 0 when DIR
+    !! is not a directory afterwards.
     subroutine make_directory(dir, stat)
+        use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char
         character(len=*), intent(in) :: dir
         integer, intent(out) :: stat
-        integer :: cstat
-        stat = 0; cstat = 0
-        call execute_command_line("mkdir -p '"//dir//"'", exitstat=stat, cmdstat=cstat)
-        if (cstat /= 0) stat = cstat
+        interface
+            integer(c_int) function c_mkdir(path, mode) bind(C, name='mkdir')
+                import :: c_int, c_char
+                character(kind=c_char), intent(in) :: path(*)
+                integer(c_int), value :: mode
+            end function c_mkdir
+        end interface
+        integer(c_int), parameter :: mode = int(o'777', c_int)   ! less the umask, as mkdir(1)
+        integer(c_int) :: rc
+        integer :: i, n
+        logical :: exists
+        n = len_trim(dir)
+        stat = 1
+        if (n == 0) return
+        do i = 2, n
+            if (dir(i:i) == '/' .and. dir(i - 1:i - 1) /= '/') rc = c_mkdir(dir(1:i - 1)//c_null_char, mode)
+        end do
+        rc = c_mkdir(dir(1:n)//c_null_char, mode)
+        inquire (file=dir(1:n)//'/.', exist=exists)
+        if (exists) stat = 0
     end subroutine make_directory
 
     !> Delete a file if it exists.
