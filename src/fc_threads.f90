@@ -62,7 +62,7 @@ module fc_threads
     logical, save :: fftw_threads_ready = .false.   ! set once, before any threaded plan
 
     public :: set_thread_count, fc_thread_count, fc_openmp_enabled, check_thread_count, fc_default_threads
-    public :: fftw_threads_for_size
+    public :: fftw_threads_for_size, fftw_planner_threads
 
 contains
 
@@ -152,4 +152,11 @@ contains
         !$     if (points < 2*fftw_thread_min_elements) call fftw_plan_with_nthreads(1_c_int)
         !$ end if
     end subroutine fftw_threads_for_size
+
+    !> Threads of the FFTW plans made now (1 without OpenMP or before threads are set up).
+    !! Call inside the critical section `fc_fftw_planner`.
+    integer function fftw_planner_threads() result(n)
+        n = 1
+        !$ if (fftw_threads_ready) n = max(1, int(fftw_planner_nthreads()))
+    end function fftw_planner_threads
 end module fc_threads

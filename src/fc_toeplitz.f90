@@ -29,7 +29,7 @@ module fc_toeplitz
     use fc_kinds, only: dp
     use, intrinsic :: iso_c_binding, only: c_loc
     use fc_fftw
-    use fc_threads, only: omp_min_elements, fftw_threads_for_size, lanes_min_elements
+    use fc_threads, only: omp_min_elements, fftw_threads_for_size, lanes_min_elements, fftw_planner_threads
     !$ use omp_lib, only: omp_get_max_threads, omp_in_parallel, omp_get_thread_num, omp_get_num_threads
     implicit none
     private
@@ -52,10 +52,13 @@ module fc_toeplitz
         type(c_ptr) :: plan_y_bwd = c_null_ptr, plan_x_bwd = c_null_ptr
         logical :: split = .false.         !! use the padding-aware passes
         integer :: refs = 0                !! blocks using this set
-        !> two single-threaded plan sets with buffers of their own, one per thread, for
-        !! the two components of a 2×2 block product run side by side ([[block_product]]);
-        !! made on first use with two or more threads (lanes_state LANES_ON)
-        type(fc_fft_plans), pointer :: lanes(:) => null()
+        integer :: planner_threads = 1     !! threads of these plans
+        !> lanes of [[block_product]]: its two components run side by side, one thread each,
+        !! executing the same single-threaded plans (FFTW's new-array execution) on two real
+        !! buffers.  The plans are this set's own when they are single-threaded, else `serial`;
+        !! made on first use with two threads or more (lanes_state = LANES_ON).
+        type(fc_fft_plans), pointer :: serial => null()
+        real(dp), allocatable :: rbuf2(:, :)
         integer :: lanes_state = 0
     end type fc_fft_plans
     integer, parameter :: LANES_NONE = 0, LANES_ON = 1
@@ -308,6 +311,7 @@ contains
         integer, intent(in) :: nx, ny, mx, my
         integer :: mxh
         w%nx = nx; w%ny = ny; w%mx = mx; w%my = my
+        w%planner_threads = fftw_planner_threads()
         allocate (w%rbuf(mx, my), w%cbuf(mx/2 + 1, my))
         ! FFTW's row-major dimensions are the reverse of Fortran's: (my, mx).
         w%plan_fwd = fftw_plan_dft_r2c_2d(int(my, c_int), int(mx, c_int), w%rbuf, w%cbuf, FFTW_ESTIMATE)
@@ -341,11 +345,11 @@ contains
         w%plan_y_bwd = c_null_ptr; w%plan_x_bwd = c_null_ptr
         if (allocated(w%rbuf)) deallocate (w%rbuf)
         if (allocated(w%cbuf)) deallocate (w%cbuf)
-        if (associated(w%lanes)) then
-            call plans_free(w%lanes(1))
-            call plans_free(w%lanes(2))
-            deallocate (w%lanes)
+        if (associated(w%serial)) then
+            call plans_free(w%serial)
+            deallocate (w%serial)
         end if
+        if (allocated(w%rbuf2)) deallocate (w%rbuf2)
         w%lanes_state = LANES_NONE
         w%refs = 0
     end subroutine plans_free
@@ -694,21 +698,24 @@ contains
         real(dp), intent(in) :: dx(:, :), dy(:, :)
         real(dp), intent(out) :: zx(:, :), zy(:, :)
         integer :: tid, nt
-        if (use_lanes(bxx%fft)) then
+        type(fc_fft_plans), pointer :: p
+        if (use_lanes(bxx%fft, sx, sy, w, w2)) then
+            p => bxx%fft
+            if (associated(p%serial)) p => p%serial
             tid = 0; nt = 1
             !$omp parallel num_threads(2) default(shared) firstprivate(tid, nt)
             !$ tid = omp_get_thread_num()
             !$ nt = omp_get_num_threads()   ! 1 if the runtime grants one thread: both on it
-            if (tid == 0) call lane_forward(bxx%fft%lanes(1), dx, sx)
-            if (tid == 1 .or. nt == 1) call lane_forward(bxx%fft%lanes(2), dy, sy)
+            if (tid == 0) call lane_forward(p, p%rbuf, dx, sx)
+            if (tid == 1 .or. nt == 1) call lane_forward(p, bxx%fft%rbuf2, dy, sy)
             !$omp barrier
             if (tid == 0) then
                 call spectrum_pair_product(bxx, sx, bxy, sy, w)
-                call lane_backward(bxx%fft%lanes(1), w, zx)
+                call lane_backward(p, p%rbuf, w, zx)
             end if
             if (tid == 1 .or. nt == 1) then
                 call spectrum_pair_product(bxy, sx, byy, sy, w2)
-                call lane_backward(bxx%fft%lanes(2), w2, zy)
+                call lane_backward(p, bxx%fft%rbuf2, w2, zy)
             end if
             !$omp end parallel
             bxx%nproducts = bxx%nproducts + 2
@@ -722,11 +729,15 @@ contains
         end if
     end subroutine block_product
 
-    !> Whether [[block_product]] runs its components side by side on `w`'s lanes; makes
-    !! the lanes on first use (inside the planner's critical section).
-    logical function use_lanes(w)
-        type(fc_fft_plans), intent(inout) :: w
+    !> Whether [[block_product]] runs its components side by side on `w`'s lanes (two
+    !! threads or more, outside a parallel region, at least [[lanes_min_elements]] cells,
+    !! spectra FFTW may use in place of the plans' buffer); makes the lanes on first use
+    !! (inside the planner's critical section).
+    logical function use_lanes(w, s1, s2, s3, s4)
+        type(fc_fft_plans), intent(inout), target :: w
+        complex(dp), intent(in), contiguous, target :: s1(:, :), s2(:, :), s3(:, :), s4(:, :)
         integer :: saved
+        type(fc_fft_plans), pointer :: q
         use_lanes = .false.
         !$ use_lanes = omp_get_max_threads() >= 2 .and. .not. omp_in_parallel()
         if (.not. use_lanes) return
@@ -734,42 +745,66 @@ contains
         if (.not. use_lanes) return
         if (w%lanes_state == LANES_NONE) then
             !$omp critical (fc_fftw_planner)
-            allocate (w%lanes(2))
-            saved = 0
-            call fftw_threads_for_size(0, saved)       ! one thread per lane
-            call plans_create(w%lanes(1), w%nx, w%ny, w%mx, w%my)
-            call plans_create(w%lanes(2), w%nx, w%ny, w%mx, w%my)
-            call fftw_threads_for_size(-1, saved)
+            if (w%planner_threads > 1) then
+                allocate (w%serial)
+                saved = 0
+                call fftw_threads_for_size(0, saved)       ! single-threaded plans
+                call plans_create(w%serial, w%nx, w%ny, w%mx, w%my)
+                call fftw_threads_for_size(-1, saved)
+            end if
             !$omp end critical (fc_fftw_planner)
+            allocate (w%rbuf2, mold=w%rbuf)
             w%lanes_state = LANES_ON
         end if
         use_lanes = w%lanes_state == LANES_ON
+        if (.not. use_lanes) return
+        q => w
+        if (associated(w%serial)) q => w%serial
+        use_lanes = fc_fftw_alignment_of(c_loc(w%rbuf2)) == fc_fftw_alignment_of(c_loc(q%rbuf)) .and. &
+            fftw_compatible(s1, q%cbuf) .and. fftw_compatible(s2, q%cbuf) .and. &
+            fftw_compatible(s3, q%cbuf) .and. fftw_compatible(s4, q%cbuf)
     end function use_lanes
 
-    !> s ← FFT of x on one lane (through the lane's buffer when FFTW may not use s in its place).
-    subroutine lane_forward(l, x, s)
-        type(fc_fft_plans), intent(inout) :: l
+    !> s ← FFT of x zero-padded to mx×my by the single-threaded plans of `p` on the real
+    !! buffer `rb` (p%rbuf or a buffer of the same alignment); nested loops stay serial.
+    subroutine lane_forward(p, rb, x, s)
+        type(fc_fft_plans), intent(inout) :: p
+        real(dp), intent(inout), contiguous :: rb(:, :)
         real(dp), intent(in) :: x(:, :)
-        complex(dp), intent(inout), contiguous, target :: s(:, :)
-        if (fftw_compatible(s, l%cbuf)) then
-            call transform_forward_to(l, x, s)
+        complex(dp), intent(inout), contiguous :: s(:, :)
+        integer :: j
+        do j = 1, p%ny
+            rb(1:p%nx, j) = x(:, j)
+            if (p%mx > p%nx) rb(p%nx + 1:, j) = 0
+        end do
+        if (p%split) then
+            call fftw_execute_dft_r2c(p%plan_x_fwd, rb, s)
+            do j = p%ny + 1, p%my
+                s(:, j) = 0
+            end do
+            call fftw_execute_dft(p%plan_y_fwd, s, s)
         else
-            call transform_forward(l, x)
-            s = l%cbuf
+            call fftw_execute_dft_r2c(p%plan_fwd, rb, s)
         end if
     end subroutine lane_forward
 
-    !> y ← inverse FFT of s on one lane, restricted to the grid; s is destroyed.
-    subroutine lane_backward(l, s, y)
-        type(fc_fft_plans), intent(inout) :: l
-        complex(dp), intent(inout), contiguous, target :: s(:, :)
+    !> y ← inverse FFT of s restricted to the grid, by the plans of `p` on the real buffer
+    !! `rb` (as [[lane_forward]]); s is destroyed.
+    subroutine lane_backward(p, rb, s, y)
+        type(fc_fft_plans), intent(inout) :: p
+        real(dp), intent(inout), contiguous :: rb(:, :)
+        complex(dp), intent(inout), contiguous :: s(:, :)
         real(dp), intent(out) :: y(:, :)
-        if (fftw_compatible(s, l%cbuf)) then
-            call transform_backward_from(l, s, y)
+        integer :: j
+        if (p%split) then
+            call fftw_execute_dft(p%plan_y_bwd, s, s)
+            call fftw_execute_dft_c2r(p%plan_x_bwd, s, rb)
         else
-            l%cbuf = s
-            call transform_backward(l, y)
+            call fftw_execute_dft_c2r(p%plan_bwd, s, rb)
         end if
+        do j = 1, p%ny
+            y(:, j) = rb(1:p%nx, j)
+        end do
     end subroutine lane_backward
 
     !> cbuf ← FFT of x zero-padded to mx×my.
