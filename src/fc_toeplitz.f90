@@ -306,17 +306,20 @@ contains
     end subroutine setup_plans
 
     !> Create FFTW plans (FFTW_ESTIMATE: no measurement, deterministic) on new buffers.
-    subroutine plans_create(w, nx, ny, mx, my)
+    subroutine plans_create(w, nx, ny, mx, my, products_only)
         type(fc_fft_plans), intent(inout) :: w
         integer, intent(in) :: nx, ny, mx, my
+        logical, intent(in), optional :: products_only   !! only the plans of products (lanes)
         integer :: mxh
         w%nx = nx; w%ny = ny; w%mx = mx; w%my = my
         w%planner_threads = fftw_planner_threads()
+        w%split = my > ny
         allocate (w%rbuf(mx, my), w%cbuf(mx/2 + 1, my))
         ! FFTW's row-major dimensions are the reverse of Fortran's: (my, mx).
-        w%plan_fwd = fftw_plan_dft_r2c_2d(int(my, c_int), int(mx, c_int), w%rbuf, w%cbuf, FFTW_ESTIMATE)
-        w%plan_bwd = fftw_plan_dft_c2r_2d(int(my, c_int), int(mx, c_int), w%cbuf, w%rbuf, FFTW_ESTIMATE)
-        w%split = my > ny
+        if (.not. (present(products_only) .and. w%split)) then
+            w%plan_fwd = fftw_plan_dft_r2c_2d(int(my, c_int), int(mx, c_int), w%rbuf, w%cbuf, FFTW_ESTIMATE)
+            w%plan_bwd = fftw_plan_dft_c2r_2d(int(my, c_int), int(mx, c_int), w%cbuf, w%rbuf, FFTW_ESTIMATE)
+        end if
         if (w%split) then
             mxh = mx/2 + 1
             w%plan_x_fwd = fftw_plan_many_dft_r2c(1_c_int, [int(mx, c_int)], int(ny, c_int), w%rbuf, [int(mx, c_int)], &
@@ -749,7 +752,7 @@ contains
                 allocate (w%serial)
                 saved = 0
                 call fftw_threads_for_size(0, saved)       ! single-threaded plans
-                call plans_create(w%serial, w%nx, w%ny, w%mx, w%my)
+                call plans_create(w%serial, w%nx, w%ny, w%mx, w%my, products_only=.true.)
                 call fftw_threads_for_size(-1, saved)
             end if
             !$omp end critical (fc_fftw_planner)
