@@ -34,9 +34,11 @@ module fc_contact
     use fc_errors, only: FC_ERR_VALUE, FC_ERR_NOT_READY, FC_ERR_SHAPE, FC_ERR_UNSUPPORTED, FC_ERR_FRICTION_BOUND
     use fc_geometry, only: fc_grid, h_no_contact
     use fc_influence, only: fc_material
-    use fc_norm, only: fc_normal_operator, fc_normal_settings, fc_normal_result, build_normal_operator, solve_normal
+    use fc_norm, only: fc_normal_operator, fc_normal_settings, fc_normal_result, build_normal_operator, solve_normal, &
+        prepare_precond_circulant
     use fc_tangcg, only: fc_tangential_operator, fc_tangential_settings, fc_tangential_result, fc_tangential_loading, &
         build_tangential_operator, solve_tangential_loading, coupling_displacements, EL_EXTERIOR, EL_ADHESION, EL_SLIP
+    use fc_tangcg_operator, only: prepare_block_inverse_circulant
     use fc_fmg, only: fc_fmg_settings, fc_fmg_stats, fc_surface, solve_normal_fmg
     use fc_rolling, only: fc_rolling_loading, solve_rolling_loading, fc_rolling_case
     use fc_contact_types, only: FC_PROBLEM_NORMAL, FC_PROBLEM_TANGENTIAL, FC_PROBLEM_ROLLING, fc_normal_loading, &
@@ -61,11 +63,14 @@ contains
 
     !> Build the operators needed for `grid` and `material` unless the stored ones match;
     !! the stored grid is updated to `grid` (same spacing: a moved area keeps its operators).
-    subroutine ensure_operators(ops, grid, material, normal, tangential)
+    subroutine ensure_operators(ops, grid, material, normal, tangential, circulant_normal, circulant_tangential)
         type(fc_contact_operators), intent(inout) :: ops
         type(fc_grid), intent(in) :: grid
         type(fc_material), intent(in) :: material
         logical, intent(in) :: normal, tangential   !! which operators are needed
+        !> make BCCG's preconditioner circulant, TangCG's block-inverse circulants with the
+        !! operators (with two threads beside the other build) rather than at their first use
+        logical, intent(in) :: circulant_normal, circulant_tangential
         logical :: build_n, build_t
         ops%setup_seconds_normal = 0; ops%setup_seconds_tangential = 0
         build_n = .false.; build_t = .false.
@@ -103,6 +108,7 @@ contains
             ops%built_periodic = ops%periodic
             ops%builds_normal = ops%builds_normal + 1
             ops%setup_seconds_normal = ops%normal%setup_seconds
+            if (circulant_normal) call prepare_precond_circulant(ops%normal)
         end subroutine build_normal
         subroutine build_tangential()
             if (allocated(ops%ic%a)) then
@@ -112,6 +118,8 @@ contains
             end if
             ops%builds_tangential = ops%builds_tangential + 1
             ops%setup_seconds_tangential = ops%tangential%setup_seconds
+            if (circulant_tangential .and. ops%tangential%prec%built()) &
+                call prepare_block_inverse_circulant(ops%tangential)
         end subroutine build_tangential
     end subroutine ensure_operators
 
@@ -204,7 +212,13 @@ contains
             end block
             if (stat /= 0) return
         end if
-        call ensure_operators(ops, grid, material, normal=.not. use_fmg, tangential=tangential)
+        ! the preconditioner circulants BCCG and TangCG will apply are made with the operators
+        call ensure_operators(ops, grid, material, normal=.not. use_fmg, tangential=tangential, &
+            circulant_normal=settings%normal%solver == 'bccg' .and. settings%normal%precondition .and. &
+                             settings%normal%prec_form == 'circulant', &
+            circulant_tangential=load%problem /= FC_PROBLEM_ROLLING .and. settings%tangential%solver == 'tangcg' .and. &
+                                 settings%tangential%precondition .and. settings%tangential%preconditioner == 'fft' .and. &
+                                 settings%tangential%prec_form == 'circulant')
         call contact_rounds(ops%normal, ops%tangential, grid, material, h0, load, settings, res, stat, errmsg, &
                             state, surface)
         if (ops%periodic) then

@@ -99,7 +99,7 @@ module fc_norm
                                               !! the area may clip the true contact (enlarge it)
     end type fc_normal_result
 
-    public :: build_normal_operator, solve_normal, contact_on_edge
+    public :: build_normal_operator, solve_normal, contact_on_edge, prepare_precond_circulant
 
 contains
 
@@ -171,6 +171,16 @@ contains
         end function same_object
     end subroutine normal_operator_assign
 
+    !> Make M's Strang circulant on the grid (BCCG's preconditioner in the circulant form)
+    !! unless it exists; M's symbol is real by construction (were it not, M itself is
+    !! applied and nothing is made).  On BCCG's first use, or ahead of the solve inside the
+    !! orchestrator's operator build, where it overlaps the tangential build.
+    subroutine prepare_precond_circulant(nop)
+        type(fc_normal_operator), intent(inout) :: nop
+        if (nop%precond_circulant%built() .or. nop%precond%parity /= SYMBOL_EVEN) return
+        call strang_circulant_of_symbol(nop%a_zz, nop%precond%rsymbol, nop%precond_circulant, keep_kernel=.false.)
+    end subroutine prepare_precond_circulant
+
     !> Solve the normal contact problem for undeformed distance h0 (without approach) with
     !! either a prescribed `approach` δ [mm] or a prescribed total force `fn` [N].
     !! `p_start` (optional) warm-starts the iteration.
@@ -230,9 +240,7 @@ contains
         select case (settings%prec_form)
         case ('circulant')
             ! M's symbol is real by construction; were it not, M itself is applied
-            if (settings%precondition .and. settings%solver == 'bccg' .and. .not. nop%precond_circulant%built() &
-                .and. nop%precond%parity == SYMBOL_EVEN) &
-                call strang_circulant_of_symbol(nop%a_zz, nop%precond%rsymbol, nop%precond_circulant, keep_kernel=.false.)
+            if (settings%precondition .and. settings%solver == 'bccg') call prepare_precond_circulant(nop)
         case ('toeplitz')
         case default
             stat = FC_ERR_VALUE

@@ -40,7 +40,7 @@ module fc_tangcg_operator
         generic :: assignment(=) => tangential_assign
     end type fc_tangential_operator
 
-    public :: build_tangential_operator, coupling_displacements, apply_block_inverse
+    public :: build_tangential_operator, coupling_displacements, apply_block_inverse, prepare_block_inverse_circulant
 
 contains
 
@@ -180,7 +180,7 @@ contains
         integer :: j
         logical :: par
         if (circulant) then
-            if (.not. top%c_xx%built()) call make_circulant()
+            call prepare_block_inverse_circulant(top)
             call block_product(top%c_xx, top%c_xy, top%c_yy, top%cspec_x, top%cspec_y, top%cwork, top%cwork2, &
                                dx, dy, zx, zy)
             return
@@ -200,19 +200,24 @@ contains
         end do
         !$omp end parallel do
         call top%a_xx%backward(top%work, zy)
-    contains
-        !> The Strang circulants of M's blocks, from their symbols on the doubled grid.
-        subroutine make_circulant()
-            integer :: nx, ny
-            nx = top%grid%nx; ny = top%grid%ny
-            call strang_circulant_of_symbol(top%a_xx, top%prec%mxx, top%c_xx, keep_kernel=.false.)
-            call strang_circulant_of_symbol(top%a_xx, top%prec%mxy, top%c_xy, plans_from=top%c_xx, keep_kernel=.false.)
-            call strang_circulant_of_symbol(top%a_xx, top%prec%myy, top%c_yy, plans_from=top%c_xx, keep_kernel=.false.)
-            if (allocated(top%cspec_x)) deallocate (top%cspec_x, top%cspec_y, top%cwork, top%cwork2)
-            allocate (top%cspec_x(nx/2 + 1, ny))
-            allocate (top%cspec_y, top%cwork, top%cwork2, mold=top%cspec_x)
-        end subroutine make_circulant
     end subroutine apply_block_inverse
+
+    !> Make the Strang circulants of the block inverse's blocks (from their symbols on the
+    !! doubled grid) unless they exist: on the first circulant application, or ahead of the
+    !! solve (the orchestrator does it inside the operator build, where it overlaps the
+    !! normal build on a second thread).
+    subroutine prepare_block_inverse_circulant(top)
+        type(fc_tangential_operator), intent(inout) :: top
+        integer :: nx, ny
+        if (top%c_xx%built()) return
+        nx = top%grid%nx; ny = top%grid%ny
+        call strang_circulant_of_symbol(top%a_xx, top%prec%mxx, top%c_xx, keep_kernel=.false.)
+        call strang_circulant_of_symbol(top%a_xx, top%prec%mxy, top%c_xy, plans_from=top%c_xx, keep_kernel=.false.)
+        call strang_circulant_of_symbol(top%a_xx, top%prec%myy, top%c_yy, plans_from=top%c_xx, keep_kernel=.false.)
+        if (allocated(top%cspec_x)) deallocate (top%cspec_x, top%cspec_y, top%cwork, top%cwork2)
+        allocate (top%cspec_x(nx/2 + 1, ny))
+        allocate (top%cspec_y, top%cwork, top%cwork2, mold=top%cspec_x)
+    end subroutine prepare_block_inverse_circulant
 
     !> True when the normal and tangential problems are coupled (K ≠ 0).
     pure logical function tangential_coupled(self)
