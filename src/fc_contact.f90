@@ -70,9 +70,14 @@ contains
         logical, intent(in) :: normal, tangential   !! which operators are needed
         !> make BCCG's preconditioner circulant, TangCG's block-inverse circulants with the
         !! operators (with two threads beside the other build) rather than at their first use
-        logical, intent(in) :: circulant_normal, circulant_tangential
+        !! (default: at their first use)
+        logical, intent(in), optional :: circulant_normal, circulant_tangential
+        logical :: circ_n, circ_t
         logical :: build_n, build_t
         ops%setup_seconds_normal = 0; ops%setup_seconds_tangential = 0
+        circ_n = .false.; circ_t = .false.
+        if (present(circulant_normal)) circ_n = circulant_normal
+        if (present(circulant_tangential)) circ_t = circulant_tangential
         build_n = .false.; build_t = .false.
         if (normal) build_n = .not. (ops%reuse .and. ops%normal%matches(grid, material) .and. &
             (ops%built_periodic .eqv. ops%periodic))
@@ -108,7 +113,7 @@ contains
             ops%built_periodic = ops%periodic
             ops%builds_normal = ops%builds_normal + 1
             ops%setup_seconds_normal = ops%normal%setup_seconds
-            if (circulant_normal) call prepare_precond_circulant(ops%normal)
+            if (circ_n) call prepare_precond_circulant(ops%normal)
         end subroutine build_normal
         subroutine build_tangential()
             if (allocated(ops%ic%a)) then
@@ -118,7 +123,7 @@ contains
             end if
             ops%builds_tangential = ops%builds_tangential + 1
             ops%setup_seconds_tangential = ops%tangential%setup_seconds
-            if (circulant_tangential .and. ops%tangential%prec%built()) &
+            if (circ_t .and. ops%tangential%prec%built()) &
                 call prepare_block_inverse_circulant(ops%tangential)
         end subroutine build_tangential
     end subroutine ensure_operators

@@ -199,6 +199,7 @@ contains
         type(fc_rolling_loading) :: cur
         type(fc_force_newton_t) :: nw
         real(dp) :: fn, flimit, k0, area, jac(2, 2), x(2), muk
+        real(dp), parameter :: creep_max = 1   !! largest |ξ|, |η| the creep-force loop tries
         integer :: nx, ny
         logical :: accepted, done
         nx = size(pn, 1); ny = size(pn, 2)
@@ -234,6 +235,14 @@ contains
         call nw%start(x, jac, settings%tol, hypot(load%fx, load%fy), flimit)
         do
             inner%tol = nw%tol_inner
+            if (.not. all(abs(nw%x_trial) <= creep_max)) then
+                ! a Broyden step beyond creepage 1 (slip as fast as rolling) is not taken: it
+                ! counts as a worse trial, so the step is halved (before, the step went on to
+                ! infinite creepages and the case ended as an input error)
+                call nw%update([10*flimit, 10*flimit], accepted, done, 0, 0, 0.0_dp)
+                if (done) exit
+                cycle
+            end if
             cur%xi = nw%x_trial(1); cur%eta = nw%x_trial(2)
             call solve_rolling(top, pn, cur, inner, trial, stat, errmsg, qx, qy, ox, oy)
             if (stat /= 0) return
@@ -259,7 +268,7 @@ contains
         logical, dimension(size(gs, 1), size(gs, 2)) :: adh, slp
         real(dp), allocatable :: vb(:, :, :, :), hess(:, :), cs(:), sn(:), gvec(:), yv(:), hist(:)
         real(dp), allocatable :: wkx(:, :), wky(:, :), qsx(:, :), qsy(:, :), zx(:, :), zy(:, :)
-        real(dp) :: dxx, dyy, axx, gdx, yscale, change, dnorm, beta, rnorm, tol_in, h, tmp, pscale, eta_k, dnorm_prev
+        real(dp) :: dxx, dyy, axx, gdx, yscale, change, dnorm, beta, rnorm, tol_in, h, tmp, pscale, eta_k, dnorm_prev, gscale
         integer :: it_total, newton, k, kk, nit, idle
         logical :: changed, converged, stagnated, fft_prec, fft_prev, warm, circulant
         real(dp), parameter :: bound_slack = 1.0e-12_dp  !! relative slack on |p|² > g²
@@ -274,6 +283,10 @@ contains
         ! 'fft': the preconditioned adhesion rows are tractions (M ≈ A⁻¹), 'runsum': displacements
         ! scaled to A^xx_II; slip rows follow the same measure
         changed = .false.; dnorm_prev = 1; fft_prec = .false.
+        ! the traction change is relative to |p|, floored at 1e−6 of the traction bound (RMS):
+        ! a warm start towards zero creepage, whose solution is p = 0, converges instead of
+        ! dividing by a vanishing |p| (it was reported diverged)
+        gscale = 1.0e-12_dp*sum(gk**2)
         warm = any(contact .and. (res%px /= 0 .or. res%py /= 0))
         circulant = settings%prec_form == 'circulant'
         px = res%px; py = res%py
@@ -291,6 +304,13 @@ contains
             adh = .false.; slp = .false.; px = 0; py = 0
         end where
         call exact_slip()
+        ! ... and one whose traction does not oppose its slip under the new creepages starts
+        ! in adhesion, by the same rule as after every Newton step (kept in slip, such an
+        ! element makes the Jacobian's slip row indefinite, and GMRES stalled on the first
+        ! Newton step of warm-started sweep points: doc/rolling.md)
+        where (slp .and. px*sx + py*sy > 0)
+            adh = .true.; slp = .false.
+        end where
         it_total = 0
         converged = .false.
         res%status = FC_NOT_CONVERGED
@@ -353,7 +373,7 @@ contains
                 th = atan2(py, px) + dx_
                 px = gk*cos(th); py = gk*sin(th)
             end where
-            change = traction_change(px, py, pox, poy)
+            change = traction_change(px, py, pox, poy, floor=gscale)
             if (newton <= size(hist)) hist(newton) = change
             if (ieee_is_nan(change) .or. change > 1.0e12_dp) then
                 res%status = FC_DIVERGED

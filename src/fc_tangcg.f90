@@ -246,8 +246,11 @@ contains
     end subroutine tangential_summary
 
     !> Relative RMS change of the traction vector (eq. 4.49).
-    real(dp) function traction_change(px, py, qx, qy)
+    real(dp) function traction_change(px, py, qx, qy, floor)
         real(dp), intent(in) :: px(:, :), py(:, :), qx(:, :), qy(:, :)
+        !> lower bound of the denominator Σ|p|² [(N/mm²)²], so that the change of tractions
+        !! that go to zero (a zero creepage) stays finite
+        real(dp), intent(in), optional :: floor
         real(dp) :: num, den
         integer :: i, j
         num = 0; den = 0
@@ -259,6 +262,7 @@ contains
             end do
         end do
         !$omp end parallel do
+        if (present(floor)) den = max(den, floor)
         if (den > 0) then
             traction_change = sqrt(num/den)
         else if (num > 0) then

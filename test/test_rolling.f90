@@ -32,6 +32,8 @@ contains
             new_unittest('full_slip', test_full_slip), &
             new_unittest('symmetry_and_signs', test_symmetry), &
             new_unittest('prescribed_creep_force', test_force), &
+            new_unittest('warm_starts_of_a_sweep', test_warm_starts), &
+            new_unittest('creep_force_loop_bounded', test_force_bounded), &
             new_unittest('status_and_input_errors', test_status), &
             new_unittest('driver_rolling_sweep_transient', test_driver_cases), &
             new_unittest('driver_rolling_input_errors', test_driver_errors), &
@@ -63,6 +65,100 @@ contains
         call nop%destroy()
         call build_tangential_operator(top, mat, grid)
     end subroutine cattaneo_setup
+
+    !> Warm starts as a creep-force sweep makes them (the previous point's tractions), in two
+    !! situations random sweeps found failing (doc/rolling.md, "Warm starts"), each to
+    !! converge like the cold solve of the same point (forces to 1e−4·μFn):
+    !! (1) spin from φ = −0.0158 to −0.0053 /mm with ξ = 0.003, η = 0.002 (ellipse ry = 100,
+    !! 60×50): 936 elements in slip whose traction no longer opposes the new slip — kept in
+    !! slip, GMRES stalled on the first Newton system for all 1000 iterations;
+    !! (2) η from 1.6e−4 to 0 (all creepages zero, the solution p = 0): the traction change
+    !! relative to a vanishing |p| was reported as divergence.
+    subroutine test_warm_starts(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_grid) :: grid
+        type(fc_material) :: mat
+        type(fc_normal_operator) :: nop
+        type(fc_normal_settings) :: ns
+        type(fc_normal_result) :: nr
+        type(fc_tangential_operator) :: top
+        type(fc_rolling_settings) :: rs
+        type(fc_rolling_loading) :: rl
+        type(fc_tangential_result) :: r0, rw, rc
+        integer :: stat
+        character(len=msg_len) :: msg
+        real(dp) :: ftol
+        mat%g1 = g_cat; mat%g2 = g_cat; mat%nu1 = nu_cat; mat%nu2 = nu_cat
+        call combine_material(mat, stat, msg)
+        call make_grid(grid, 60, 50, -0.9_dp, 0.9_dp, -0.9_dp, 0.9_dp, stat, msg)
+        call build_normal_operator(nop, mat, grid)
+        call solve_normal(nop, quadratic_gap(grid, 50.0_dp, 100.0_dp), ns, nr, stat, msg, fn=fn_cat)
+        call build_tangential_operator(top, mat, grid)
+        ftol = mu_cat*nr%fn
+        rs%maxit = 1000
+        rl%mu = mu_cat; rl%xi = 0.003_dp; rl%eta = 0.002_dp; rl%phi = -0.015789474_dp
+        call solve_rolling(top, nr%pn, rl, rs, r0, stat, msg)
+        call check(error, stat == 0 .and. r0%status == FC_CONVERGED, 'previous point converges: '//trim(r0%message))
+        if (allocated(error)) return
+        rl%phi = -0.0052631579_dp
+        call solve_rolling(top, nr%pn, rl, rs, rw, stat, msg, px_start=r0%px, py_start=r0%py)
+        call solve_rolling(top, nr%pn, rl, rs, rc, stat, msg)
+        call check(error, rw%status == FC_CONVERGED, 'spin sweep: warm start converges ('// &
+                   trim(status_name(rw%status))//', '//trim(fmt_i(rw%iterations))//' Krylov iterations)')
+        call check(error, rc%status == FC_CONVERGED, 'spin sweep: cold solve converges')
+        if (allocated(error)) return
+        call check(error, rw%fx, rc%fx, 'spin sweep: Fx warm = cold', abs=1e-4_dp*ftol)
+        call check(error, rw%fy, rc%fy, 'spin sweep: Fy warm = cold', abs=1e-4_dp*ftol)
+        rl%xi = 0; rl%eta = 1.5789474e-4_dp; rl%phi = 0
+        call solve_rolling(top, nr%pn, rl, rs, r0, stat, msg)
+        rl%eta = 0
+        call solve_rolling(top, nr%pn, rl, rs, rw, stat, msg, px_start=r0%px, py_start=r0%py)
+        call check(error, r0%status == FC_CONVERGED .and. rw%status == FC_CONVERGED, &
+                   'zero creepage from a warm start converges ('//trim(status_name(rw%status))//')')
+        call check(error, max(maxval(abs(rw%px)), maxval(abs(rw%py))) <= 1e-6_dp*mu_cat*maxval(nr%pn), &
+                   'zero creepage: tractions vanish')
+        call nop%destroy(); call top%destroy()
+    contains
+        function fmt_i(i) result(t)
+            integer, intent(in) :: i
+            character(len=12) :: t
+            write (t, '(i0)') i
+        end function fmt_i
+    end subroutine test_warm_starts
+
+    !> Prescribed creep forces near saturation with spin (Fx = 0.95·μFn, Fy = 0, φ = 0.03 /mm,
+    !! the sphere on 48×40): the Broyden steps of the creep-force loop are kept within
+    !! |ξ|, |η| ≤ 1, so the loop ends with a solver status (converged or not_converged), not
+    !! with the input error of infinite creepages it ran into before.
+    subroutine test_force_bounded(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_grid) :: grid
+        type(fc_material) :: mat
+        type(fc_normal_operator) :: nop
+        type(fc_normal_settings) :: ns
+        type(fc_normal_result) :: nr
+        type(fc_tangential_operator) :: top
+        type(fc_rolling_settings) :: rs
+        type(fc_rolling_loading) :: rl
+        type(fc_tangential_result) :: r
+        integer :: stat
+        character(len=msg_len) :: msg
+        mat%g1 = g_cat; mat%g2 = g_cat; mat%nu1 = nu_cat; mat%nu2 = nu_cat
+        call combine_material(mat, stat, msg)
+        call make_grid(grid, 48, 40, -0.9_dp, 0.9_dp, -0.9_dp, 0.9_dp, stat, msg)
+        call build_normal_operator(nop, mat, grid)
+        call solve_normal(nop, quadratic_gap(grid, 50.0_dp, 50.0_dp), ns, nr, stat, msg, fn=fn_cat)
+        call build_tangential_operator(top, mat, grid)
+        rs%maxit = 1000
+        rl%mu = mu_cat; rl%phi = 0.03_dp; rl%force_prescribed = .true.
+        rl%fx = 0.95_dp*mu_cat*nr%fn; rl%fy = 0
+        call solve_rolling_loading(top, nr%pn, rl, rs, r, stat, msg)
+        call check(error, stat == 0, 'no input error from the loop''s own steps: '//trim(msg))
+        call check(error, r%status == FC_CONVERGED .or. r%status == FC_NOT_CONVERGED, &
+                   'a solver status: '//trim(status_name(r%status)))
+        call check(error, abs(r%xi) <= 1 .and. abs(r%eta) <= 1, 'creepages within the bound')
+        call nop%destroy(); call top%destroy()
+    end subroutine test_force_bounded
 
     !> Flat pressure 1 on the elements whose centres lie in the ellipse (x/a)² + (y/b)² < 1
     !! on a grid with one free element around it; operator for G = 1 and ratio ν.
