@@ -41,6 +41,7 @@ module fc_rolling
     use fc_rolling_base
     use fc_rolling_refsolvers, only: run_steadygs, run_march
     use fc_force_newton, only: fc_force_newton_t
+    use fc_threads, only: omp_min_elements
     implicit none
     private
 
@@ -271,6 +272,7 @@ contains
         real(dp) :: dxx, dyy, axx, gdx, yscale, change, dnorm, beta, rnorm, tol_in, h, tmp, pscale, eta_k, dnorm_prev, gscale
         integer :: it_total, newton, k, kk, nit, idle
         logical :: changed, converged, stagnated, fft_prec, fft_prev, warm, circulant
+        logical :: par   !! thread the element loops (above omp_min_elements)
         real(dp), parameter :: bound_slack = 1.0e-12_dp  !! relative slack on |p|² > g²
         integer, parameter :: max_idle = 20               !! Newton steps without a Krylov step
         nx = size(gs, 1); ny = size(gs, 2)
@@ -289,6 +291,7 @@ contains
         gscale = 1.0e-12_dp*sum(gk**2)
         warm = any(contact .and. (res%px /= 0 .or. res%py /= 0))
         circulant = settings%prec_form == 'circulant'
+        par = nx*ny > omp_min_elements
         px = res%px; py = res%py
         adh = contact; slp = .false.
         ! a warm start whose traction reaches the kinetic bound starts in slip (1e−8 slack
@@ -456,6 +459,8 @@ contains
             real(dp) :: accx, accy, ys
             ys = yscale
             if (fft_prec) ys = 1
+            ! columns are independent (the run sums go along x)
+            !$omp parallel do default(shared) private(i, accx, accy) schedule(static) if(par)
             do j = 1, ny
                 accx = 0; accy = 0
                 do i = nx, 1, -1
@@ -468,6 +473,7 @@ contains
                     end if
                 end do
             end do
+            !$omp end parallel do
             if (fft_prec) then
                 where (adh)
                     zx = rx; zy = ry
@@ -498,6 +504,7 @@ contains
             real(dp), intent(out) :: qx(:, :), qy(:, :)
             integer :: i, j
             real(dp) :: cxv, cyv
+            !$omp parallel do default(shared) private(i) schedule(static) if(par)
             do j = 1, ny
                 do i = 1, nx
                     if (adh(i, j)) then
@@ -509,7 +516,9 @@ contains
                     end if
                 end do
             end do
+            !$omp end parallel do
             call top%apply(wkx, wky, qsx, qsy)
+            !$omp parallel do default(shared) private(i, cxv, cyv) schedule(static) if(par)
             do j = 1, ny
                 do i = 1, nx
                     ! convective difference (f_i − f_{i+1})/δx, f_{nx+1} = 0
@@ -527,6 +536,7 @@ contains
                     end if
                 end do
             end do
+            !$omp end parallel do
             call precondition(qx, qy)
         end subroutine jacobian_product
 
@@ -546,9 +556,9 @@ contains
                     call jacobian_product(solx, soly, vb(:, :, 1, 1), vb(:, :, 2, 1))
                     vb(:, :, 1, 1) = ex - vb(:, :, 1, 1); vb(:, :, 2, 1) = ey - vb(:, :, 2, 1)
                 end if
-                beta = sqrt(dot(vb(:, :, :, 1), vb(:, :, :, 1), 2*nx*ny))
+                beta = sqrt(pdot(vb(:, :, :, 1), vb(:, :, :, 1), 2*nx*ny))
                 if (beta <= tol_in .or. beta == 0) exit
-                vb(:, :, :, 1) = vb(:, :, :, 1)/beta
+                call pdivide(vb(:, :, :, 1), beta, 2*nx*ny)
                 gvec = 0; gvec(1) = beta
                 kk = 0
                 do k = 1, m
@@ -557,12 +567,12 @@ contains
                     kk = k
                     call jacobian_product(vb(:, :, 1, k), vb(:, :, 2, k), vb(:, :, 1, k + 1), vb(:, :, 2, k + 1))
                     do j = 1, k      ! modified Gram–Schmidt
-                        h = dot(vb(:, :, :, j), vb(:, :, :, k + 1), 2*nx*ny)
+                        h = pdot(vb(:, :, :, j), vb(:, :, :, k + 1), 2*nx*ny)
                         hess(j, k) = h
-                        vb(:, :, :, k + 1) = vb(:, :, :, k + 1) - h*vb(:, :, :, j)
+                        call paxpy(-h, vb(:, :, :, j), vb(:, :, :, k + 1), 2*nx*ny)
                     end do
-                    hess(k + 1, k) = sqrt(dot(vb(:, :, :, k + 1), vb(:, :, :, k + 1), 2*nx*ny))
-                    if (hess(k + 1, k) > 0) vb(:, :, :, k + 1) = vb(:, :, :, k + 1)/hess(k + 1, k)
+                    hess(k + 1, k) = sqrt(pdot(vb(:, :, :, k + 1), vb(:, :, :, k + 1), 2*nx*ny))
+                    if (hess(k + 1, k) > 0) call pdivide(vb(:, :, :, k + 1), hess(k + 1, k), 2*nx*ny)
                     do j = 1, k - 1   ! previous Givens rotations
                         tmp = cs(j)*hess(j, k) + sn(j)*hess(j + 1, k)
                         hess(j + 1, k) = -sn(j)*hess(j, k) + cs(j)*hess(j + 1, k)
@@ -588,7 +598,8 @@ contains
                     end if
                 end do
                 do i = 1, kk
-                    solx = solx + yv(i)*vb(:, :, 1, i); soly = soly + yv(i)*vb(:, :, 2, i)
+                    call paxpy(yv(i), vb(:, :, 1, i), solx, nx*ny)
+                    call paxpy(yv(i), vb(:, :, 2, i), soly, nx*ny)
                 end do
                 if (abs(gvec(kk + 1)) <= tol_in .or. it_total + nit >= settings%maxit) exit
             end do

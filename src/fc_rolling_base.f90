@@ -7,6 +7,8 @@ module fc_rolling_base
     use fc_geometry, only: fc_grid
     use fc_tangcg_operator, only: fc_tangential_operator
     use fc_tangcg_types, only: fc_tangential_result, EL_ADHESION, EL_SLIP
+    use fc_threads, only: omp_min_elements
+    !$ use omp_lib, only: omp_get_max_threads, omp_in_parallel
     implicit none
     private
 
@@ -51,7 +53,7 @@ module fc_rolling_base
         logical :: fastsim = .false.       !! steady: Kalker's simplified theory on the Hertz ellipse, no grid
     end type fc_rolling_case
 
-    public :: convective_difference, rigid_creepage, steady_diagonal, rolling_summary, dot
+    public :: convective_difference, rigid_creepage, steady_diagonal, rolling_summary, dot, pdot, paxpy, pdivide
 
 contains
 
@@ -133,5 +135,61 @@ contains
         end do
         dot = (s1 + s2) + (s3 + s4)
     end function dot
+
+
+    !> Threads for a vector operation of n elements: 1 below [[omp_min_elements]], inside a
+    !! parallel region or with one thread (then the serial code runs unchanged).
+    integer function vector_threads(n) result(nt)
+        integer, intent(in) :: n
+        nt = 1
+        !$ if (n > omp_min_elements .and. .not. omp_in_parallel()) nt = min(omp_get_max_threads(), 64)
+    end function vector_threads
+
+    !> [[dot]] with threads: each thread takes one contiguous block (four partial sums
+    !! each), the block sums are added in block order, so the result depends on the thread
+    !! count by rounding only; one thread gives [[dot]] exactly.
+    real(dp) function pdot(a, b, n) result(s)
+        integer, intent(in) :: n
+        real(dp), intent(in) :: a(n), b(n)
+        real(dp) :: part(64)
+        integer :: nt, t, lo, hi
+        nt = vector_threads(n)
+        if (nt == 1) then
+            s = dot(a, b, n); return
+        end if
+        !$omp parallel do num_threads(nt) default(shared) private(lo, hi) schedule(static, 1)
+        do t = 1, nt
+            lo = int((int(t - 1, i8)*n)/nt) + 1; hi = int((int(t, i8)*n)/nt)
+            part(t) = dot(a(lo:hi), b(lo:hi), hi - lo + 1)
+        end do
+        !$omp end parallel do
+        s = sum(part(1:nt))
+    end function pdot
+
+    !> y ← y + α·x over n elements, threaded above [[omp_min_elements]].
+    subroutine paxpy(alpha, x, y, n)
+        integer, intent(in) :: n
+        real(dp), intent(in) :: alpha, x(n)
+        real(dp), intent(inout) :: y(n)
+        integer :: i
+        !$omp parallel do default(shared) schedule(static) if(vector_threads(n) > 1)
+        do i = 1, n
+            y(i) = y(i) + alpha*x(i)
+        end do
+        !$omp end parallel do
+    end subroutine paxpy
+
+    !> y ← y/d over n elements, threaded above [[omp_min_elements]].
+    subroutine pdivide(y, d, n)
+        integer, intent(in) :: n
+        real(dp), intent(in) :: d
+        real(dp), intent(inout) :: y(n)
+        integer :: i
+        !$omp parallel do default(shared) schedule(static) if(vector_threads(n) > 1)
+        do i = 1, n
+            y(i) = y(i)/d
+        end do
+        !$omp end parallel do
+    end subroutine pdivide
 
 end module fc_rolling_base

@@ -14,6 +14,7 @@ module test_parallel
     use fc_tangcg, only: fc_tangential_operator, fc_tangential_settings, fc_tangential_result, build_tangential_operator, &
         solve_tangential
     use fc_tangcg_operator, only: apply_block_inverse
+    use fc_rolling, only: fc_rolling_settings, fc_rolling_loading, solve_rolling
     use fc_driver, only: run_driver
     use fc_mg2d, only: fc_strip_problem, fc_mg2d_settings, fc_mg2d_result, strip_model_problem, solve_strip_mg
     use fc_contact, only: fc_contact_operators, fc_contact_loading, fc_contact_settings, fc_contact_result, solve_contact, &
@@ -35,6 +36,7 @@ contains
             new_unittest('threads_same_result', test_threads_same), &
             new_unittest('threads_same_result_cattaneo', test_threads_same_cattaneo), &
             new_unittest('threads_block_product_side_by_side', test_lanes), &
+            new_unittest('threads_same_result_rolling', test_threads_rolling), &
             new_unittest('threads_concurrent_operator_builds', test_threads_orchestrator), &
             new_unittest('threads_same_result_strip_mg', test_threads_strip), &
             new_unittest('threads_count_bounds', test_thread_bounds), &
@@ -190,6 +192,52 @@ contains
         call check(error, max(maxval(abs(zx(:, :, 1) - zx(:, :, 2))), maxval(abs(zy(:, :, 1) - zy(:, :, 2)))), 0.0_dp, &
             'circulant block inverse, 1 vs 2 threads', abs=1e-14_dp*maxval(abs(zx(:, :, 1))))
     end subroutine test_lanes
+
+    !> Newton–GMRES steady rolling (Table 4.1 case 4's numbers as creepages) on 192×176,
+    !! above omp_min_elements, so that its element loops, Gram–Schmidt dot products and
+    !! updates and its block products run on two threads, against one thread: the same
+    !! Krylov iterations and slip area, forces to 1e−8·μFn (two threads add the dot
+    !! products' partial sums in another order: rounding only; measured ≲ 1e−12).
+    subroutine test_threads_rolling(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_material) :: mat
+        type(fc_grid) :: grid
+        type(fc_normal_operator) :: nop
+        type(fc_normal_settings) :: set
+        type(fc_normal_result) :: nr
+        type(fc_tangential_operator) :: top
+        type(fc_rolling_settings) :: rs
+        type(fc_rolling_loading) :: rl
+        type(fc_tangential_result) :: r(2)
+        integer :: stat, nt0, nt
+        character(len=256) :: em
+        real(dp) :: ftol
+        nt0 = fc_thread_count()
+        mat%g1 = 200; mat%g2 = 200; mat%nu1 = 0.42_dp; mat%nu2 = 0.42_dp
+        call combine_material(mat, stat, em)
+        call make_grid(grid, 192, 176, -1.2857_dp, 1.2857_dp, -1.2857_dp, 1.2857_dp, stat, em)
+        call check(error, grid%nx*grid%ny > omp_min_elements, 'grid above the threshold of the threaded loops')
+        if (allocated(error)) return
+        call set_thread_count(1)
+        call build_normal_operator(nop, mat, grid)
+        call solve_normal(nop, quadratic_gap(grid, 50.0_dp, 50.0_dp), set, nr, stat, em, fn=9.1954_dp)
+        rl%mu = 0.4_dp; rl%xi = 0.0021_dp; rl%eta = 0.0010_dp; rl%phi = 0.003_dp
+        do nt = 1, 2
+            call set_thread_count(nt)
+            call build_tangential_operator(top, mat, grid)
+            call solve_rolling(top, nr%pn, rl, rs, r(nt), stat, em)
+        end do
+        call set_thread_count(nt0)
+        ftol = 0.4_dp*nr%fn
+        call check(error, r(1)%status == FC_CONVERGED .and. r(2)%status == FC_CONVERGED, 'converges with 1 and 2 threads')
+        call check(error, r(1)%iterations == r(2)%iterations, 'same Krylov iterations')
+        call check(error, r(1)%nslip == r(2)%nslip, 'same slip area')
+        call check(error, max(abs(r(1)%fx - r(2)%fx), abs(r(1)%fy - r(2)%fy)), 0.0_dp, '1 vs 2 threads: forces', &
+                   abs=1e-8_dp*ftol)
+        write (*, '(a,es10.2)') '    threads_same_result_rolling: max |dF|/(mu Fn) = ', &
+            max(abs(r(1)%fx - r(2)%fx), abs(r(1)%fy - r(2)%fy))/ftol
+        call nop%destroy(); call top%destroy()
+    end subroutine test_threads_rolling
 
     !> The orchestrator with two threads builds the normal and the tangential operators side
     !! by side ([[ensure_operators]]): the same Cattaneo problem as above through
