@@ -397,26 +397,39 @@ contains
     !! else SYMBOL_GENERAL.  The symbol of an even (odd) real circulant is real (imaginary).
     pure integer function circulant_parity(c) result(parity)
         real(dp), intent(in) :: c(:, :)
-        integer :: mx, my, i, j, ir, jr
-        real(dp) :: tol, even_dev, odd_dev
+        integer :: mx, my, i, j, jr
+        real(dp) :: tol
+        logical :: even, odd
         mx = size(c, 1); my = size(c, 2)
         tol = 1.0e-13_dp*maxval(abs(c))
-        even_dev = 0; odd_dev = 0
-        ! the partner of index k is modulo(1 − k, m) + 1: 1 for k = 1, else m + 2 − k
-        do j = 1, my
+        even = .true.; odd = .true.
+        ! the partner of index k is modulo(1 − k, m) + 1: 1 for k = 1, else m + 2 − k.  Each
+        ! pair of columns (j, jr) once, element i against mx + 2 − i; stop as soon as
+        ! neither symmetry holds (each test a plain comparison, so the loops vectorise)
+        do j = 1, my/2 + 1
             jr = 1
             if (j > 1) jr = my + 2 - j
-            even_dev = max(even_dev, abs(c(1, j) - c(1, jr)))
-            odd_dev = max(odd_dev, abs(c(1, j) + c(1, jr)))
-            do i = 2, mx
-                ir = mx + 2 - i
-                even_dev = max(even_dev, abs(c(i, j) - c(ir, jr)))
-                odd_dev = max(odd_dev, abs(c(i, j) + c(ir, jr)))
-            end do
+            if (even) even = abs(c(1, j) - c(1, jr)) <= tol
+            if (odd) odd = abs(c(1, j) + c(1, jr)) <= tol
+            if (even) then
+                do i = 2, mx
+                    if (abs(c(i, j) - c(mx + 2 - i, jr)) > tol) then
+                        even = .false.; exit
+                    end if
+                end do
+            end if
+            if (odd) then
+                do i = 2, mx
+                    if (abs(c(i, j) + c(mx + 2 - i, jr)) > tol) then
+                        odd = .false.; exit
+                    end if
+                end do
+            end if
+            if (.not. (even .or. odd)) exit
         end do
-        if (even_dev <= tol) then
+        if (even) then
             parity = SYMBOL_EVEN
-        else if (odd_dev <= tol) then
+        else if (odd) then
             parity = SYMBOL_ODD
         else
             parity = SYMBOL_GENERAL
