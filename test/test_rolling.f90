@@ -49,6 +49,20 @@ contains
         type(fc_grid), intent(out) :: grid
         real(dp), allocatable, intent(out) :: pn(:, :)
         type(fc_tangential_operator), intent(inout) :: top
+        real(dp) :: fn
+        call sphere_setup(nx, ny, l_cat, r_cat, 1e-10_dp, grid, pn, fn, top)
+    end subroutine cattaneo_setup
+
+    !> The Cattaneo material and load on an nx×ny grid over [−half, half]² mm with rx = 50 and
+    !! the given ry [mm], normal solve to `tol`: pressure pn, total force fn and the
+    !! tangential operator.
+    subroutine sphere_setup(nx, ny, half, ry, tol, grid, pn, fn, top)
+        integer, intent(in) :: nx, ny
+        real(dp), intent(in) :: half, ry, tol
+        type(fc_grid), intent(out) :: grid
+        real(dp), allocatable, intent(out) :: pn(:, :)
+        real(dp), intent(out) :: fn
+        type(fc_tangential_operator), intent(inout) :: top
         type(fc_material) :: mat
         type(fc_normal_operator) :: nop
         type(fc_normal_settings) :: ns
@@ -57,14 +71,14 @@ contains
         character(len=msg_len) :: msg
         mat%g1 = g_cat; mat%g2 = g_cat; mat%nu1 = nu_cat; mat%nu2 = nu_cat
         call combine_material(mat, stat, msg)
-        call make_grid(grid, nx, ny, -l_cat, l_cat, -l_cat, l_cat, stat, msg)
+        call make_grid(grid, nx, ny, -half, half, -half, half, stat, msg)
         call build_normal_operator(nop, mat, grid)
-        ns%tol = 1e-10_dp
-        call solve_normal(nop, quadratic_gap(grid, r_cat, r_cat), ns, nr, stat, msg, fn=fn_cat)
-        pn = nr%pn
+        ns%tol = tol
+        call solve_normal(nop, quadratic_gap(grid, r_cat, ry), ns, nr, stat, msg, fn=fn_cat)
+        pn = nr%pn; fn = nr%fn
         call nop%destroy()
         call build_tangential_operator(top, mat, grid)
-    end subroutine cattaneo_setup
+    end subroutine sphere_setup
 
     !> Warm starts as a creep-force sweep makes them (the previous point's tractions), in two
     !! situations random sweeps found failing (doc/rolling.md, "Warm starts"), each to
@@ -77,10 +91,8 @@ contains
     subroutine test_warm_starts(error)
         type(error_type), allocatable, intent(out) :: error
         type(fc_grid) :: grid
-        type(fc_material) :: mat
-        type(fc_normal_operator) :: nop
-        type(fc_normal_settings) :: ns
-        type(fc_normal_result) :: nr
+        real(dp), allocatable :: pn(:, :)
+        real(dp) :: fn
         type(fc_tangential_operator) :: top
         type(fc_rolling_settings) :: rs
         type(fc_rolling_loading) :: rl
@@ -88,21 +100,16 @@ contains
         integer :: stat
         character(len=msg_len) :: msg
         real(dp) :: ftol
-        mat%g1 = g_cat; mat%g2 = g_cat; mat%nu1 = nu_cat; mat%nu2 = nu_cat
-        call combine_material(mat, stat, msg)
-        call make_grid(grid, 60, 50, -0.9_dp, 0.9_dp, -0.9_dp, 0.9_dp, stat, msg)
-        call build_normal_operator(nop, mat, grid)
-        call solve_normal(nop, quadratic_gap(grid, 50.0_dp, 100.0_dp), ns, nr, stat, msg, fn=fn_cat)
-        call build_tangential_operator(top, mat, grid)
-        ftol = mu_cat*nr%fn
+        call sphere_setup(60, 50, 0.9_dp, 100.0_dp, 1e-5_dp, grid, pn, fn, top)
+        ftol = mu_cat*fn
         rs%maxit = 1000
         rl%mu = mu_cat; rl%xi = 0.003_dp; rl%eta = 0.002_dp; rl%phi = -0.015789474_dp
-        call solve_rolling(top, nr%pn, rl, rs, r0, stat, msg)
+        call solve_rolling(top, pn, rl, rs, r0, stat, msg)
         call check(error, stat == 0 .and. r0%status == FC_CONVERGED, 'previous point converges: '//trim(r0%message))
         if (allocated(error)) return
         rl%phi = -0.0052631579_dp
-        call solve_rolling(top, nr%pn, rl, rs, rw, stat, msg, px_start=r0%px, py_start=r0%py)
-        call solve_rolling(top, nr%pn, rl, rs, rc, stat, msg)
+        call solve_rolling(top, pn, rl, rs, rw, stat, msg, px_start=r0%px, py_start=r0%py)
+        call solve_rolling(top, pn, rl, rs, rc, stat, msg)
         call check(error, rw%status == FC_CONVERGED, 'spin sweep: warm start converges ('// &
                    trim(status_name(rw%status))//', '//trim(fmt_i(rw%iterations))//' Krylov iterations)')
         call check(error, rc%status == FC_CONVERGED, 'spin sweep: cold solve converges')
@@ -110,14 +117,14 @@ contains
         call check(error, rw%fx, rc%fx, 'spin sweep: Fx warm = cold', abs=1e-4_dp*ftol)
         call check(error, rw%fy, rc%fy, 'spin sweep: Fy warm = cold', abs=1e-4_dp*ftol)
         rl%xi = 0; rl%eta = 1.5789474e-4_dp; rl%phi = 0
-        call solve_rolling(top, nr%pn, rl, rs, r0, stat, msg)
+        call solve_rolling(top, pn, rl, rs, r0, stat, msg)
         rl%eta = 0
-        call solve_rolling(top, nr%pn, rl, rs, rw, stat, msg, px_start=r0%px, py_start=r0%py)
+        call solve_rolling(top, pn, rl, rs, rw, stat, msg, px_start=r0%px, py_start=r0%py)
         call check(error, r0%status == FC_CONVERGED .and. rw%status == FC_CONVERGED, &
                    'zero creepage from a warm start converges ('//trim(status_name(rw%status))//')')
-        call check(error, max(maxval(abs(rw%px)), maxval(abs(rw%py))) <= 1e-6_dp*mu_cat*maxval(nr%pn), &
+        call check(error, max(maxval(abs(rw%px)), maxval(abs(rw%py))) <= 1e-6_dp*mu_cat*maxval(pn), &
                    'zero creepage: tractions vanish')
-        call nop%destroy(); call top%destroy()
+        call top%destroy()
     contains
         function fmt_i(i) result(t)
             integer, intent(in) :: i
@@ -133,31 +140,24 @@ contains
     subroutine test_force_bounded(error)
         type(error_type), allocatable, intent(out) :: error
         type(fc_grid) :: grid
-        type(fc_material) :: mat
-        type(fc_normal_operator) :: nop
-        type(fc_normal_settings) :: ns
-        type(fc_normal_result) :: nr
+        real(dp), allocatable :: pn(:, :)
+        real(dp) :: fn
         type(fc_tangential_operator) :: top
         type(fc_rolling_settings) :: rs
         type(fc_rolling_loading) :: rl
         type(fc_tangential_result) :: r
         integer :: stat
         character(len=msg_len) :: msg
-        mat%g1 = g_cat; mat%g2 = g_cat; mat%nu1 = nu_cat; mat%nu2 = nu_cat
-        call combine_material(mat, stat, msg)
-        call make_grid(grid, 48, 40, -0.9_dp, 0.9_dp, -0.9_dp, 0.9_dp, stat, msg)
-        call build_normal_operator(nop, mat, grid)
-        call solve_normal(nop, quadratic_gap(grid, 50.0_dp, 50.0_dp), ns, nr, stat, msg, fn=fn_cat)
-        call build_tangential_operator(top, mat, grid)
+        call sphere_setup(48, 40, 0.9_dp, 50.0_dp, 1e-5_dp, grid, pn, fn, top)
         rs%maxit = 1000
         rl%mu = mu_cat; rl%phi = 0.03_dp; rl%force_prescribed = .true.
-        rl%fx = 0.95_dp*mu_cat*nr%fn; rl%fy = 0
-        call solve_rolling_loading(top, nr%pn, rl, rs, r, stat, msg)
+        rl%fx = 0.95_dp*mu_cat*fn; rl%fy = 0
+        call solve_rolling_loading(top, pn, rl, rs, r, stat, msg)
         call check(error, stat == 0, 'no input error from the loop''s own steps: '//trim(msg))
         call check(error, r%status == FC_CONVERGED .or. r%status == FC_NOT_CONVERGED, &
                    'a solver status: '//trim(status_name(r%status)))
         call check(error, abs(r%xi) <= 1 .and. abs(r%eta) <= 1, 'creepages within the bound')
-        call nop%destroy(); call top%destroy()
+        call top%destroy()
     end subroutine test_force_bounded
 
     !> Flat pressure 1 on the elements whose centres lie in the ellipse (x/a)² + (y/b)² < 1
