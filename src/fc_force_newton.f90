@@ -37,6 +37,7 @@ module fc_force_newton
         real(dp), private :: tol = 0, flimit = 1, ftol = 0
         integer, private :: halvings = 0
         logical, private :: first = .true.
+        logical, private :: reeval = .false.   !! the trial re-solves the current iterate more tightly
     contains
         procedure :: start => newton_start
         procedure :: update => newton_update
@@ -53,7 +54,7 @@ contains
         self%tol = tol; self%flimit = flimit; self%ftol = tol*flimit
         self%tol_inner = max(tol, min(1.0e-3_dp, 0.1_dp*fref/flimit))
         self%outer = 0; self%halvings = 0; self%step = 1
-        self%converged = .false.; self%first = .true.
+        self%converged = .false.; self%first = .true.; self%reeval = .false.
         self%r = 0
         self%iterations = 0; self%matvecs = 0; self%cpu_seconds = 0
     end subroutine newton_start
@@ -79,7 +80,8 @@ contains
             call next_direction(self, done)
             return
         end if
-        if (norm2(r_trial) < norm2(self%r) .or. self%halvings == max_halvings) then
+        if (norm2(r_trial) < norm2(self%r) .or. self%halvings == max_halvings .or. self%reeval) then
+            self%reeval = .false.
             ! Broyden update of the Jacobian with the step actually taken
             accepted = .true.
             dr = r_trial - self%r
@@ -109,6 +111,16 @@ contains
         done = .false.
         if (norm2(self%r) <= self%ftol .and. self%tol_inner <= self%tol) then
             self%converged = .true.; done = .true.; return
+        end if
+        if (norm2(self%r) <= self%ftol) then
+            ! the force tolerance met by a loosely solved iterate: solve the same point to the
+            ! final tolerance before stepping on (else trials at that accuracy, whose residual
+            ! includes the loose solve's force error, were all rejected and the step halved to
+            ! nothing: doc/rolling.md); no step, so no Broyden update either
+            self%tol_inner = self%tol
+            self%x_trial = self%x; self%step = 1; self%halvings = 0
+            self%reeval = .true.
+            return
         end if
         self%tol_inner = max(self%tol, min(self%tol_inner, 0.01_dp*norm2(self%r)/self%flimit))
         det = self%jac(1, 1)*self%jac(2, 2) - self%jac(1, 2)*self%jac(2, 1)

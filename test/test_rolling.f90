@@ -133,10 +133,11 @@ contains
         end function fmt_i
     end subroutine test_warm_starts
 
-    !> Prescribed creep forces near saturation with spin (Fx = 0.95·μFn, Fy = 0, φ = 0.03 /mm,
-    !! the sphere on 48×40): the Broyden steps of the creep-force loop are kept within
+    !> The creep-force loop: (1) prescribed forces near saturation with spin (Fx = 0.95·μFn,
+    !! Fy = 0, φ = 0.03 /mm, the sphere on 48×40): its Broyden steps are kept within
     !! |ξ|, |η| ≤ 1, so the loop ends with a solver status (converged or not_converged), not
-    !! with the input error of infinite creepages it ran into before.
+    !! with the input error of infinite creepages it ran into before; (2) a warm-started
+    !! point of an Fx sweep converges (below).
     subroutine test_force_bounded(error)
         type(error_type), allocatable, intent(out) :: error
         type(fc_grid) :: grid
@@ -145,7 +146,7 @@ contains
         type(fc_tangential_operator) :: top
         type(fc_rolling_settings) :: rs
         type(fc_rolling_loading) :: rl
-        type(fc_tangential_result) :: r
+        type(fc_tangential_result) :: r, r2
         integer :: stat
         character(len=msg_len) :: msg
         call sphere_setup(48, 40, 0.9_dp, 50.0_dp, 1e-5_dp, grid, pn, fn, top)
@@ -157,6 +158,22 @@ contains
         call check(error, r%status == FC_CONVERGED .or. r%status == FC_NOT_CONVERGED, &
                    'a solver status: '//trim(status_name(r%status)))
         call check(error, abs(r%xi) <= 1 .and. abs(r%eta) <= 1, 'creepages within the bound')
+        call top%destroy()
+        ! A warm-started point of an Fx sweep (0.184 → 0.553 N, ellipse ry = 100, no spin):
+        ! the loosely solved iterate met the force tolerance, every trial solved to the final
+        ! tolerance was rejected and the step halved to nothing; now that iterate is solved
+        ! again to the final tolerance first.
+        call sphere_setup(48, 40, 0.9_dp, 100.0_dp, 1e-5_dp, grid, pn, fn, top)
+        rl%phi = 0; rl%fx = 0.18421053_dp
+        call solve_rolling_loading(top, pn, rl, rs, r, stat, msg)
+        call check(error, stat == 0 .and. r%status == FC_CONVERGED, 'Fx sweep: first point converges')
+        if (allocated(error)) return
+        rl%fx = 0.55263158_dp
+        call solve_rolling_loading(top, pn, rl, rs, r2, stat, msg, px_start=r%px, py_start=r%py, xi_start=r%xi, &
+                                   eta_start=r%eta)
+        call check(error, stat == 0 .and. r2%status == FC_CONVERGED, 'Fx sweep: warm-started second point converges ('// &
+                   trim(status_name(r2%status))//')')
+        call check(error, r2%fx, rl%fx, 'Fx sweep: force met', abs=1e-5_dp*mu_cat*fn)
         call top%destroy()
     end subroutine test_force_bounded
 
