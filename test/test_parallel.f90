@@ -92,6 +92,20 @@ contains
         end if
     end subroutine test_threads_same
 
+    !> The Cattaneo material (G = 200, ν = 0.42) and the 192×176 grid over the Table 4.1 area,
+    !! checked to lie above omp_min_elements (where the solvers' loops run threaded).
+    subroutine cattaneo_192(mat, grid, error)
+        type(fc_material), intent(out) :: mat
+        type(fc_grid), intent(out) :: grid
+        type(error_type), allocatable, intent(inout) :: error
+        integer :: stat
+        character(len=256) :: em
+        mat%g1 = 200; mat%g2 = 200; mat%nu1 = 0.42_dp; mat%nu2 = 0.42_dp
+        call combine_material(mat, stat, em)
+        call make_grid(grid, 192, 176, -1.2857_dp, 1.2857_dp, -1.2857_dp, 1.2857_dp, stat, em)
+        call check(error, grid%nx*grid%ny > omp_min_elements, 'grid above the threshold of the threaded loops')
+    end subroutine cattaneo_192
+
     !> The Cattaneo sphere of thesis Table 4.1 case 4 (R = 50, G = 200, ν = 0.42, Fn = 9.1954,
     !! μ = 0.4) on 192×176 — above omp_min_elements, so that BCCG's and TangCG's element
     !! loops, reductions and spectral products run on 2 threads (FFTW plans too) — solved
@@ -114,10 +128,7 @@ contains
         character(len=256) :: em
         real(dp) :: tmax
         nt0 = fc_thread_count()
-        mat%g1 = 200; mat%g2 = 200; mat%nu1 = 0.42_dp; mat%nu2 = 0.42_dp
-        call combine_material(mat, stat, em)
-        call make_grid(grid, 192, 176, -1.2857_dp, 1.2857_dp, -1.2857_dp, 1.2857_dp, stat, em)
-        call check(error, grid%nx*grid%ny > omp_min_elements, 'grid above the threshold of the threaded loops')
+        call cattaneo_192(mat, grid, error)
         if (allocated(error)) return
         do nt = 1, 2
             call set_thread_count(nt)
@@ -213,10 +224,7 @@ contains
         character(len=256) :: em
         real(dp) :: ftol
         nt0 = fc_thread_count()
-        mat%g1 = 200; mat%g2 = 200; mat%nu1 = 0.42_dp; mat%nu2 = 0.42_dp
-        call combine_material(mat, stat, em)
-        call make_grid(grid, 192, 176, -1.2857_dp, 1.2857_dp, -1.2857_dp, 1.2857_dp, stat, em)
-        call check(error, grid%nx*grid%ny > omp_min_elements, 'grid above the threshold of the threaded loops')
+        call cattaneo_192(mat, grid, error)
         if (allocated(error)) return
         call set_thread_count(1)
         call build_normal_operator(nop, mat, grid)
