@@ -554,7 +554,8 @@ contains
             errmsg = "&geometry kind = '"//trim(s%kind)//"': problem = '"//trim(s%problem)//"' needs kind = 'strip2d'"
         else if (.not. is_given(s, 'grid', 'nx')) then
             errmsg = "&grid nx: missing required value for problem = '"//trim(s%problem)//"' (a power of 2, >= 4)"
-        else if (s%nx < 4 .or. iand(s%nx, s%nx - 1) /= 0 .or. int(s%nx, i8) > max_grid_elements) then
+        ! in 64 bits: Fortran's .or. need not short-circuit, and nx − 1 overflows for nx = −2^31
+        else if (s%nx < 4 .or. iand(int(s%nx, i8), int(s%nx, i8) - 1) /= 0 .or. int(s%nx, i8) > max_grid_elements) then
             errmsg = '&grid nx = '//fmt_int(s%nx)//": must be a power of 2 in [4, 4096^2] for problem = '"// &
                 trim(s%problem)//"'"
         else if (is_given(s, 'grid', 'ny') .and. s%ny /= 1) then

@@ -125,7 +125,7 @@ contains
         if (which < 1 .or. which > 3) then
             stat = FC_ERR_VALUE; write (errmsg, '(a,i0,a)') 'strip2d: model problem ', which, ' is not 1, 2 or 3'; return
         end if
-        if (n < 4 .or. iand(n, n - 1) /= 0) then
+        if (n < 4 .or. iand(int(n, i8), int(n, i8) - 1) /= 0) then   ! 64 bits: no overflow at n = −2^31
             stat = FC_ERR_VALUE; write (errmsg, '(a,i0,a)') 'strip2d: n = ', n, ' must be a power of 2 >= 4'; return
         end if
         call make_grid(prob%grid, n, 1, -4.0_dp, 4.0_dp, -50.0_dp, 50.0_dp, stat, errmsg)

@@ -934,6 +934,11 @@ contains
         type(error_type), allocatable, intent(out) :: error
         call expect_bad(error, strip_case('bad', '2', '1000', 'mg-fft-rsm'), [character(len=16) :: '&grid', 'nx', '1000', &
             'power of 2'])
+        if (allocated(error)) return
+        ! the most negative integer: the power-of-2 test must not overflow (found by the
+        ! sanitized fuzz run, UBSan: nx − 1)
+        call expect_bad(error, strip_case('bad', '2', '-2147483648', 'mg-fft-rsm'), [character(len=16) :: '&grid', 'nx', &
+            '-2147483648', 'power of 2'])
     end subroutine test_strip_bad_nx
 
     subroutine test_strip_needs_kind(error)

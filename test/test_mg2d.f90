@@ -370,6 +370,8 @@ contains
         call check(error, stat /= 0 .and. index(msg, 'model problem') > 0, 'MP4: '//trim(msg))
         call strip_model_problem(1, 100, prob, stat, msg)
         call check(error, stat /= 0 .and. index(msg, 'power of 2') > 0, 'n = 100: '//trim(msg))
+        call strip_model_problem(1, -huge(1) - 1, prob, stat, msg)   ! no overflow in the power-of-2 test
+        call check(error, stat /= 0 .and. index(msg, 'power of 2') > 0, 'n = -2^31: '//trim(msg))
         call strip_model_problem(1, 64, prob, stat, msg)
         set%smoother = 'jacobi'
         call solve_strip_mg(prob, set, res, stat, msg)
