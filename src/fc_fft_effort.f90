@@ -108,8 +108,8 @@ contains
         logical, intent(in), optional :: periodic
         real(dp), allocatable :: rbuf(:, :)
         complex(dp), allocatable :: cbuf(:, :)
-        type(c_ptr) :: p(6)
-        integer :: mx, my, mxh, k, nplans
+        type(c_ptr) :: p(4)
+        integer :: mx, my, mxh, k
         logical :: per
         per = .false.
         if (present(periodic)) per = periodic
@@ -121,29 +121,20 @@ contains
         end if
         mxh = mx/2 + 1
         allocate (rbuf(mx, my), cbuf(mxh, my))
-        p = c_null_ptr
-        nplans = 2
         !$omp critical (fc_fftw_planner)
-        p(1) = fftw_plan_dft_r2c_2d(int(my, c_int), int(mx, c_int), rbuf, cbuf, flags)
-        p(2) = fftw_plan_dft_c2r_2d(int(my, c_int), int(mx, c_int), cbuf, rbuf, flags)
-        if (my > ny) then
-            ! the padding-aware passes of fc_toeplitz: r2c along x on the ny data columns,
-            ! c2c along y; the inverse in the opposite order
-            nplans = 6
-            p(3) = fftw_plan_many_dft_r2c(1_c_int, [int(mx, c_int)], int(ny, c_int), rbuf, [int(mx, c_int)], &
-                1_c_int, int(mx, c_int), cbuf, [int(mxh, c_int)], 1_c_int, int(mxh, c_int), flags)
-            p(4) = fftw_plan_many_dft(1_c_int, [int(my, c_int)], int(mxh, c_int), cbuf, [int(my, c_int)], &
-                int(mxh, c_int), 1_c_int, cbuf, [int(my, c_int)], int(mxh, c_int), 1_c_int, FFTW_FORWARD, flags)
-            p(5) = fftw_plan_many_dft(1_c_int, [int(my, c_int)], int(mxh, c_int), cbuf, [int(my, c_int)], &
-                int(mxh, c_int), 1_c_int, cbuf, [int(my, c_int)], int(mxh, c_int), 1_c_int, FFTW_BACKWARD, flags)
-            p(6) = fftw_plan_many_dft_c2r(1_c_int, [int(mx, c_int)], int(ny, c_int), cbuf, [int(mxh, c_int)], &
-                1_c_int, int(mxh, c_int), rbuf, [int(mx, c_int)], 1_c_int, int(mx, c_int), flags)
-        end if
+        ! the passes of fc_toeplitz's products: r2c along x on the ny data columns, c2c along
+        ! y; the inverse in the opposite order
+        p(1) = fftw_plan_many_dft_r2c(1_c_int, [int(mx, c_int)], int(ny, c_int), rbuf, [int(mx, c_int)], &
+            1_c_int, int(mx, c_int), cbuf, [int(mxh, c_int)], 1_c_int, int(mxh, c_int), flags)
+        p(2) = fftw_plan_many_dft(1_c_int, [int(my, c_int)], int(mxh, c_int), cbuf, [int(my, c_int)], &
+            int(mxh, c_int), 1_c_int, cbuf, [int(my, c_int)], int(mxh, c_int), 1_c_int, FFTW_FORWARD, flags)
+        p(3) = fftw_plan_many_dft(1_c_int, [int(my, c_int)], int(mxh, c_int), cbuf, [int(my, c_int)], &
+            int(mxh, c_int), 1_c_int, cbuf, [int(my, c_int)], int(mxh, c_int), 1_c_int, FFTW_BACKWARD, flags)
+        p(4) = fftw_plan_many_dft_c2r(1_c_int, [int(mx, c_int)], int(ny, c_int), cbuf, [int(mxh, c_int)], &
+            1_c_int, int(mxh, c_int), rbuf, [int(mx, c_int)], 1_c_int, int(mx, c_int), flags)
         all_made = .true.
-        do k = 1, nplans
-            all_made = all_made .and. c_associated(p(k))
-        end do
         do k = 1, size(p)
+            all_made = all_made .and. c_associated(p(k))
             if (c_associated(p(k))) call fftw_destroy_plan(p(k))
         end do
         !$omp end critical (fc_fftw_planner)

@@ -47,12 +47,15 @@ module fc_toeplitz
         integer :: nx = 0, ny = 0, mx = 0, my = 0
         real(dp), allocatable :: rbuf(:, :)
         complex(dp), allocatable :: cbuf(:, :)
-        type(c_ptr) :: plan_fwd = c_null_ptr, plan_bwd = c_null_ptr
-        ! Products skip the zero padding: r2c along x on the ny data columns only, then c2c
-        ! along y; inverse in the opposite order, c2r only for the ny columns kept.
+        ! Every 2D transform is two passes of 1D transforms.  Products skip the zero padding:
+        ! r2c along x on the ny data columns only, then c2c along y; inverse in the opposite
+        ! order, c2r only for the ny columns kept.  Transforms of a whole mx×my array (the
+        ! builds) take the x passes over all my columns (`plan_xf_*`, made when my > ny).
+        ! FFTW_ESTIMATE plans these 1D passes about 30 times faster than the 2D problem
+        ! (doc/operators.md, "Plans"), whose planning was most of an operator's set-up.
         type(c_ptr) :: plan_x_fwd = c_null_ptr, plan_y_fwd = c_null_ptr
         type(c_ptr) :: plan_y_bwd = c_null_ptr, plan_x_bwd = c_null_ptr
-        logical :: split = .false.         !! use the padding-aware passes
+        type(c_ptr) :: plan_xf_fwd = c_null_ptr, plan_xf_bwd = c_null_ptr
         integer :: refs = 0                !! blocks using this set
         integer :: planner_threads = 1     !! threads of these plans
         !> lanes of [[block_product]]: its two components run side by side, one thread each,
@@ -176,11 +179,11 @@ contains
                     w%rbuf(i + 1, j + 1) = kext(di, dj)
                 end do
             end do
-            call fftw_execute_dft_r2c(w%plan_fwd, w%rbuf, w%cbuf)
+            call full_forward(w)
             smax = maxval(real(w%cbuf, dp))
             if (present(min_symbol)) min_symbol = minval(real(w%cbuf, dp))/smax
             w%cbuf = 1/cmplx(max(real(w%cbuf, dp), 1.0e-8_dp*smax), 0.0_dp, dp)/real(mx*my, dp)
-            call fftw_execute_dft_c2r(w%plan_bwd, w%cbuf, w%rbuf)
+            call full_backward(w)
             allocate (mker(-(nx - 1):nx - 1, -(ny - 1):ny - 1))
             do j = -(ny - 1), ny - 1
                 jw = j + 1; if (j < 0) jw = j + my + 1      ! modulo(j, my) + 1
@@ -229,7 +232,7 @@ contains
         allocate (k(-hx:hx, -hy:hy), wrapped(0:nx - 1, 0:ny - 1))
         associate (w => op%fft)
             w%cbuf = cmplx(rsymbol, 0.0_dp, dp)
-            call fftw_execute_dft_c2r(w%plan_bwd, w%cbuf, w%rbuf)
+            call full_backward(w)
             do j = -hy, hy
                 do i = -hx, hx
                     k(i, j) = 0.5_dp*(w%rbuf(at(i, op%mx), at(j, op%my)) + w%rbuf(at(-i, op%mx), at(-j, op%my)))
@@ -307,45 +310,80 @@ contains
         !$omp end critical (fc_fftw_planner)
     end subroutine setup_plans
 
-    !> Create FFTW plans (FFTW_ESTIMATE: no measurement, deterministic) on new buffers.
+    !> Create FFTW plans (FFTW_ESTIMATE: no measurement, deterministic) on new buffers: the
+    !! passes of the products and, unless `products_only`, of whole-array transforms.
     subroutine plans_create(w, nx, ny, mx, my, products_only)
         type(fc_fft_plans), intent(inout) :: w
         integer, intent(in) :: nx, ny, mx, my
         logical, intent(in), optional :: products_only   !! only the plans of products (lanes)
         integer :: mxh
+        logical :: whole
         w%nx = nx; w%ny = ny; w%mx = mx; w%my = my
         w%planner_threads = fftw_planner_threads()
-        w%split = my > ny
-        allocate (w%rbuf(mx, my), w%cbuf(mx/2 + 1, my))
-        ! FFTW's row-major dimensions are the reverse of Fortran's: (my, mx).
-        if (.not. (present(products_only) .and. w%split)) then
-            w%plan_fwd = fftw_plan_dft_r2c_2d(int(my, c_int), int(mx, c_int), w%rbuf, w%cbuf, FFTW_ESTIMATE)
-            w%plan_bwd = fftw_plan_dft_c2r_2d(int(my, c_int), int(mx, c_int), w%cbuf, w%rbuf, FFTW_ESTIMATE)
-        end if
-        if (w%split) then
-            mxh = mx/2 + 1
-            w%plan_x_fwd = fftw_plan_many_dft_r2c(1_c_int, [int(mx, c_int)], int(ny, c_int), w%rbuf, [int(mx, c_int)], &
-                1_c_int, int(mx, c_int), w%cbuf, [int(mxh, c_int)], 1_c_int, int(mxh, c_int), FFTW_ESTIMATE)
-            w%plan_y_fwd = fftw_plan_many_dft(1_c_int, [int(my, c_int)], int(mxh, c_int), w%cbuf, [int(my, c_int)], &
-                int(mxh, c_int), 1_c_int, w%cbuf, [int(my, c_int)], int(mxh, c_int), 1_c_int, FFTW_FORWARD, FFTW_ESTIMATE)
-            w%plan_y_bwd = fftw_plan_many_dft(1_c_int, [int(my, c_int)], int(mxh, c_int), w%cbuf, [int(my, c_int)], &
-                int(mxh, c_int), 1_c_int, w%cbuf, [int(my, c_int)], int(mxh, c_int), 1_c_int, FFTW_BACKWARD, FFTW_ESTIMATE)
-            w%plan_x_bwd = fftw_plan_many_dft_c2r(1_c_int, [int(mx, c_int)], int(ny, c_int), w%cbuf, [int(mxh, c_int)], &
-                1_c_int, int(mxh, c_int), w%rbuf, [int(mx, c_int)], 1_c_int, int(mx, c_int), FFTW_ESTIMATE)
+        whole = my > ny
+        if (present(products_only)) whole = whole .and. .not. products_only
+        mxh = mx/2 + 1
+        allocate (w%rbuf(mx, my), w%cbuf(mxh, my))
+        ! FFTW's row-major dimensions are the reverse of Fortran's: x is the contiguous one.
+        w%plan_x_fwd = x_pass_r2c(ny)
+        w%plan_y_fwd = y_pass(FFTW_FORWARD)
+        w%plan_y_bwd = y_pass(FFTW_BACKWARD)
+        w%plan_x_bwd = x_pass_c2r(ny)
+        if (whole) then
+            w%plan_xf_fwd = x_pass_r2c(my)
+            w%plan_xf_bwd = x_pass_c2r(my)
         end if
         w%refs = 1
+    contains
+        type(c_ptr) function x_pass_r2c(columns) result(plan)
+            integer, intent(in) :: columns
+            plan = fftw_plan_many_dft_r2c(1_c_int, [int(mx, c_int)], int(columns, c_int), w%rbuf, [int(mx, c_int)], &
+                1_c_int, int(mx, c_int), w%cbuf, [int(mxh, c_int)], 1_c_int, int(mxh, c_int), FFTW_ESTIMATE)
+        end function x_pass_r2c
+        type(c_ptr) function x_pass_c2r(columns) result(plan)
+            integer, intent(in) :: columns
+            plan = fftw_plan_many_dft_c2r(1_c_int, [int(mx, c_int)], int(columns, c_int), w%cbuf, [int(mxh, c_int)], &
+                1_c_int, int(mxh, c_int), w%rbuf, [int(mx, c_int)], 1_c_int, int(mx, c_int), FFTW_ESTIMATE)
+        end function x_pass_c2r
+        type(c_ptr) function y_pass(sign) result(plan)
+            integer(c_int), intent(in) :: sign
+            plan = fftw_plan_many_dft(1_c_int, [int(my, c_int)], int(mxh, c_int), w%cbuf, [int(my, c_int)], &
+                int(mxh, c_int), 1_c_int, w%cbuf, [int(my, c_int)], int(mxh, c_int), 1_c_int, sign, FFTW_ESTIMATE)
+        end function y_pass
     end subroutine plans_create
+
+    !> cbuf ← the 2D FFT of the whole real buffer (rbuf is kept).
+    subroutine full_forward(w)
+        type(fc_fft_plans), intent(inout) :: w
+        if (c_associated(w%plan_xf_fwd)) then
+            call fftw_execute_dft_r2c(w%plan_xf_fwd, w%rbuf, w%cbuf)
+        else
+            call fftw_execute_dft_r2c(w%plan_x_fwd, w%rbuf, w%cbuf)
+        end if
+        call fftw_execute_dft(w%plan_y_fwd, w%cbuf, w%cbuf)
+    end subroutine full_forward
+
+    !> rbuf ← the unnormalised 2D inverse FFT of cbuf (cbuf is destroyed).
+    subroutine full_backward(w)
+        type(fc_fft_plans), intent(inout) :: w
+        call fftw_execute_dft(w%plan_y_bwd, w%cbuf, w%cbuf)
+        if (c_associated(w%plan_xf_bwd)) then
+            call fftw_execute_dft_c2r(w%plan_xf_bwd, w%cbuf, w%rbuf)
+        else
+            call fftw_execute_dft_c2r(w%plan_x_bwd, w%cbuf, w%rbuf)
+        end if
+    end subroutine full_backward
 
     !> Destroy the plans and free the buffers.
     recursive subroutine plans_free(w)
         type(fc_fft_plans), intent(inout) :: w
-        if (c_associated(w%plan_fwd)) call fftw_destroy_plan(w%plan_fwd)
-        if (c_associated(w%plan_bwd)) call fftw_destroy_plan(w%plan_bwd)
+        if (c_associated(w%plan_xf_fwd)) call fftw_destroy_plan(w%plan_xf_fwd)
+        if (c_associated(w%plan_xf_bwd)) call fftw_destroy_plan(w%plan_xf_bwd)
         if (c_associated(w%plan_x_fwd)) call fftw_destroy_plan(w%plan_x_fwd)
         if (c_associated(w%plan_y_fwd)) call fftw_destroy_plan(w%plan_y_fwd)
         if (c_associated(w%plan_y_bwd)) call fftw_destroy_plan(w%plan_y_bwd)
         if (c_associated(w%plan_x_bwd)) call fftw_destroy_plan(w%plan_x_bwd)
-        w%plan_fwd = c_null_ptr; w%plan_bwd = c_null_ptr
+        w%plan_xf_fwd = c_null_ptr; w%plan_xf_bwd = c_null_ptr
         w%plan_x_fwd = c_null_ptr; w%plan_y_fwd = c_null_ptr
         w%plan_y_bwd = c_null_ptr; w%plan_x_bwd = c_null_ptr
         if (allocated(w%rbuf)) deallocate (w%rbuf)
@@ -381,7 +419,7 @@ contains
         type(fc_bttb), intent(inout) :: op
         real(dp) :: scale
         op%parity = circulant_parity(op%fft%rbuf)
-        call fftw_execute_dft_r2c(op%fft%plan_fwd, op%fft%rbuf, op%fft%cbuf)
+        call full_forward(op%fft)
         scale = real(op%mx*op%my, dp)
         select case (op%parity)
         case (SYMBOL_EVEN)
@@ -795,15 +833,11 @@ contains
             rb(1:p%nx, j) = x(:, j)
             if (p%mx > p%nx) rb(p%nx + 1:, j) = 0
         end do
-        if (p%split) then
-            call fftw_execute_dft_r2c(p%plan_x_fwd, rb, s)
-            do j = p%ny + 1, p%my
-                s(:, j) = 0
-            end do
-            call fftw_execute_dft(p%plan_y_fwd, s, s)
-        else
-            call fftw_execute_dft_r2c(p%plan_fwd, rb, s)
-        end if
+        call fftw_execute_dft_r2c(p%plan_x_fwd, rb, s)
+        do j = p%ny + 1, p%my
+            s(:, j) = 0
+        end do
+        call fftw_execute_dft(p%plan_y_fwd, s, s)
     end subroutine lane_forward
 
     !> y ← inverse FFT of s restricted to the grid, by the plans of `p` on the real buffer
@@ -814,12 +848,8 @@ contains
         complex(dp), intent(inout), contiguous :: s(:, :)
         real(dp), intent(out) :: y(:, :)
         integer :: j
-        if (p%split) then
-            call fftw_execute_dft(p%plan_y_bwd, s, s)
-            call fftw_execute_dft_c2r(p%plan_x_bwd, s, rb)
-        else
-            call fftw_execute_dft_c2r(p%plan_bwd, s, rb)
-        end if
+        call fftw_execute_dft(p%plan_y_bwd, s, s)
+        call fftw_execute_dft_c2r(p%plan_x_bwd, s, rb)
         do j = 1, p%ny
             y(:, j) = rb(1:p%nx, j)
         end do
@@ -842,25 +872,21 @@ contains
         logical :: par
         nx = w%nx; ny = w%ny
         par = size(w%rbuf) > omp_min_elements
-        ! x into the real buffer with its zero padding in x (my = ny when not split; the
-        ! split passes never read columns beyond ny)
+        ! x into the real buffer with its zero padding in x (the x passes never read columns
+        ! beyond ny; the padding columns of the spectrum are zeroed after them)
         !$omp parallel do default(shared) schedule(static) if(par)
         do j = 1, ny
             w%rbuf(1:nx, j) = x(:, j)
             if (w%mx > nx) w%rbuf(nx + 1:, j) = 0
         end do
         !$omp end parallel do
-        if (w%split) then
-            call fftw_execute_dft_r2c(w%plan_x_fwd, w%rbuf, c)
-            !$omp parallel do default(shared) schedule(static) if(par)
-            do j = ny + 1, w%my
-                c(:, j) = 0
-            end do
-            !$omp end parallel do
-            call fftw_execute_dft(w%plan_y_fwd, c, c)
-        else
-            call fftw_execute_dft_r2c(w%plan_fwd, w%rbuf, c)
-        end if
+        call fftw_execute_dft_r2c(w%plan_x_fwd, w%rbuf, c)
+        !$omp parallel do default(shared) schedule(static) if(par)
+        do j = ny + 1, w%my
+            c(:, j) = 0
+        end do
+        !$omp end parallel do
+        call fftw_execute_dft(w%plan_y_fwd, c, c)
     end subroutine transform_forward_to
 
     !> y ← inverse FFT of cbuf, restricted to the grid (cbuf is destroyed).
@@ -877,12 +903,8 @@ contains
         complex(dp), intent(inout), contiguous :: c(:, :)
         real(dp), intent(out) :: y(:, :)
         integer :: j
-        if (w%split) then
-            call fftw_execute_dft(w%plan_y_bwd, c, c)
-            call fftw_execute_dft_c2r(w%plan_x_bwd, c, w%rbuf)
-        else
-            call fftw_execute_dft_c2r(w%plan_bwd, c, w%rbuf)
-        end if
+        call fftw_execute_dft(w%plan_y_bwd, c, c)
+        call fftw_execute_dft_c2r(w%plan_x_bwd, c, w%rbuf)
         !$omp parallel do default(shared) schedule(static) if(size(w%rbuf) > omp_min_elements)
         do j = 1, w%ny
             y(:, j) = w%rbuf(1:w%nx, j)
