@@ -5,8 +5,8 @@ Writes one namelist of N seeded random sweeps -- swept value 'xi', 'eta', 'phi' 
 or 'fx', 'fy' (prescribed creep forces), up, down or through zero, 20 points each, fixed
 creepages beside the swept one, a sphere or an ellipse (ry 12.5 ... 100 mm) on 30x25 ...
 60x50 grids -- runs the built driver on it once, and counts per sweep whether every point
-converged (the driver stops a sweep at its first point that does not).  doc/rolling.md
-("Warm starts") quotes its results.
+converged (the driver goes on past a point that does not, from the last converged one, and
+writes every point's status).  doc/rolling.md ("Warm starts") quotes its results.
 
 Usage:  scripts/sweep_robustness.py --driver PATH [--seed N] [--n 40] [--kind creepage|force]
             [--keep DIR]
@@ -66,17 +66,21 @@ def main():
     env = dict(os.environ, OMP_NUM_THREADS='1')
     subprocess.run([args.driver, nml, '--out', os.path.join(work, 'out')], env=env,
                    stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    failed, points, iterations = [], 0, 0
+    failed, points, iterations, bad_points = [], 0, 0, 0
     for k in range(args.n):
         path = os.path.join(work, 'out', f's{k}_creep.csv')
         rows = list(csv.DictReader(open(path))) if os.path.exists(path) else []
         points += len(rows)
         iterations += sum(int(float(r['iterations'])) for r in rows)
-        if len(rows) < 20 or any(r['status'] != 'converged' for r in rows):
-            last = rows[-1] if rows else {}
-            failed.append(f"s{k}: {len(rows)} points, last {last.get('value', '-')} {last.get('status', 'no output')}")
+        bad = [r for r in rows if r['status'] != 'converged']
+        bad_points += len(bad)
+        if len(rows) < 20 or bad:
+            first = bad[0] if bad else {}
+            failed.append(f"s{k}: {len(rows)} points, {len(bad)} not converged, the first at "
+                          f"{first.get('value', '-')} ({first.get('status', 'no output')})")
     print(f"seed {args.seed}, {args.n} {args.kind} sweeps: {args.n - len(failed)} complete, "
-          f"{len(failed)} stopped early; {points} points, {iterations} Krylov iterations")
+          f"{len(failed)} with points not converged; {points} points ({bad_points} not converged), "
+          f"{iterations} Krylov iterations")
     for line in failed:
         print('  ' + line)
     if args.keep:

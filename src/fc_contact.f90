@@ -47,6 +47,7 @@ module fc_contact
     use fc_influence, only: fc_ic_set, ic_set_kernel
     use fc_periodic, only: build_periodic_normal_operator, check_periodic_grid, periodic_images_default
     use fc_threads, only: fc_thread_count
+    use fc_strings, only: fmt_int, fmt_real
     implicit none
     private
 
@@ -583,8 +584,11 @@ contains
     !! case's [[fc_rolling_case]]) with the loading and settings prepared for one solve
     !! (`load_in%problem` = FC_PROBLEM_ROLLING for a sweep, its creepages `load_in%tangential`;
     !! the transient run sets its own shifts creepage·dq).  `res`: the last point or step; `rows`: one row per point/step
-    !! (last column: the status code; written as its name).  The sequence
-    !! stops at the first point or step that does not converge.
+    !! (last column: the status code; written as its name).  Transient rolling stops at its
+    !! first step that does not converge (the later steps would start from it).  A sweep goes
+    !! on: the next point starts from the last converged one (cold when there is none yet),
+    !! and `res` carries the worst status of the points, with a message naming how many did
+    !! not converge and the first of them.
     subroutine rolling_sequence(seq, ops, grid, mat, h0, load_in, settings, res, rows, stat, errmsg)
         type(fc_rolling_case), intent(in) :: seq
         type(fc_contact_operators), intent(inout) :: ops
@@ -598,13 +602,15 @@ contains
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
         type(fc_contact_loading) :: load
-        type(fc_contact_state) :: state
-        real(dp) :: dq, value, mufn, secs
-        integer :: k, n
+        type(fc_contact_state) :: state, good
+        real(dp) :: dq, value, mufn, secs, first_failed
+        integer :: k, n, nfailed, worst
         integer(i8) :: t0, t1, rate
         stat = 0; errmsg = ''
         load = load_in
         state%warm_start = .true.
+        good = state
+        nfailed = 0; worst = FC_CONVERGED; first_failed = 0
         if (seq%transient) then
             dq = seq%dq
             if (dq == 0) dq = grid%dx
@@ -652,11 +658,26 @@ contains
                                   real(t%nslip, dp), real(t%iterations, dp), secs, real(res%status, dp)]
                 end if
             end associate
-            if (res%status /= FC_CONVERGED) then
+            if (res%status == FC_CONVERGED) then
+                if (.not. seq%transient) good = state
+            else if (seq%transient) then
                 rows = rows(1:k, :)
                 exit
+            else
+                ! the failed point's row carries its status; the next point starts from the
+                ! last converged solution, not from this one
+                nfailed = nfailed + 1
+                if (nfailed == 1) first_failed = value
+                worst = max(worst, res%status)
+                state = good
             end if
         end do
+        if (nfailed > 0) then
+            res%status = max(res%status, worst)
+            res%tangential%status = max(res%tangential%status, worst)
+            res%tangential%message = fmt_int(nfailed)//' of '//fmt_int(n)//' sweep points did not converge '// &
+                '(statuses in the creep table; the first at '//trim(seq%sweep)//' = '//fmt_real(first_failed)//')'
+        end if
         if (seq%transient) then
             ! report the creepages (the steps used creepage·dq as shifts)
             res%tangential%xi = load_in%tangential%xi; res%tangential%eta = load_in%tangential%eta

@@ -36,6 +36,7 @@ contains
             new_unittest('creep_force_loop_bounded', test_force_bounded), &
             new_unittest('status_and_input_errors', test_status), &
             new_unittest('driver_rolling_sweep_transient', test_driver_cases), &
+            new_unittest('driver_sweep_past_failed_points', test_sweep_past_failures), &
             new_unittest('driver_rolling_input_errors', test_driver_errors), &
             new_unittest('flat_api_rolling', test_flat_api), &
             new_unittest('fastsim_limits', test_fastsim), &
@@ -692,7 +693,62 @@ contains
         call top%destroy()
     end subroutine test_driver_cases
 
-    !> Whole text of a file ('' if missing).
+    !> A sweep goes on past points that do not converge: ξ from 0.01 to −0.01 in 11 points
+    !! (30×25) with `maxit = 25` Krylov iterations, where points 3–10 need more and do not
+    !! converge; each later point starts from the last converged one (point 2), and the last
+    !! (full slip the other way) converges there to the cold solve's Fx (1e−4·μFn).  All 11
+    !! rows are written, each with its status; the case reports not_converged (exit status
+    !! 2) and how many points failed.  (Before, the sweep stopped at its first failed point.)
+    subroutine test_sweep_past_failures(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_grid) :: grid
+        real(dp), allocatable :: pn(:, :)
+        type(fc_tangential_operator) :: top
+        type(fc_rolling_settings) :: rs
+        type(fc_rolling_loading) :: rl
+        type(fc_tangential_result) :: r1
+        character(len=:), allocatable :: dir, errors
+        character(len=1024) :: line, json
+        integer :: code, stat, n, u, ios, nfailed
+        real(dp) :: v
+        logical :: last_converged
+        character(len=msg_len) :: msg
+        call cattaneo_setup(30, 25, grid, pn, top)
+        rl%mu = mu_cat; rl%xi = -0.01_dp
+        call solve_rolling(top, pn, rl, rs, r1, stat, msg)
+        call drive(scene('past', 'rolling', "mu = 0.4, xi = 0, eta = 0, phi = 0, sweep = 'xi', sweep_from = 0.01, "// &
+                         "sweep_to = -0.01, sweep_n = 11")//'&solver maxit = 25 /', dir, code, errors)
+        call check(error, code == 2, 'exit status 2 (not converged): '//errors)
+        if (allocated(error)) return
+        call csv_last(dir//'/past_creep.csv', 5, n, v)
+        call check(error, n == 12, 'header + 11 rows')
+        if (allocated(error)) return
+        call check(error, v, r1%fx, 'last point Fx = cold solve', abs=1e-4_dp*mu_cat*fn_cat)
+        if (allocated(error)) return
+        nfailed = 0; last_converged = .false.
+        open (newunit=u, file=dir//'/past_creep.csv', status='old', action='read')
+        do
+            read (u, '(a)', iostat=ios) line
+            if (ios /= 0) exit
+            if (index(line, ',not_converged') > 0) nfailed = nfailed + 1
+            last_converged = index(line, ',converged') > 0
+        end do
+        close (u)
+        call check(error, nfailed >= 1 .and. last_converged, 'failed points before a converged last point')
+        if (allocated(error)) return
+        json = ''
+        open (newunit=u, file=dir//'/past.json', status='old', action='read')
+        do
+            read (u, '(a)', iostat=ios) line
+            if (ios /= 0) exit
+            if (index(line, '"message"') > 0) json = line
+        end do
+        close (u)
+        call check(error, index(json, 'of 11 sweep points did not converge') > 0, 'message: '//trim(json))
+        call execute_command_line("rm -rf '"//dir//"'")
+        call top%destroy()
+    end subroutine test_sweep_past_failures
+
     !> Value of `key` (with quotes) in a JSON file written by the driver.
     subroutine json_value(path, key, value)
         character(len=*), intent(in) :: path, key
