@@ -51,8 +51,7 @@ module fc_toeplitz
         ! r2c along x on the ny data columns only, then c2c along y; inverse in the opposite
         ! order, c2r only for the ny columns kept.  Transforms of a whole mx×my array (the
         ! builds) take the x passes over all my columns (`plan_xf_*`, made when my > ny).
-        ! FFTW_ESTIMATE plans these 1D passes about 30 times faster than the 2D problem
-        ! (doc/operators.md, "Plans"), whose planning was most of an operator's set-up.
+        ! No 2D plans: one construction for products and builds (doc/operators.md, "Plans").
         type(c_ptr) :: plan_x_fwd = c_null_ptr, plan_y_fwd = c_null_ptr
         type(c_ptr) :: plan_y_bwd = c_null_ptr, plan_x_bwd = c_null_ptr
         type(c_ptr) :: plan_xf_fwd = c_null_ptr, plan_xf_bwd = c_null_ptr
