@@ -601,8 +601,8 @@ contains
         real(dp), intent(in) :: x(:, :)
         real(dp), intent(out) :: y(:, :)
         call transform_forward(self%fft, x)
-        call multiply_in_place(self, self%fft%cbuf)
-        call transform_backward(self%fft, y)
+        call multiply_in_place(self, self%fft%cbuf, conjugate=.true.)
+        call transform_backward_from(self%fft, self%fft%cbuf, y, conjugated=.true.)
         self%nproducts = self%nproducts + 1
     end subroutine bttb_apply
 
@@ -625,15 +625,22 @@ contains
 
     !> y = IFFT(spectrum) restricted to the grid (spectrum already multiplied by symbols).
     !! `spectrum` is scratch: the transform may run in it and destroy it (as [[bttb_forward]]).
-    subroutine bttb_backward(self, spectrum, y)
+    !! With `conjugated`, `spectrum` holds the conjugate of that spectrum (as
+    !! [[spectrum_pair_product]] makes it on request): the cheaper inverse of
+    !! [[transform_backward_from]].
+    subroutine bttb_backward(self, spectrum, y, conjugated)
         class(fc_bttb), intent(inout) :: self
         complex(dp), intent(inout), contiguous, target :: spectrum(:, :)
         real(dp), intent(out) :: y(:, :)
+        logical, intent(in), optional :: conjugated
+        logical :: conj_in
+        conj_in = .false.
+        if (present(conjugated)) conj_in = conjugated
         if (fftw_compatible(spectrum, self%fft%cbuf)) then
-            call transform_backward_from(self%fft, spectrum, y)
+            call transform_backward_from(self%fft, spectrum, y, conj_in)
         else
             call copy_spectrum(spectrum, self%fft%cbuf)
-            call transform_backward(self%fft, y)
+            call transform_backward_from(self%fft, self%fft%cbuf, y, conj_in)
         end if
         self%nproducts = self%nproducts + 1
     end subroutine bttb_backward
@@ -700,41 +707,74 @@ contains
     end subroutine bttb_multiply
 
     !> c ← c · symbol.
-    subroutine multiply_in_place(self, c)
+    !! With `conjugate`, c = conj(c · symbol), for the mirrored inverse ([[transform_backward_from]]).
+    subroutine multiply_in_place(self, c, conjugate)
         type(fc_bttb), intent(in) :: self
         complex(dp), intent(inout) :: c(:, :)
+        logical, intent(in) :: conjugate
         integer :: i, j
+        real(dp) :: sgn
+        sgn = merge(-1.0_dp, 1.0_dp, conjugate)   ! sign of the imaginary part
         !$omp parallel do default(shared) private(i) schedule(static) if(size(c) > omp_min_elements)
         do j = 1, size(c, 2)
             select case (self%parity)
             case (SYMBOL_EVEN)
-                c(:, j) = c(:, j)*self%rsymbol(:, j)
+                if (conjugate) then
+                    c(:, j) = conjg(c(:, j))*self%rsymbol(:, j)
+                else
+                    c(:, j) = c(:, j)*self%rsymbol(:, j)
+                end if
             case (SYMBOL_ODD)
                 do i = 1, size(c, 1)
-                    c(i, j) = cmplx(-aimag(c(i, j))*self%rsymbol(i, j), real(c(i, j), dp)*self%rsymbol(i, j), dp)
+                    c(i, j) = cmplx(-aimag(c(i, j))*self%rsymbol(i, j), sgn*real(c(i, j), dp)*self%rsymbol(i, j), dp)
                 end do
             case default
-                c(:, j) = c(:, j)*self%csymbol(:, j)
+                if (conjugate) then
+                    c(:, j) = conjg(c(:, j)*self%csymbol(:, j))
+                else
+                    c(:, j) = c(:, j)*self%csymbol(:, j)
+                end if
             end select
         end do
         !$omp end parallel do
     end subroutine multiply_in_place
 
-    !> out = sa·A + sb·B for two blocks of one grid (one pass when both symbols are real).
-    subroutine spectrum_pair_product(a, sa, b, sb, out)
+    !> out = sa·A + sb·B for two blocks of one grid (one pass when both symbols are real);
+    !! with `conjugate`, its conjugate (for [[bttb_backward]]'s `conjugated`).
+    subroutine spectrum_pair_product(a, sa, b, sb, out, conjugate)
         type(fc_bttb), intent(in) :: a, b
         complex(dp), intent(in) :: sa(:, :), sb(:, :)
         complex(dp), intent(out) :: out(:, :)
+        logical, intent(in), optional :: conjugate
         integer :: j
+        logical :: conj_out, par
+        conj_out = .false.
+        if (present(conjugate)) conj_out = conjugate
+        par = size(out) > omp_min_elements
         if (a%parity == SYMBOL_EVEN .and. b%parity == SYMBOL_EVEN) then
-            !$omp parallel do default(shared) schedule(static) if(size(out) > omp_min_elements)
-            do j = 1, size(out, 2)
-                out(:, j) = sa(:, j)*a%rsymbol(:, j) + sb(:, j)*b%rsymbol(:, j)
-            end do
-            !$omp end parallel do
+            if (conj_out) then
+                !$omp parallel do default(shared) schedule(static) if(par)
+                do j = 1, size(out, 2)
+                    out(:, j) = conjg(sa(:, j))*a%rsymbol(:, j) + conjg(sb(:, j))*b%rsymbol(:, j)
+                end do
+                !$omp end parallel do
+            else
+                !$omp parallel do default(shared) schedule(static) if(par)
+                do j = 1, size(out, 2)
+                    out(:, j) = sa(:, j)*a%rsymbol(:, j) + sb(:, j)*b%rsymbol(:, j)
+                end do
+                !$omp end parallel do
+            end if
         else
             call a%multiply(sa, out)
             call b%multiply(sb, out, add=.true.)
+            if (conj_out) then
+                !$omp parallel do default(shared) schedule(static) if(par)
+                do j = 1, size(out, 2)
+                    out(:, j) = conjg(out(:, j))
+                end do
+                !$omp end parallel do
+            end if
         end if
     end subroutine spectrum_pair_product
 
@@ -765,11 +805,11 @@ contains
             if (tid == 1 .or. nt == 1) call lane_forward(p, bxx%fft%rbuf2, dy, sy)
             !$omp barrier
             if (tid == 0) then
-                call spectrum_pair_product(bxx, sx, bxy, sy, w)
+                call spectrum_pair_product(bxx, sx, bxy, sy, w, conjugate=.true.)
                 call lane_backward(p, p%rbuf, w, zx)
             end if
             if (tid == 1 .or. nt == 1) then
-                call spectrum_pair_product(bxy, sx, byy, sy, w2)
+                call spectrum_pair_product(bxy, sx, byy, sy, w2, conjugate=.true.)
                 call lane_backward(p, bxx%fft%rbuf2, w2, zy)
             end if
             !$omp end parallel
@@ -777,10 +817,10 @@ contains
         else
             call bxx%forward(dx, sx)
             call bxx%forward(dy, sy)
-            call spectrum_pair_product(bxx, sx, bxy, sy, w)
-            call bxx%backward(w, zx)
-            call spectrum_pair_product(bxy, sx, byy, sy, w)
-            call bxx%backward(w, zy)
+            call spectrum_pair_product(bxx, sx, bxy, sy, w, conjugate=.true.)
+            call bxx%backward(w, zx, conjugated=.true.)
+            call spectrum_pair_product(bxy, sx, byy, sy, w, conjugate=.true.)
+            call bxx%backward(w, zy, conjugated=.true.)
         end if
     end subroutine block_product
 
@@ -840,7 +880,8 @@ contains
     end subroutine lane_forward
 
     !> y ← inverse FFT of s restricted to the grid, by the plans of `p` on the real buffer
-    !! `rb` (as [[lane_forward]]); s is destroyed.  Mirrored as [[transform_backward_from]].
+    !! `rb` (as [[lane_forward]]), s holding the conjugate of the spectrum: the mirrored
+    !! inverse of [[transform_backward_from]]; s is destroyed.
     subroutine lane_backward(p, rb, s, y)
         type(fc_fft_plans), intent(inout) :: p
         real(dp), intent(inout), contiguous :: rb(:, :)
@@ -848,9 +889,6 @@ contains
         real(dp), intent(out) :: y(:, :)
         integer :: i, j, mx
         mx = p%mx
-        do j = 1, p%my
-            s(:, j) = conjg(s(:, j))
-        end do
         call fftw_execute_dft(p%plan_y_fwd, s, s)
         call fftw_execute_dft_c2r(p%plan_x_bwd, s, rb)
         do j = 1, p%ny
@@ -895,44 +933,44 @@ contains
         call fftw_execute_dft(w%plan_y_fwd, c, c)
     end subroutine transform_forward_to
 
-    !> y ← inverse FFT of cbuf, restricted to the grid (cbuf is destroyed).
-    subroutine transform_backward(w, y)
-        type(fc_fft_plans), intent(inout) :: w
-        real(dp), intent(out) :: y(:, :)
-        call transform_backward_from(w, w%cbuf, y)
-    end subroutine transform_backward
-
     !> y ← inverse FFT of c (the plan set's cbuf or an array FFTW may use in its place),
-    !! restricted to the grid; c is destroyed.  The inverse pass along y runs as the forward
-    !! one on conj(c), which gives conj of the inverse; the real inverse along x of that
-    !! conjugate is the result mirrored in x, r(−x), read back in mirrored order.  Why:
-    !! FFTW_ESTIMATE plans the inverse y pass on small grids (doubled grids up to 240×200 at
-    !! least) with a buffered solver that allocates its buffer for every column at every
-    !! execution, the forward pass without; a 60×50 flat-API call is 7 % faster this way,
-    !! outputs unchanged (doc/operators.md, "Plans").
-    subroutine transform_backward_from(w, c, y)
+    !! restricted to the grid; c is destroyed.  With `conjugated`, c holds the conjugate of the
+    !! spectrum: the y pass then runs as the forward plan (forward of conj(c) = conj of the
+    !! inverse of c), and the real x pass of that conjugate gives the result mirrored in x,
+    !! r(−x mod mx), read back in mirrored order.  The products make their spectra
+    !! conjugated in the symbol multiplication (no extra pass) and take this way because
+    !! FFTW_ESTIMATE plans the inverse y pass of small grids with a buffered solver that
+    !! allocates a buffer for every column at every execution; the forward pass is never
+    !! slower (doc/operators.md, "Plans").
+    subroutine transform_backward_from(w, c, y, conjugated)
         type(fc_fft_plans), intent(inout) :: w
         complex(dp), intent(inout), contiguous :: c(:, :)
         real(dp), intent(out) :: y(:, :)
+        logical, intent(in) :: conjugated
         integer :: i, j, mx
         logical :: par
         mx = w%mx
         par = size(w%rbuf) > omp_min_elements
-        !$omp parallel do default(shared) schedule(static) if(par)
-        do j = 1, w%my
-            c(:, j) = conjg(c(:, j))
-        end do
-        !$omp end parallel do
-        call fftw_execute_dft(w%plan_y_fwd, c, c)
-        call fftw_execute_dft_c2r(w%plan_x_bwd, c, w%rbuf)
-        !$omp parallel do default(shared) private(i) schedule(static) if(par)
-        do j = 1, w%ny
-            y(1, j) = w%rbuf(1, j)
-            do i = 2, w%nx
-                y(i, j) = w%rbuf(mx - i + 2, j)
+        if (conjugated) then
+            call fftw_execute_dft(w%plan_y_fwd, c, c)
+            call fftw_execute_dft_c2r(w%plan_x_bwd, c, w%rbuf)
+            !$omp parallel do default(shared) private(i) schedule(static) if(par)
+            do j = 1, w%ny
+                y(1, j) = w%rbuf(1, j)
+                do i = 2, w%nx
+                    y(i, j) = w%rbuf(mx - i + 2, j)
+                end do
             end do
-        end do
-        !$omp end parallel do
+            !$omp end parallel do
+        else
+            call fftw_execute_dft(w%plan_y_bwd, c, c)
+            call fftw_execute_dft_c2r(w%plan_x_bwd, c, w%rbuf)
+            !$omp parallel do default(shared) schedule(static) if(par)
+            do j = 1, w%ny
+                y(:, j) = w%rbuf(1:w%nx, j)
+            end do
+            !$omp end parallel do
+        end if
     end subroutine transform_backward_from
 
     !> b ← a for two spectra of the same shape (threaded column copy).
