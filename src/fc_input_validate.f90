@@ -12,6 +12,7 @@ module fc_input_validate
     use fc_fmg_levels, only: fmg_cycle_from_name
     use fc_input, only: fc_case_input, is_given, grid_is_auto, is_tangential, strip_model_index, max_grid_elements
     use fc_limits
+    use fc_threads, only: max_threads_allowed
     implicit none
     private
 
@@ -389,8 +390,9 @@ contains
                 '] (TangCG iterations between subdivision checks)'
             return
         end if
-        if (s%threads < 0 .or. s%threads > 1024) then
-            errmsg = '&solver threads = '//fmt_int(s%threads)//': must lie in [0, 1024] (0: OMP_NUM_THREADS, else 1)'
+        if (s%threads < 0 .or. s%threads > max_threads_allowed) then
+            errmsg = '&solver threads = '//fmt_int(s%threads)//': must lie in [0, '//fmt_int(max_threads_allowed)// &
+                '] (0: OMP_NUM_THREADS, else 1)'
             return
         end if
         ! (with mu = 0 and model = 'auto' the tangential stage is dropped: no coupling)

@@ -580,7 +580,7 @@ contains
         if (ierr /= FCL_OK) return
         if (nthreads < 0 .or. nthreads > max_threads_allowed) then
             call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_threads: nthreads = '//fmt_int(nthreads)// &
-                ' must lie in [0, 1024] (0: OMP_NUM_THREADS, else 1)'); return
+                ' must lie in [0, '//fmt_int(max_threads_allowed)//'] (0: OMP_NUM_THREADS, else 1)'); return
         end if
         s%threads = nthreads
     end subroutine fc_set_threads

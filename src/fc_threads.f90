@@ -20,12 +20,13 @@
 !! (doc/parallel.md).
 module fc_threads
     use, intrinsic :: iso_c_binding, only: c_int
-    use fc_kinds, only: FC_ERR_VALUE
     !$ use omp_lib, only: omp_get_max_threads, omp_set_num_threads, omp_get_num_procs
     implicit none
     private
 
-    integer, parameter, public :: max_threads_allowed = 1024  !! bound on a requested count
+    !> Bound on a requested count (the driver's `&solver threads` and the flat API's
+    !! fc_set_threads check requests against it and name it in their messages)
+    integer, parameter, public :: max_threads_allowed = 1024
     !> Grids smaller than this (nx·ny) keep single-threaded FFT plans when the caller gives
     !! the grid size (doubled-grid transforms below 2·32768 points gain nothing from a second
     !! thread).  On an idle 2-core machine, 2 threads with threaded FFTs from this size run
@@ -61,7 +62,7 @@ module fc_threads
 
     logical, save :: fftw_threads_ready = .false.   ! set once, before any threaded plan
 
-    public :: set_thread_count, fc_thread_count, fc_openmp_enabled, check_thread_count, fc_default_threads
+    public :: set_thread_count, fc_thread_count, fc_openmp_enabled, fc_default_threads
     public :: fftw_threads_for_size, fftw_planner_threads
 
 contains
@@ -91,19 +92,6 @@ contains
         read (v, *, iostat=ios) k
         if (ios == 0 .and. k >= 1 .and. k <= max_threads_allowed) n = k
     end function fc_default_threads
-
-    !> Validate a requested count: 0 (keep OMP_NUM_THREADS / the default) or 1 … 1024.
-    subroutine check_thread_count(n, stat, errmsg)
-        integer, intent(in) :: n
-        integer, intent(out) :: stat
-        character(len=*), intent(out) :: errmsg
-        stat = 0; errmsg = ''
-        if (n < 0 .or. n > max_threads_allowed) then
-            stat = FC_ERR_VALUE
-            write (errmsg, '(a,i0,a,i0,a)') 'solver: threads = ', n, ' must lie in [0, ', max_threads_allowed, &
-                '] (0: OMP_NUM_THREADS)'
-        end if
-    end subroutine check_thread_count
 
     !> Use `n` threads (n ≤ 0: [[fc_default_threads]]) for OpenMP regions and for FFTW plans
     !! made from now on.  With `elements` (the grid size nx·ny), FFT plans stay on one thread

@@ -9,7 +9,7 @@ module test_parallel
     use fc_influence, only: fc_material, combine_material
     use fc_norm, only: fc_normal_operator, fc_normal_settings, fc_normal_result, build_normal_operator, solve_normal
     use fc_periodic, only: build_periodic_normal_operator
-    use fc_threads, only: set_thread_count, fc_thread_count, check_thread_count, fc_openmp_enabled, omp_min_elements, &
+    use fc_threads, only: set_thread_count, fc_thread_count, fc_openmp_enabled, omp_min_elements, &
         lanes_min_elements
     use fc_tangcg, only: fc_tangential_operator, fc_tangential_settings, fc_tangential_result, build_tangential_operator, &
         solve_tangential
@@ -19,7 +19,7 @@ module test_parallel
     use fc_mg2d, only: fc_strip_problem, fc_mg2d_settings, fc_mg2d_result, strip_model_problem, solve_strip_mg
     use fc_contact, only: fc_contact_operators, fc_contact_loading, fc_contact_settings, fc_contact_result, solve_contact, &
         FC_PROBLEM_TANGENTIAL
-    use, intrinsic :: iso_c_binding, only: c_int, c_double
+    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_null_char
     use fc_legacy, only: fc_init, fc_finalize, fc_set_material, fc_set_grid, fc_set_gap_quadratic, fc_set_gap_array, &
         fc_set_normal_force, fc_calculate, fc_get_pmax, fc_set_periodic, fc_set_threads, fc_get_error_message, FCL_OK, &
         FCL_ORDER, FCL_INVALID_VALUE
@@ -330,16 +330,46 @@ contains
             maxval(abs(r(1)%p - r(2)%p))/maxval(abs(r(1)%p))
     end subroutine test_threads_strip
 
+    !> Requested thread counts are bounded where users give them: fc_set_threads refuses
+    !! −1 and 5000 naming the value and the limit (max_threads_allowed = 1024) and accepts 0
+    !! (OMP_NUM_THREADS) and 1024; the driver's &solver threads = 5000 is refused naming group,
+    !! key, value and limit.
     subroutine test_thread_bounds(error)
         type(error_type), allocatable, intent(out) :: error
-        integer :: stat
-        character(len=256) :: em
-        call check_thread_count(-1, stat, em)
-        call check(error, stat /= 0 .and. index(em, 'threads = -1') > 0, 'threads = -1 rejected naming the key: '//trim(em))
-        call check_thread_count(5000, stat, em)
-        call check(error, stat /= 0 .and. index(em, '1024') > 0, 'threads = 5000 rejected naming the limit: '//trim(em))
-        call check_thread_count(0, stat, em)
-        call check(error, stat == 0, 'threads = 0 (OMP_NUM_THREADS) accepted')
+        integer(c_int) :: h, ierr
+        integer :: code
+        character(len=400) :: buf
+        character(len=:), allocatable :: err
+        call fc_init(h, ierr)
+        call fc_set_threads(h, -1_c_int, ierr)
+        call check(error, ierr == FCL_INVALID_VALUE .and. index(api_message(h), 'nthreads = -1') > 0, &
+                   'fc_set_threads(-1) refused naming the value: '//api_message(h))
+        if (allocated(error)) return
+        call fc_set_threads(h, 5000_c_int, ierr)
+        call check(error, ierr == FCL_INVALID_VALUE .and. index(api_message(h), '5000') > 0 .and. &
+                   index(api_message(h), '1024') > 0, 'fc_set_threads(5000) refused naming the limit: '//api_message(h))
+        if (allocated(error)) return
+        call fc_set_threads(h, 0_c_int, ierr)
+        call check(error, ierr == FCL_OK, 'fc_set_threads(0) accepted')
+        call fc_set_threads(h, 1024_c_int, ierr)
+        call check(error, ierr == FCL_OK, 'fc_set_threads(1024) accepted')
+        call fc_finalize(h, ierr)
+        if (allocated(error)) return
+        call drive("&case name = 'tb' / &material g1 = 82000.0, g2 = 82000.0 / &grid nx = 16, ny = 16, "// &
+                   "xmin = -2.0, xmax = 2.0, ymin = -1.5, ymax = 1.5 / &geometry kind = 'quadratic', rx = 30.0, "// &
+                   "ry = 20.0 / &normal fn = 400.0 / &solver threads = 5000 /", code, err)
+        call check(error, code == 1 .and. index(err, '&solver threads = 5000') > 0 .and. index(err, '1024') > 0, &
+                   'driver: threads = 5000 refused naming key and limit: '//err)
+    contains
+        function api_message(hh) result(msg)
+            integer(c_int), intent(in) :: hh
+            character(len=:), allocatable :: msg
+            integer(c_int) :: e
+            integer :: k
+            call fc_get_error_message(hh, buf, int(len(buf), c_int), e)
+            k = index(buf, c_null_char)
+            msg = buf(1:max(0, k - 1))
+        end function api_message
     end subroutine test_thread_bounds
 
     !> Wavy surface h0 = A(1 − cos 2πx/λ) on a periodic cell of one wavelength under mean
