@@ -16,6 +16,14 @@
 !!     nw%converged, nw%outer, nw%r and the inner solves' totals
 !!
 !! Force tolerance tol·flimit [N]; at most 60 outer steps of at most 31 trial points each.
+!!
+!! Near saturation (|F| → μ·Fn) the forces hardly change with the size of x but strongly with
+!! its direction; a Broyden update across a step there can turn the Jacobian so far that the
+!! next direction points away from the answer and the step is halved to nothing (random
+!! creep-force sweeps at 0.95·μFn with spin, doc/rolling.md).  So when a direction's full
+!! step and two halvings are all rejected, the Jacobian is measured again at the current
+!! iterate by differences (two more solves, x + h·e1 and x + h·e2, h = 2 % of |x| or of the
+!! creepage scale flimit/|J0|), once per iterate, and the direction taken anew.
 module fc_force_newton
     use fc_kinds, only: dp
     implicit none
@@ -38,6 +46,9 @@ module fc_force_newton
         integer, private :: halvings = 0
         logical, private :: first = .true.
         logical, private :: reeval = .false.   !! the trial re-solves the current iterate more tightly
+        integer, private :: fd_stage = 0       !! 1, 2: the trial is x + h·e1, x + h·e2 (difference Jacobian)
+        logical, private :: refreshed = .false.  !! the Jacobian was measured at the current iterate
+        real(dp), private :: fd_h = 0, fd_r1(2) = 0, xscale = 0
     contains
         procedure :: start => newton_start
         procedure :: update => newton_update
@@ -55,6 +66,9 @@ contains
         self%tol_inner = max(tol, min(1.0e-3_dp, 0.1_dp*fref/flimit))
         self%outer = 0; self%halvings = 0; self%step = 1
         self%converged = .false.; self%first = .true.; self%reeval = .false.
+        self%fd_stage = 0; self%refreshed = .false.
+        ! creepage (or shift) at which the initial Jacobian reaches the friction bound
+        self%xscale = flimit/max(maxval(abs(jac0)), tiny(1.0_dp))
         self%r = 0
         self%iterations = 0; self%matvecs = 0; self%cpu_seconds = 0
     end subroutine newton_start
@@ -80,6 +94,21 @@ contains
             call next_direction(self, done)
             return
         end if
+        if (self%fd_stage == 1) then
+            ! the difference Jacobian: first column taken, the second trial next
+            accepted = .false.
+            self%fd_r1 = r_trial
+            self%x_trial = self%x + [0.0_dp, self%fd_h]
+            self%fd_stage = 2
+            return
+        else if (self%fd_stage == 2) then
+            accepted = .false.
+            self%jac(:, 1) = (self%fd_r1 - self%r)/self%fd_h
+            self%jac(:, 2) = (r_trial - self%r)/self%fd_h
+            self%fd_stage = 0
+            call next_direction(self, done)
+            return
+        end if
         if (norm2(r_trial) < norm2(self%r) .or. self%halvings == max_halvings .or. self%reeval) then
             self%reeval = .false.
             ! Broyden update of the Jacobian with the step actually taken
@@ -89,6 +118,7 @@ contains
             if (dot_product(dx, dx) > 0) self%jac = self%jac + &
                 spread(dr - matmul(self%jac, dx), 2, 2)*spread(dx, 1, 2)/dot_product(dx, dx)
             self%x = self%x_trial; self%r = r_trial
+            self%refreshed = .false.
             self%outer = self%outer + 1
             if (self%outer > max_outer) then
                 done = .true.; return
@@ -97,6 +127,14 @@ contains
         else
             accepted = .false.
             self%halvings = self%halvings + 1
+            if (self%halvings == 3 .and. .not. self%refreshed) then
+                ! three trials of this direction rejected: measure the Jacobian here instead
+                self%refreshed = .true.
+                self%fd_h = 0.02_dp*max(norm2(self%x), self%xscale)
+                self%x_trial = self%x + [self%fd_h, 0.0_dp]
+                self%fd_stage = 1
+                return
+            end if
             self%step = self%step/2
             self%x_trial = self%x + self%step*self%dx
         end if
