@@ -15,7 +15,8 @@
 !!     end do
 !!     nw%converged, nw%outer, nw%r and the inner solves' totals
 !!
-!! Force tolerance tol·flimit [N]; at most 60 outer steps of at most 31 trial points each.
+!! Force tolerance tol·flimit [N]; at most 60 outer steps of at most 31 trial points each
+!! (plus two for a difference Jacobian, below).
 !!
 !! Near saturation (|F| → μ·Fn) the forces hardly change with the size of x but strongly with
 !! its direction; a Broyden update across a step there can turn the Jacobian so far that the
