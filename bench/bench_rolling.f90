@@ -33,6 +33,7 @@
 !!   --only S     run only solver S ('tangcg', 'gmres' or 'none': set-up only), for whole-process timing
 !!   --first G    start at grid G (1..4; with --grids N: grids G..N)
 !!   --repeat R   solve each case R times (the row shows the last solve, seconds summed)
+!!   --start S    cold start of Newton–GMRES: 'fastsim' (default) or 'adhesion'
 program fastcontact_bench_rolling
     use fc_kinds, only: dp, status_name
     use fc_geometry, only: fc_grid, make_grid, quadratic_gap
@@ -67,6 +68,7 @@ program fastcontact_bench_rolling
     character(len=9) :: prec_form = 'circulant'
     logical :: ew = .true.
     integer :: nrep = 1, irep, gfirst = 1
+    character(len=8) :: start = 'fastsim'
     real(dp) :: tacc
     real(dp) :: tsum(3, 4), msum(3, 4), unk(4), forcing
     ngrids = 3; ngs = 2; outfile = ''; mode = 'perf'; only_case = 0; forcing = 0.1_dp
@@ -87,6 +89,7 @@ program fastcontact_bench_rolling
         case ('--first'); k = k + 1; call get_command_argument(k, arg); read (arg, *) gfirst
         case ('--only'); k = k + 1; call get_command_argument(k, arg); only = arg(1:8)
         case ('--repeat'); k = k + 1; call get_command_argument(k, arg); read (arg, *) nrep
+        case ('--start'); k = k + 1; call get_command_argument(k, arg); start = arg(1:8)
         case default; write (*, '(a)') 'usage: fastcontact-bench-rolling [--grids N] [--gs N] [--out FILE]'; stop 2
         end select
         k = k + 1
@@ -126,7 +129,7 @@ program fastcontact_bench_rolling
             end if
             rl%mu = 0.4_dp; rl%xi = xi(c); rl%eta = eta(c); rl%phi = phi(c)
             rs%solver = 'gmres'; rs%forcing = forcing; rs%preconditioner = prec; rs%adaptive_forcing = ew
-            rs%prec_form = prec_form
+            rs%prec_form = prec_form; rs%start = start
             if (only == '' .or. only == 'gmres') then
                 tacc = 0
                 do irep = 1, nrep

@@ -14,6 +14,7 @@
 module fc_fastsim
     use fc_kinds, only: dp, pi, FC_ERR_VALUE
     use fc_rolling_ref, only: kalker_coefficients
+    use fc_geometry_grid, only: fc_grid
     implicit none
     private
 
@@ -25,7 +26,7 @@ module fc_fastsim
         integer :: nslip = 0, ncon = 0           !! elements at the traction bound, elements in all
     end type fc_fastsim_result
 
-    public :: fastsim, fastsim_error_bound
+    public :: fastsim, fastsim_error_bound, fastsim_on_grid
 
     !> Measured error of FASTSIM against the full theory: the largest |F_fastsim − F_full|/(μFn)
     !! over the normalised creepage 0.1 … 3 (fastcontact-bench-rolling --fastsim, ν = 0.25,
@@ -98,6 +99,58 @@ contains
         end do
         stat = 0
     end subroutine fastsim
+
+    !> FASTSIM's tractions on a solver grid, as the cold start of the full theory's steady
+    !! rolling solver ([[fc_rolling]]): each grid row is integrated from its leading element
+    !! (largest x) backwards over its run of contact elements, with the element's own traction
+    !! bound (`bound`, e.g. μk·pn [N/mm²]) in place of the parabolic one, so that any pressure
+    !! (not only Hertzian) gets a start whose slip area lies at the trailing side as in the
+    !! full theory.  The flexibilities are those of [[fastsim]] for the ellipse that spans the
+    !! contact elements' extent (a/b clipped to the coefficient table, 0.1 … 10) and the
+    !! combined shear modulus g [N/mm²] and ratio nu.  Tractions on body 1 [N/mm²], zero outside
+    !! `contact`; px = py = 0 everywhere when no element is in contact.
+    pure subroutine fastsim_on_grid(grid, contact, bound, g, nu, xi, eta, phi, px, py)
+        type(fc_grid), intent(in) :: grid
+        logical, intent(in) :: contact(:, :)
+        real(dp), intent(in) :: bound(:, :), g, nu, xi, eta, phi
+        real(dp), intent(out) :: px(:, :), py(:, :)
+        real(dp) :: a, b, x0, x1, y0, y1, c11, c22, c23, l1, l2, l3, qx, qy, x, y, t
+        integer :: i, j, st
+        px = 0; py = 0
+        if (.not. any(contact) .or. .not. g > 0) return
+        x0 = huge(1.0_dp); x1 = -x0; y0 = x0; y1 = -x0
+        do j = 1, size(contact, 2)
+            if (.not. any(contact(:, j))) cycle
+            y0 = min(y0, grid%y(j)); y1 = max(y1, grid%y(j))
+            do i = 1, size(contact, 1)
+                if (contact(i, j)) then
+                    x0 = min(x0, grid%x(i)); x1 = max(x1, grid%x(i))
+                end if
+            end do
+        end do
+        a = (x1 - x0 + grid%dx)/2; b = (y1 - y0 + grid%dy)/2
+        call kalker_coefficients(min(0.5_dp, max(0.0_dp, nu)), max(0.1_dp, min(10.0_dp, a/b)), c11, c22, c23, st)
+        if (st /= 0) return
+        l1 = 8*a/(3*g*c11); l2 = 8*a/(3*g*c22); l3 = pi*a*sqrt(a/b)/(4*g*c23)
+        do j = 1, size(contact, 2)
+            y = grid%y(j); qx = 0; qy = 0
+            do i = size(contact, 1), 1, -1
+                if (.not. contact(i, j)) then
+                    qx = 0; qy = 0; cycle        ! a new run starts at its own leading edge
+                end if
+                x = grid%x(i)
+                qx = qx - grid%dx*(xi/l1 - phi*y/l3)
+                qy = qy - grid%dx*(eta/l2 + phi*x/l3)
+                t = hypot(qx, qy)
+                if (t > bound(i, j)) then
+                    if (t > 0) then
+                        qx = qx*bound(i, j)/t; qy = qy*bound(i, j)/t
+                    end if
+                end if
+                px(i, j) = qx; py(i, j) = qy
+            end do
+        end do
+    end subroutine fastsim_on_grid
 
     !> Error bound of FASTSIM's creep force as a fraction of μFn for semi-axis ratio a/b and
     !! the creepages given: 1.5 × the largest measured error of the directions with a nonzero

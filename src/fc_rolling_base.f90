@@ -28,6 +28,10 @@ module fc_rolling_base
         !> GMRES: Eisenstat–Walker's superlinear forcing term once the subdivision has settled
         !! (.false.: the constant `forcing` throughout)
         logical :: adaptive_forcing = .true.
+        !> GMRES without starting tractions: 'fastsim' (the simplified theory's tractions on
+        !! the grid, [[fastsim_on_grid]]: the slip area starts near its place) or 'adhesion'
+        !! (zero tractions, every contact element in adhesion)
+        character(len=8) :: start = 'fastsim'
     end type fc_rolling_settings
 
     !> Loading of a steady rolling problem.
