@@ -19,7 +19,7 @@
 !! case file was bad); 2 no input error but a solver did not converge or diverged.
 module fc_driver
     use, intrinsic :: iso_fortran_env, only: output_unit, int64, error_unit_default => error_unit
-    use fc_kinds, only: dp, msg_len, FC_CONVERGED, FC_DIVERGED, status_name
+    use fc_kinds, only: dp, msg_len, FC_CONVERGED, FC_DIVERGED, FC_ERR_IO, status_name
     use fc_geometry, only: fc_grid
     use fc_influence, only: fc_material
     use fc_contact, only: fc_contact_operators, FC_PROBLEM_ROLLING
@@ -601,7 +601,7 @@ contains
         integer :: i, n
         logical :: exists
         n = len_trim(dir)
-        stat = 1
+        stat = FC_ERR_IO
         if (n == 0) return
         do i = 2, n
             if (dir(i:i) == '/' .and. dir(i - 1:i - 1) /= '/') rc = c_mkdir(dir(1:i - 1)//c_null_char, mode)
