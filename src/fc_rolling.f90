@@ -23,8 +23,8 @@
 !!   elements moved between the areas after each Newton step) with the non-symmetric
 !!   Jacobian solved by restarted GMRES, left-preconditioned: adhesion rows summed along
 !!   each run of adhesion in x (the exact inverse of the convective difference there),
-!!   then, when adhesion covers ≥ 90 % of the contact, TangCG's FFT block inverse of A
-!!   (`preconditioner = 'fft'`); slip rows by TangCG's diagonal scaling (thesis eq. 4.43
+!!   then, when adhesion covers ≥ 50 % of the contact (≥ 90 % in the Toeplitz form), TangCG's
+!!   FFT block inverse of A (`preconditioner = 'fft'`); slip rows by TangCG's diagonal scaling (thesis eq. 4.43
 !!   with the steady operator's diagonal).  Every Krylov step costs one FFT product of the
 !!   tangential operator (two with the block inverse).  Forcing term constant until the
 !!   subdivision settles, then Eisenstat–Walker's superlinear choice.  A cold solve starts
