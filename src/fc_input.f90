@@ -115,6 +115,7 @@ module fc_input
         real(dp) :: sweep_from = 0, sweep_to = 0   !! rolling: range of the swept value
         integer :: sweep_n = 20                    !! rolling: points of the sweep
         character(len=16) :: rolling = 'gmres'     !! steady rolling solver: 'gmres', 'march', 'steadygs'
+        character(len=16) :: rolling_start = 'fastsim'   !! Newton–GMRES cold start: 'fastsim', 'adhesion'
         ! &solver
         character(len=32) :: normal_solver = 'bccg'  !! normal solver: 'bccg', 'norm', 'fmg'
         character(len=32) :: tangential = 'tangcg' !! tangential solver: 'tangcg', 'convexgs'
@@ -458,18 +459,18 @@ contains
         real(dp) :: tol, omega, beta, target
         integer :: maxit, inner_maxit, inner_k, max_levels, threads
         logical :: precondition, precondition_tangential, deflation, target_pmax
-        character(len=16) :: model, rolling, fft_preconditioner
+        character(len=16) :: model, rolling, fft_preconditioner, rolling_start
         character(len=path_len) :: fft_wisdom
         namelist /solver/ normal, tangential, tol, maxit, inner_maxit, precondition, precondition_tangential, &
             deflation, inner_k, cycle, omega, beta, target, target_pmax, max_levels, model, smoother, strip, rolling, threads, &
-            fft_wisdom, fft_preconditioner
+            fft_wisdom, fft_preconditioner, rolling_start
         normal = s%normal_solver; tangential = s%tangential; tol = s%tol; maxit = s%maxit
         inner_maxit = s%inner_maxit; precondition = s%precondition
         precondition_tangential = s%precondition_tangential
         deflation = s%deflation; inner_k = s%inner_k; cycle = s%cycle; omega = s%omega; beta = s%beta
         target = s%target; target_pmax = s%target_pmax; max_levels = s%max_levels; model = s%model
         smoother = s%smoother; strip = s%strip; rolling = s%rolling; threads = s%threads; fft_wisdom = s%fft_wisdom
-        fft_preconditioner = s%fft_preconditioner
+        fft_preconditioner = s%fft_preconditioner; rolling_start = s%rolling_start
         read (text, nml=solver, iostat=ios, iomsg=iomsg)
         if (ios /= 0) return
         s%normal_solver = lower(normal); s%tangential = lower(tangential); s%tol = tol
@@ -479,6 +480,7 @@ contains
         s%target = target; s%target_pmax = target_pmax; s%max_levels = max_levels; s%model = lower(model)
         s%smoother = lower(smoother); s%strip = lower(strip); s%rolling = lower(rolling); s%threads = threads
         s%fft_wisdom = fft_wisdom; s%fft_preconditioner = lower(fft_preconditioner)
+        s%rolling_start = lower(rolling_start)
     end subroutine read_solver_group
 
     subroutine read_output_group(text, s, ios, iomsg)
@@ -511,7 +513,7 @@ contains
         case ('solver')
             keys = 'normal tangential tol maxit inner_maxit inner_k precondition precondition_tangential deflation '// &
                 'cycle omega beta smoother strip target target_pmax max_levels model rolling threads fft_wisdom '// &
-                'fft_preconditioner'
+                'fft_preconditioner rolling_start'
         case ('output');     keys = 'dir table table_format'
         case default;        keys = ''
         end select

@@ -85,7 +85,7 @@ contains
         case ('problem', 'normal', 'tangential'); kind = 'string'; maxlen = 32
         case ('kind', 'cycle', 'strip', 'model'); kind = 'string'; maxlen = 16
         case ('smoother', 'sweep', 'table_format'); kind = 'string'; maxlen = 8
-        case ('rolling', 'fft_preconditioner'); kind = 'string'; maxlen = 16
+        case ('rolling', 'fft_preconditioner', 'rolling_start'); kind = 'string'; maxlen = 16
         case ('ic_file', 'ic_file2', 'file', 'dir', 'fft_wisdom'); kind = 'string'; maxlen = 256
         case default; kind = ''
         end select

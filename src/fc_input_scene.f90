@@ -77,6 +77,7 @@ contains
         c%settings%rolling%solver = trim(s%rolling)
         c%settings%rolling%tol = s%tol; c%settings%rolling%maxit = s%maxit
         c%settings%rolling%prec_form = trim(s%fft_preconditioner)
+        c%settings%rolling%start = trim(s%rolling_start)
         c%threads = s%threads
         c%fft_wisdom = s%fft_wisdom
     end function build_case

@@ -432,6 +432,13 @@ contains
             errmsg = "&solver rolling = '"//trim(s%rolling)//"': unknown solver; use 'gmres', 'march' or 'steadygs'"
             return
         end select
+        select case (s%rolling_start)
+        case ('fastsim', 'adhesion')
+        case default
+            errmsg = "&solver rolling_start = '"//trim(s%rolling_start)//"': unknown start; use 'fastsim' (the default) "// &
+                "or 'adhesion'"
+            return
+        end select
         if (is_given(s, 'tangential', 'mu_kinetic')) then
             if (.not. (s%mu_kinetic >= 0 .and. s%mu_kinetic <= s%mu)) then
                 errmsg = '&tangential mu_kinetic = '//fmt_real(s%mu_kinetic)//': must be in [0, mu = '//fmt_real(s%mu)// &

@@ -797,6 +797,8 @@ contains
         call drive(scene('b6', 'transient_rolling', 'mu = 0.4, fx = 1.0'), dir, code, errors)
         call check(error, code /= 0 .and. index(errors, "'transient_rolling' takes creepages") > 0, &
                    'transient with forces: '//errors)
+        call drive(scene('b7', 'rolling', 'mu = 0.4, xi = 0.001')//"&solver rolling_start = 'elastic' /", dir, code, errors)
+        call check(error, code /= 0 .and. index(errors, "&solver rolling_start = 'elastic'") > 0, 'unknown start: '//errors)
     end subroutine test_driver_errors
 
     !> Flat API: fc_set_rolling gives the library's steady solution; the handle reuses its
@@ -907,6 +909,21 @@ contains
         call solve_rolling(top, pn, rl, rs, r1, stat, msg)
         call check(error, stat == FC_ERR_VALUE .and. index(msg, "start = 'elastic'") > 0, 'unknown start rejected: '//trim(msg))
         call top%destroy()
+        ! the driver: &solver rolling_start reaches the solver (same forces, other iterations)
+        block
+            character(len=:), allocatable :: dir, errors
+            integer :: code
+            real(dp) :: fx(2), its(2)
+            do k = 1, 2
+                call drive(scene('s'//starts(k)(1:1), 'rolling', 'mu = 0.4, xi = 0.0044, phi = 0.08')// &
+                           "&solver tol = 1e-9, rolling_start = '"//trim(starts(k))//"' /", dir, code, errors)
+                call check(error, code == 0, 'driver, start '//trim(starts(k))//': '//errors)
+                call json_value(dir//'/s'//starts(k)(1:1)//'.json', '"fx"', fx(k))
+                call json_value(dir//'/s'//starts(k)(1:1)//'.json', '"iterations"', its(k))
+            end do
+            call check(error, fx(1), fx(2), 'driver: same Fx from both starts', abs=1e-6_dp*mu_cat*fn_cat)
+            call check(error, its(1) /= its(2), 'driver: the start changes the iterations')
+        end block
     end subroutine test_fastsim_start
 
     !> FASTSIM: linear limit = Kalker's linear theory within 1 % (by construction of L1, L2,
