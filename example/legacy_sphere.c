@@ -1,6 +1,6 @@
 /* Multibody-style loop through the flat API from C: a sphere (R = 50 mm) pressed on a plane,
- * shifted tangentially, then unloaded while the shift is held (Cattaneo setting of SPEC §4:
- * G = 200 N/mm², nu = 0.42, mu = 0.4).  Transient mode 1: the shifts are the increments of
+ * shifted tangentially, then unloaded while the shift is held (the Cattaneo reference case
+ * of doc/conventions.md: G = 200 N/mm², nu = 0.42, mu = 0.4).  Transient mode 1: the shifts are the increments of
  * each step, the previous step's (u', p') is the state.  Prints the same table as
  * example/legacy_sphere.f90 and example/legacy_sphere.py.
  *

@@ -1,8 +1,9 @@
 !> Multibody-style loop through the flat API (fc_legacy): a sphere (R = 50 mm) pressed on
 !! a plane, shifted tangentially, then unloaded while the shift is held — the Cattaneo
-!! setting of SPEC §4 (G = 200 N/mm², ν = 0.42, μ = 0.4).  Every step is one fc_calculate
-!! call on the same handle in transient mode 1: the previous step's displacements and
-!! tractions are the state (u', p'), the shifts are the increments of the step.
+!! setting of doc/conventions.md, "Reference cases" (G = 200 N/mm², ν = 0.42, μ = 0.4).
+!! Every step is one fc_calculate call on the same handle in transient mode 1: the previous
+!! step's displacements and tractions are the state (u', p'), the shifts are the increments
+!! of the step.
 !!
 !! Build and run (see doc/legacy_api.md):
 !!   scripts/build_shared.sh --examples && build/legacy_sphere_f

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Charts from the benchmark-suite CSV (issue 6; SPEC §7).
+"""Charts from the benchmark-suite CSV (doc/benchmarks.md).
 
 Reads doc/bench_suite.csv (written by `fpm run --profile release fastcontact-bench-suite`)
 and writes into doc/:
