@@ -24,8 +24,8 @@
 !!   Jacobian solved by restarted GMRES, left-preconditioned: adhesion rows summed along
 !!   each run of adhesion in x (the exact inverse of the convective difference there),
 !!   then, when adhesion covers ≥ 50 % of the contact (≥ 90 % in the Toeplitz form), TangCG's
-!!   FFT block inverse of A (`preconditioner = 'fft'`); slip rows by TangCG's diagonal scaling (thesis eq. 4.43
-!!   with the steady operator's diagonal).  Every Krylov step costs one FFT product of the
+!!   FFT block inverse of A (`preconditioner = 'fft'`); slip rows by TangCG's diagonal
+!!   scaling (thesis eq. 4.43 with the steady operator's diagonal).  Every Krylov step costs one FFT product of the
 !!   tangential operator (two with the block inverse).  Forcing term constant until the
 !!   subdivision settles, then Eisenstat–Walker's superlinear choice.  A cold solve starts
 !!   from FASTSIM's tractions on the grid ([[fastsim_on_grid]], `start = 'fastsim'`).
