@@ -858,7 +858,7 @@ contains
     !> FASTSIM on the solver grid as Newton–GMRES's cold start: in the small-creepage limit its
     !! forces are Kalker's linear theory with Hertz's radius (within 6 %; measured 4.5 % at
     !! 60×50: the discrete contact area and the ellipse taken from the contact elements'
-    !! extent, both within an element of Hertz's circle of radius 0.98 mm), tractions
+    !! extent, both within an element of Hertz's circle of radius 1 mm), tractions
     !! zero outside the contact and within the bound; a spin-dominated case (Table 4.1 case 7)
     !! converges from it to the all-adhesion start's forces (1e−6·μFn at tol 1e−9) in fewer
     !! Krylov iterations (19 against 29 at tol 1e−5), also when it is given zero starting
