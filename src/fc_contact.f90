@@ -358,6 +358,7 @@ contains
                 px_old = res%tangential%px; py_old = res%tangential%py
             end if
             if (round == 1 .and. lift_slip) call lift_slip_start(res%normal%pn)
+            if (round > 1 .and. load%problem == FC_PROBLEM_ROLLING) call lift_round_slip(res%normal%pn)
             call tangential_stage(res%normal%pn)
             if (stat /= 0) return
             res%tangential_run = .true.
@@ -527,6 +528,24 @@ contains
                 end do
             end do
         end subroutine lift_slip_start
+
+        !> A later Panagiotopoulos round of steady rolling: the previous round's slip
+        !! elements start just above the new static bound, so that the rolling solver starts
+        !! them in slip (on the new kinetic circle) and its adhesion elements stay in adhesion.
+        subroutine lift_round_slip(pn)
+            real(dp), intent(in) :: pn(:, :)
+            real(dp) :: mag
+            integer :: i, j
+            do j = 1, size(pn, 2)
+                do i = 1, size(pn, 1)
+                    if (res%tangential%state(i, j) /= EL_SLIP .or. .not. pn(i, j) > 0) cycle
+                    mag = hypot(pxs(i, j), pys(i, j))
+                    if (.not. mag > 0) cycle
+                    pxs(i, j) = (1 + 1e-10_dp)*load%tangential%mu*pn(i, j)*pxs(i, j)/mag
+                    pys(i, j) = (1 + 1e-10_dp)*load%tangential%mu*pn(i, j)*pys(i, j)/mag
+                end do
+            end do
+        end subroutine lift_round_slip
 
         subroutine advance_state(st)
             type(fc_contact_state), intent(inout) :: st

@@ -313,7 +313,8 @@ contains
         adh = contact; slp = .false.
         ! a warm start whose traction reaches the kinetic bound starts in slip (1e−8 slack
         ! keeps a converged start's subdivision)
-        where (contact .and. gk > 0 .and. px**2 + py**2 >= (1 - 1.0e-8_dp)*gk**2)
+        where (contact .and. gk > 0 .and. (px**2 + py**2 >= (1 - 1.0e-8_dp)*gk**2 .and. &
+               px**2 + py**2 <= (1 + 1.0e-8_dp)*gk**2 .or. px**2 + py**2 > gs**2*(1 + bound_slack)))
             slp = .true.; adh = .false.
         end where
         where (slp)

@@ -41,6 +41,7 @@ contains
             new_unittest('flat_api_rolling', test_flat_api), &
             new_unittest('fastsim_limits', test_fastsim), &
             new_unittest('fastsim_cold_start', test_fastsim_start), &
+            new_unittest('coupled_kinetic_rounds_converge', test_coupled_kinetic), &
             new_unittest('driver_fastsim_model', test_driver_fastsim) &
             ]
     end subroutine collect_rolling
@@ -925,6 +926,35 @@ contains
             call check(error, its(1) /= its(2), 'driver: the start changes the iterations')
         end block
     end subroutine test_fastsim_start
+
+    !> Dissimilar materials (K ≠ 0) with kinetic friction below static: the Panagiotopoulos
+    !! rounds of steady rolling converge (they cycled for 50 rounds while every round's warm
+    !! start put adhesion elements with μk·pn < |p| ≤ μs·pn into slip and left the previous
+    !! slip elements below the new bound), and |F| stays within μk·Fn.  μk = μs: as before.
+    subroutine test_coupled_kinetic(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: dir, errors, text
+        character(len=*), parameter :: nl = new_line('a')
+        integer :: code, k
+        real(dp) :: rounds, fx, fy, fn
+        character(len=4), parameter :: muk(2) = ['0.2 ', '0.3 ']
+        do k = 1, 2
+            text = "&case name = 'k', problem = 'rolling' /"//nl// &
+                '&material g1 = 80000.0, g2 = 26000.0, nu1 = 0.28, nu2 = 0.34 /'//nl// &
+                '&grid nx = 30, ny = 24, xmin = -8.0, xmax = 8.0, ymin = -6.0, ymax = 6.0 /'//nl// &
+                "&geometry kind = 'quadratic', rx = 460.0, ry = 300.0 /"//nl//'&normal fn = 10000.0 /'//nl// &
+                '&tangential mu = 0.3, mu_kinetic = '//trim(muk(k))//', xi = 0.002, eta = 0.001, phi = 0.001 /'//nl
+            call drive(text, dir, code, errors)
+            call check(error, code == 0, 'mu_kinetic = '//trim(muk(k))//': converged: '//errors)
+            call json_value(dir//'/k.json', '"panagiotopoulos_rounds"', rounds)
+            call json_value(dir//'/k.json', '"fx"', fx)
+            call json_value(dir//'/k.json', '"fy"', fy)
+            call json_value(dir//'/k.json', '"fn"', fn)
+            call check(error, rounds >= 2 .and. rounds <= 10, 'mu_kinetic = '//trim(muk(k))//': coupled, at most 10 rounds')
+            call check(error, hypot(fx, fy) <= (1 + 1e-6_dp)*merge(0.2_dp, 0.3_dp, k == 1)*fn, &
+                       'mu_kinetic = '//trim(muk(k))//': |F| <= mu_kinetic Fn')
+        end do
+    end subroutine test_coupled_kinetic
 
     !> FASTSIM: linear limit = Kalker's linear theory within 1 % (by construction of L1, L2,
     !! L3; the strip quadrature of 200 × 200 elements errs by 0.5 %), full slip |F| = μFn (within
