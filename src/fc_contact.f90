@@ -303,7 +303,7 @@ contains
         class(fc_surface), intent(in), optional :: surface
         real(dp), allocatable :: uzt(:, :), uxn(:, :), uyn(:, :), uxp(:, :), uyp(:, :), pxs(:, :), pys(:, :)
         real(dp), allocatable :: p0(:, :), pn_old(:, :), px_old(:, :), py_old(:, :)
-        logical :: tangential, coupled, use_fmg, lift_slip, has_guess
+        logical :: tangential, coupled, use_fmg, lift_state, has_guess
         integer :: round, nx, ny, it_n, mv_n, pa_n, out_n, it_t, mv_t, out_t
         real(dp) :: cpu_n, cpu_t, dn, dt, guess_base(2)
         stat = 0; errmsg = ''
@@ -320,7 +320,7 @@ contains
             uzt = 0; uxn = 0; uyn = 0
         end if
         ! ---- starts: an explicit start in `load`, else the state's
-        lift_slip = .false.; has_guess = .false.; guess_base = 0
+        lift_state = .false.; has_guess = .false.; guess_base = 0
         if (present(state)) call state_inputs(state)
         if (allocated(load%px_start) .and. allocated(load%py_start)) then
             pxs = load%px_start; pys = load%py_start
@@ -357,8 +357,8 @@ contains
             if (round > 1) then
                 px_old = res%tangential%px; py_old = res%tangential%py
             end if
-            if (round == 1 .and. lift_slip) call lift_slip_start(res%normal%pn)
-            if (round > 1 .and. load%problem == FC_PROBLEM_ROLLING) call lift_round_slip(res%normal%pn)
+            if (round == 1 .and. lift_state) call lift_slip(res%normal%pn, state%el)
+            if (round > 1 .and. load%problem == FC_PROBLEM_ROLLING) call lift_slip(res%normal%pn, res%tangential%state)
             call tangential_stage(res%normal%pn)
             if (stat /= 0) return
             res%tangential_run = .true.
@@ -411,7 +411,7 @@ contains
                     pxs = st%px; pys = st%py
                 end if
             end select
-            lift_slip = load%transient /= FC_TRANSIENT_ROLLING .and. (st%warm_start .or. load%transient == FC_TRANSIENT_SHIFT)
+            lift_state = load%transient /= FC_TRANSIENT_ROLLING .and. (st%warm_start .or. load%transient == FC_TRANSIENT_SHIFT)
             ! prescribed forces: predict the shift from the previous one (from rest) or from a zero
             ! increment (transient), corrected by the force change over the initial stiffness
             if (load%tangential%force_prescribed) then
@@ -511,41 +511,27 @@ contains
             end if
         end subroutine rolling_stage
 
-        !> Warm start: elements that slipped in the previous state start on the new traction
-        !! bound (slightly outside, so that TangCG starts them in slip) in their previous
-        !! direction; without this a converged start loses its subdivision to rounding.
-        subroutine lift_slip_start(pn)
+        !> Elements in slip in `el` (the previous state, or the previous Panagiotopoulos round
+        !! of steady rolling) start just above the new static bound μs·pn in their previous
+        !! direction, so that the solver starts them in slip (TangCG on its bound, the rolling
+        !! solver on the kinetic circle) although the pressure under them changed; without
+        !! this a converged start loses its subdivision to rounding, and the rounds of rolling
+        !! with μk < μs cycled (doc/rolling.md).
+        subroutine lift_slip(pn, el)
             real(dp), intent(in) :: pn(:, :)
+            integer, intent(in) :: el(:, :)
             real(dp) :: mag
             integer :: i, j
             do j = 1, size(pn, 2)                 ! |p| only where needed: slip elements
                 do i = 1, size(pn, 1)
-                    if (state%el(i, j) /= EL_SLIP .or. .not. pn(i, j) > 0) cycle
+                    if (el(i, j) /= EL_SLIP .or. .not. pn(i, j) > 0) cycle
                     mag = hypot(pxs(i, j), pys(i, j))
                     if (.not. mag > 0) cycle
                     pxs(i, j) = (1 + 1e-10_dp)*load%tangential%mu*pn(i, j)*pxs(i, j)/mag
                     pys(i, j) = (1 + 1e-10_dp)*load%tangential%mu*pn(i, j)*pys(i, j)/mag
                 end do
             end do
-        end subroutine lift_slip_start
-
-        !> A later Panagiotopoulos round of steady rolling: the previous round's slip
-        !! elements start just above the new static bound, so that the rolling solver starts
-        !! them in slip (on the new kinetic circle) and its adhesion elements stay in adhesion.
-        subroutine lift_round_slip(pn)
-            real(dp), intent(in) :: pn(:, :)
-            real(dp) :: mag
-            integer :: i, j
-            do j = 1, size(pn, 2)
-                do i = 1, size(pn, 1)
-                    if (res%tangential%state(i, j) /= EL_SLIP .or. .not. pn(i, j) > 0) cycle
-                    mag = hypot(pxs(i, j), pys(i, j))
-                    if (.not. mag > 0) cycle
-                    pxs(i, j) = (1 + 1e-10_dp)*load%tangential%mu*pn(i, j)*pxs(i, j)/mag
-                    pys(i, j) = (1 + 1e-10_dp)*load%tangential%mu*pn(i, j)*pys(i, j)/mag
-                end do
-            end do
-        end subroutine lift_round_slip
+        end subroutine lift_slip
 
         subroutine advance_state(st)
             type(fc_contact_state), intent(inout) :: st
