@@ -422,6 +422,7 @@ contains
         character(len=*), intent(out) :: errmsg
         logical :: steady, transient
         real(dp), parameter :: max_element_steps = 1.0e7_dp   !! nsteps·nx·ny of a transient run
+        real(dp), parameter :: max_sweep = 999999.9999_dp     !! |sweep_from|, |sweep_to| < 1e6
         real(dp) :: steps
         errmsg = ''
         steady = s%problem == 'rolling'
@@ -440,14 +441,14 @@ contains
             return
         end select
         if (is_given(s, 'tangential', 'mu_kinetic')) then
-            if (.not. (s%mu_kinetic >= 0 .and. s%mu_kinetic <= s%mu)) then
+            if (.not. real_in_range(s%mu_kinetic, 0.0_dp, s%mu)) then
                 errmsg = '&tangential mu_kinetic = '//fmt_real(s%mu_kinetic)//': must be in [0, mu = '//fmt_real(s%mu)// &
                     '] (kinetic friction in slip)'
                 return
             end if
         end if
         if (is_given(s, 'tangential', 'dq')) then
-            if (.not. (s%dq > 0 .and. s%dq < huge(1.0_dp))) then
+            if (.not. real_in_range(s%dq, tiny(1.0_dp), huge(1.0_dp))) then
                 errmsg = '&tangential dq = '//fmt_real(s%dq)//': must be > 0 (travelled distance per step, mm)'; return
             end if
         end if
@@ -497,7 +498,7 @@ contains
         if (.not. (is_given(s, 'tangential', 'sweep_from') .and. is_given(s, 'tangential', 'sweep_to'))) then
             errmsg = "&tangential sweep = '"//trim(s%sweep)//"': sweep_from and sweep_to are required"; return
         end if
-        if (.not. (abs(s%sweep_from) < 1e6_dp .and. abs(s%sweep_to) < 1e6_dp)) then
+        if (.not. all(real_in_range([s%sweep_from, s%sweep_to], -max_sweep, max_sweep))) then
             errmsg = '&tangential sweep_from = '//fmt_real(s%sweep_from)//', sweep_to = '//fmt_real(s%sweep_to)// &
                 ': must be finite, |value| < 1e6'
             return

@@ -800,6 +800,15 @@ contains
                    'transient with forces: '//errors)
         call drive(scene('b7', 'rolling', 'mu = 0.4, xi = 0.001')//"&solver rolling_start = 'elastic' /", dir, code, errors)
         call check(error, code /= 0 .and. index(errors, "&solver rolling_start = 'elastic'") > 0, 'unknown start: '//errors)
+        ! NaN in the rolling keys: an input error, never a comparison with the NaN (which traps
+        ! under -ffpe-trap=invalid, the sanitizer run of .ci/run)
+        call drive(scene('b8', 'rolling', "mu = 0.4, xi = 0.001, sweep = 'phi', sweep_from = 0, sweep_to = NaN"), &
+                   dir, code, errors)
+        call check(error, code /= 0 .and. index(errors, 'sweep_to = NaN') > 0, 'sweep_to NaN: '//errors)
+        call drive(scene('b9', 'rolling', 'mu = 0.4, xi = 0.001, mu_kinetic = NaN'), dir, code, errors)
+        call check(error, code /= 0 .and. index(errors, 'mu_kinetic = NaN') > 0, 'mu_kinetic NaN: '//errors)
+        call drive(scene('b10', 'transient_rolling', 'mu = 0.4, xi = 0.001, dq = NaN'), dir, code, errors)
+        call check(error, code /= 0 .and. index(errors, 'dq = NaN') > 0, 'dq NaN: '//errors)
     end subroutine test_driver_errors
 
     !> Flat API: fc_set_rolling gives the library's steady solution; the handle reuses its
