@@ -24,7 +24,7 @@ module fc_fft_effort
 contains
 
     !> Measure (FFTW_MEASURE) the FFT plans of products on an nx×ny grid (circulant
-    !! 2nx×2ny, or nx×ny when `periodic`) so that later FFTW_ESTIMATE plans of these
+    !! 2nx×2ny or fc_fftw's circulant_size, nx×ny when `periodic`) so that later FFTW_ESTIMATE plans of these
     !! shapes reuse the measured ones.  Cost: tens of ms at 60×50, about a second at
     !! 240×200 (doc/legacy_api.md).
     subroutine prime_fft_plans(nx, ny, periodic)
@@ -116,8 +116,7 @@ contains
         if (per) then
             mx = nx; my = ny
         else
-            mx = 2*nx; if (nx == 1) mx = 1
-            my = 2*ny; if (ny == 1) my = 1
+            mx = circulant_size(nx); my = circulant_size(ny)
         end if
         mxh = mx/2 + 1
         allocate (rbuf(mx, my), cbuf(mxh, my))

@@ -208,14 +208,12 @@ contains
     !! normal build on a second thread).
     subroutine prepare_block_inverse_circulant(top)
         type(fc_tangential_operator), intent(inout) :: top
-        integer :: nx, ny
         if (top%c_xx%built()) return
-        nx = top%grid%nx; ny = top%grid%ny
         call strang_circulant_of_symbol(top%a_xx, top%prec%mxx, top%c_xx, keep_kernel=.false.)
         call strang_circulant_of_symbol(top%a_xx, top%prec%mxy, top%c_xy, plans_from=top%c_xx, keep_kernel=.false.)
         call strang_circulant_of_symbol(top%a_xx, top%prec%myy, top%c_yy, plans_from=top%c_xx, keep_kernel=.false.)
         if (allocated(top%cspec_x)) deallocate (top%cspec_x, top%cspec_y, top%cwork, top%cwork2)
-        allocate (top%cspec_x(nx/2 + 1, ny))
+        allocate (top%cspec_x(top%c_xx%mx/2 + 1, top%c_xx%my))   ! the circulants' period (strang_period)
         allocate (top%cspec_y, top%cwork, top%cwork2, mold=top%cspec_x)
     end subroutine prepare_block_inverse_circulant
 

@@ -9,6 +9,8 @@
 !! and restricted back, this is a product with the block Toeplitz matrix formed by the
 !! central coefficients of the inverse circulant: a principal block of a symmetric positive
 !! definite matrix, hence SPD.  Symbol eigenvalues are floored at 1e−8 of the largest.
+!! When the products run on a larger circulant (fc_fftw's circulant_size, where FFTW
+!! transforms 2n slowly) that block Toeplitz matrix is moved there: same operator.
 module fc_tangprec
     use fc_kinds, only: dp
     use fc_fftw
@@ -16,8 +18,9 @@ module fc_tangprec
     implicit none
     private
 
-    !> Symbols of M ≈ [A^xx A^xy; A^xy A^yy]⁻¹ on the doubled grid, scaled like fc_bttb's
-    !! symbols (including 1/(mx·my)), so that they multiply the spectra of `forward`.
+    !> Symbols of M ≈ [A^xx A^xy; A^xy A^yy]⁻¹ on the products' circulant (fc_fftw's
+    !! circulant_size: the doubled grid unless FFTW transforms it slowly), scaled like
+    !! fc_bttb's symbols (including 1/(mx·my)), so that they multiply the spectra of `forward`.
     type, public :: fc_block_inverse
         integer :: nx = 0, ny = 0
         real(dp), allocatable :: mxx(:, :), mxy(:, :), myy(:, :)   !! real: the circulants are even
@@ -93,7 +96,44 @@ contains
             end do
         end do
         !$omp end parallel do
+        ! the products run on circulant_size (2n unless FFTW transforms 2n slowly): the same
+        ! Toeplitz operator there (its central coefficients), by one more pair of transforms
+        if (circulant_size(nx) /= mx .or. circulant_size(ny) /= my) then
+            call resize_symbol(prec%mxx); call resize_symbol(prec%mxy); call resize_symbol(prec%myy)
+        end if
     contains
+        !> sym (real, scaled by 1/(mx·my), on the 2nx×2ny circulant) ← the symbol on the
+        !! circulant_size circulant of the block Toeplitz operator it acts as on the grid: the
+        !! coefficients for offsets −(n−1)…n−1 of the inverse transform, zero elsewhere.
+        subroutine resize_symbol(sym)
+            real(dp), allocatable, intent(inout) :: sym(:, :)
+            real(dp), allocatable :: r2(:, :), rm(:, :)
+            complex(dp), allocatable :: c2(:, :), cm(:, :)
+            type(c_ptr) :: pb, pf
+            integer :: nxm, nym, jj, j2, jm
+            nxm = circulant_size(nx); nym = circulant_size(ny)
+            allocate (r2(mx, my), c2(mx/2 + 1, my), rm(nxm, nym), cm(nxm/2 + 1, nym))
+            !$omp critical (fc_fftw_planner)
+            pb = fftw_plan_dft_c2r_2d(int(my, c_int), int(mx, c_int), c2, r2, FFTW_ESTIMATE)
+            pf = fftw_plan_dft_r2c_2d(int(nym, c_int), int(nxm, c_int), rm, cm, FFTW_ESTIMATE)
+            !$omp end critical (fc_fftw_planner)
+            c2 = cmplx(sym, 0.0_dp, dp)
+            call fftw_execute_dft_c2r(pb, c2, r2)       ! the coefficients (sym holds 1/(mx·my))
+            rm = 0
+            do jj = -(ny - 1), ny - 1
+                j2 = jj + 1; if (jj < 0) j2 = jj + my + 1
+                jm = jj + 1; if (jj < 0) jm = jj + nym + 1
+                rm(1:nx, jm) = r2(1:nx, j2)
+                if (nx > 1) rm(nxm - nx + 2:nxm, jm) = r2(mx - nx + 2:mx, j2)
+            end do
+            call fftw_execute_dft_r2c(pf, rm, cm)
+            !$omp critical (fc_fftw_planner)
+            call fftw_destroy_plan(pb); call fftw_destroy_plan(pf)
+            !$omp end critical (fc_fftw_planner)
+            deallocate (sym)
+            allocate (sym, source=real(cm, dp)/real(nxm*nym, dp))
+        end subroutine resize_symbol
+
         !> rbuf ← circulant of kernel k(−n…n) on the doubled grid; the wrap-around slot
         !! (offset ±n) holds k(n) for an even kernel, 0 for an odd one.
         subroutine fill(kern, odd)

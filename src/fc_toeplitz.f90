@@ -2,7 +2,8 @@
 !!
 !! An [[fc_bttb]] is y = A x on an nx×ny grid where A's entries depend only on the offset
 !! (ix−jx, iy−jy): the coefficients `kernel(dix, diy)`.  Products are circulant
-!! convolutions on a doubled grid (mx = 2nx, my = 2ny; the grid itself when periodic),
+!! convolutions on a doubled grid (mx = 2nx, my = 2ny, or the next size FFTW transforms
+!! fast: fc_fftw's circulant_size; the grid itself when periodic),
 !! one forward and one inverse real FFT per product (thesis §2.2.4, §3.3.1); the direct
 !! O(n²) sum is kept as the test oracle.  This module knows nothing of elasticity: the
 !! coefficients come from [[fc_influence]].
@@ -114,23 +115,30 @@ contains
         real(dp), intent(in) :: kernel(-(nx - 1):, -(ny - 1):)
         type(fc_bttb), intent(in), optional :: plans_from
         integer :: mx, my
-        mx = 2*nx; if (nx == 1) mx = 1
-        my = 2*ny; if (ny == 1) my = 1
+        mx = circulant_size(nx); my = circulant_size(ny)
         call setup_plans(op, nx, ny, mx, my, plans_from)
         call load_kernel(op, kernel)
         call finish_symbol(op)
     end subroutine build_bttb_from_kernel
 
     !> Build a periodic operator on the grid itself from the wrapped coefficients
-    !! kernel(0:nx−1, 0:ny−1) (offsets taken modulo the grid).
-    subroutine build_bttb_periodic(op, kernel, plans_from, keep_kernel)
+    !! kernel(0:nx−1, 0:ny−1) (offsets taken modulo the grid).  With `grid` = [gx, gy] smaller
+    !! than the kernel's period, the operator acts on a gx×gy grid as the circulant of that
+    !! period restricted to it (data zero-padded to the period, the result read on the grid):
+    !! the preconditioners' Strang circulants on a grid whose size FFTW transforms slowly.
+    subroutine build_bttb_periodic(op, kernel, plans_from, keep_kernel, grid)
         type(fc_bttb), intent(inout) :: op
         real(dp), intent(in) :: kernel(0:, 0:)
         type(fc_bttb), intent(in), optional :: plans_from
         logical, intent(in), optional :: keep_kernel   !! see [[drop_kernel]] (default .true.)
-        integer :: nx, ny
+        integer, intent(in), optional :: grid(2)
+        integer :: nx, ny, gx, gy
         nx = size(kernel, 1); ny = size(kernel, 2)
-        call setup_plans(op, nx, ny, nx, ny, plans_from)
+        gx = nx; gy = ny
+        if (present(grid)) then
+            gx = grid(1); gy = grid(2)
+        end if
+        call setup_plans(op, gx, gy, nx, ny, plans_from)
         op%periodic = .true.
         allocate (op%kernel(0:nx - 1, 0:ny - 1), source=kernel)
         op%fft%rbuf = kernel
@@ -155,7 +163,8 @@ contains
     !! nx, which keeps the circulant positive definite — whose symbol is inverted
     !! pointwise; the central (2nx−1)×(2ny−1) coefficients of the inverse form M's kernel.
     !! M on the grid is a principal block of that positive definite circulant, hence
-    !! symmetric positive definite; symbol values are floored at 1e−8 of the maximum.
+    !! symmetric positive definite; symbol values are floored at 1e−8 of the maximum.  M's
+    !! products run on circulant_size like A's (2n or the next size FFTW transforms fast).
     !! (The 1D strip solver keeps the thesis' (2n−1)-circulant, [[strip_toeplitz_inverse]].)
     subroutine inverse_toeplitz_from_kernel(kext, nx, ny, prec, min_symbol, plans_from, keep_kernel)
         integer, intent(in) :: nx, ny
@@ -167,10 +176,20 @@ contains
         real(dp), allocatable :: mker(:, :)
         real(dp) :: smax
         integer :: mx, my, i, j, di, dj, jw
+        type(fc_fft_plans), pointer :: w2n
         mx = 2*nx; if (nx == 1) mx = 1
         my = 2*ny; if (ny == 1) my = 1
-        call setup_plans(prec, nx, ny, mx, my, plans_from)
-        associate (w => prec%fft)
+        call setup_plans(prec, nx, ny, circulant_size(nx), circulant_size(ny), plans_from)
+        ! M is defined on the 2nx×2ny circulant; the products run on circulant_size, which is
+        ! the same size unless FFTW transforms 2n slowly: then a set of plans of its own
+        w2n => prec%fft
+        if (prec%mx /= mx .or. prec%my /= my) then
+            allocate (w2n)
+            !$omp critical (fc_fftw_planner)
+            call plans_create(w2n, nx, ny, mx, my)
+            !$omp end critical (fc_fftw_planner)
+        end if
+        associate (w => w2n)
             do j = 0, my - 1
                 dj = j; if (j > my/2) dj = j - my
                 do i = 0, mx - 1
@@ -190,6 +209,12 @@ contains
                 mker(-(nx - 1):-1, j) = w%rbuf(mx - nx + 2:mx, jw)
             end do
         end associate
+        if (.not. associated(w2n, prec%fft)) then
+            !$omp critical (fc_fftw_planner)
+            call plans_free(w2n)
+            !$omp end critical (fc_fftw_planner)
+            deallocate (w2n)
+        end if
         call load_kernel(prec, mker)
         call finish_symbol(prec)
         call drop_kernel(prec, keep_kernel)
@@ -209,10 +234,22 @@ contains
         type(fc_bttb), intent(in), optional :: plans_from   !! a periodic operator of this grid
         logical, intent(in), optional :: keep_kernel        !! see [[drop_kernel]] (default .true.)
         real(dp), allocatable :: wrapped(:, :)
-        allocate (wrapped(0:nx - 1, 0:ny - 1))
-        call wrap_strang(kernel(-(nx/2):nx/2, -(ny/2):ny/2), nx, ny, wrapped)
-        call build_bttb_periodic(circ, wrapped, plans_from, keep_kernel)
+        integer :: px, py
+        call strang_period(nx, ny, px, py)
+        allocate (wrapped(0:px - 1, 0:py - 1))
+        call wrap_strang(kernel(-(px/2):px/2, -(py/2):py/2), px, py, wrapped)
+        call build_bttb_periodic(circ, wrapped, plans_from, keep_kernel, grid=[nx, ny])
     end subroutine strang_circulant
+
+    !> Period of the Strang circulants on an nx×ny grid: the grid itself, or in a direction
+    !! whose size FFTW transforms slowly (a large prime factor) the next size it transforms
+    !! fast (fc_fftw's friendly_size), as long as the coefficients reach half of it.
+    pure subroutine strang_period(nx, ny, px, py)
+        integer, intent(in) :: nx, ny
+        integer, intent(out) :: px, py
+        px = friendly_size(nx); if (px > 2*nx - 2) px = nx
+        py = friendly_size(ny); if (py > 2*ny - 2) py = ny
+    end subroutine strang_period
 
     !> Strang's circulant ([[strang_circulant]]) of the operator whose symbol on `op`'s doubled
     !! grid, scaled as `op`'s (1/(mx·my) included), is the real `rsymbol` — an even circulant
@@ -226,9 +263,11 @@ contains
         type(fc_bttb), intent(in), optional :: plans_from   !! a periodic operator of this grid
         logical, intent(in), optional :: keep_kernel        !! see [[drop_kernel]] (default .true.)
         real(dp), allocatable :: k(:, :), wrapped(:, :)
-        integer :: nx, ny, hx, hy, i, j
-        nx = op%nx; ny = op%ny; hx = nx/2; hy = ny/2
-        allocate (k(-hx:hx, -hy:hy), wrapped(0:nx - 1, 0:ny - 1))
+        integer :: nx, ny, hx, hy, i, j, px, py
+        nx = op%nx; ny = op%ny
+        call strang_period(nx, ny, px, py)
+        hx = px/2; hy = py/2
+        allocate (k(-hx:hx, -hy:hy), wrapped(0:px - 1, 0:py - 1))
         associate (w => op%fft)
             w%cbuf = cmplx(rsymbol, 0.0_dp, dp)
             call full_backward(w)
@@ -238,8 +277,8 @@ contains
                 end do
             end do
         end associate
-        call wrap_strang(k, nx, ny, wrapped)
-        call build_bttb_periodic(circ, wrapped, plans_from, keep_kernel)
+        call wrap_strang(k, px, py, wrapped)
+        call build_bttb_periodic(circ, wrapped, plans_from, keep_kernel, grid=[nx, ny])
     contains
         !> Index of offset k in a period m (offset k sits at modulo(k, m) + 1).
         pure integer function at(k, m)
@@ -998,10 +1037,10 @@ contains
                 s = 0
                 do l = 1, self%ny
                     dj = j - l
-                    if (self%periodic) dj = modulo(dj, self%ny)
+                    if (self%periodic) dj = modulo(dj, self%my)
                     do k = 1, self%nx
                         di = i - k
-                        if (self%periodic) di = modulo(di, self%nx)
+                        if (self%periodic) di = modulo(di, self%mx)
                         s = s + self%kernel(di, dj)*x(k, l)
                     end do
                 end do

@@ -7,6 +7,9 @@ module test_operators
     use fc_influence
     use fc_norm, only: fc_normal_operator, build_normal_operator
     use fc_tangcg, only: fc_tangential_operator, build_tangential_operator, coupling_displacements
+    use fc_tangcg_operator, only: apply_block_inverse
+    use fc_fftw, only: circulant_size, friendly_size
+    use fc_kinds, only: pi
     use fc_testing
     implicit none
     private
@@ -26,6 +29,10 @@ contains
             new_unittest('kernel_exact_reflections', test_kernel_reflections), &
             new_unittest('strang_circulant_wraps_kernel', test_strang_circulant), &
             new_unittest('strang_circulant_of_symbol', test_strang_of_symbol), &
+            new_unittest('circulant_sizes_fftw_friendly', test_circulant_sizes), &
+            new_unittest('products_on_slow_fft_sizes', test_products_slow_sizes), &
+            new_unittest('toeplitz_inverse_defined_on_doubled_grid', test_inverse_doubled_grid), &
+            new_unittest('block_inverse_defined_on_doubled_grid', test_block_inverse_doubled_grid), &
             new_unittest('final_binding_releases_plans', test_final_binding) ]
     end subroutine collect_operators
 
@@ -248,6 +255,242 @@ contains
         end do
         call check(error, even .and. c1%parity == SYMBOL_EVEN, 'exactly even')
     end subroutine test_strang_of_symbol
+
+    !> The circulant sizes of the products: 2n when FFTW transforms it fast (2^a 3^b 5^c 7^d
+    !! 11^e 13^f, e + f ≤ 1), else the next such even size; the Strang circulants' period:
+    !! n or the next such size.  Checked against a plain factorisation for n = 1…700.
+    subroutine test_circulant_sizes(error)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: n, m
+        logical :: ok
+        call check(error, circulant_size(240) == 480 .and. circulant_size(200) == 400, '240, 200: doubled')
+        call check(error, circulant_size(241) == 486 .and. circulant_size(199) == 400, '241 -> 486, 199 -> 400')
+        call check(error, circulant_size(1) == 1 .and. circulant_size(13) == 26 .and. circulant_size(17) == 36, &
+            '1 -> 1, 13 -> 26, 17 -> 36')
+        call check(error, friendly_size(241) == 243 .and. friendly_size(240) == 240 .and. friendly_size(17) == 18, &
+            'friendly 241 -> 243, 240, 17 -> 18')
+        if (allocated(error)) return
+        ok = .true.
+        do n = 2, 700
+            m = circulant_size(n)
+            ok = ok .and. mod(m, 2) == 0 .and. m >= 2*n .and. good(m)
+            do m = 2*n, circulant_size(n) - 2, 2
+                ok = ok .and. .not. good(m)
+            end do
+            ok = ok .and. friendly_size(n) >= n .and. good(friendly_size(n))
+            do m = n, friendly_size(n) - 1
+                ok = ok .and. .not. good(m)
+            end do
+        end do
+        call check(error, ok, 'n = 2..700: smallest good size at or above the bound')
+    contains
+        logical function good(m)
+            integer, intent(in) :: m
+            integer :: r, p, e11, e13
+            integer, parameter :: primes(4) = [2, 3, 5, 7]
+            r = m
+            do p = 1, 4
+                do while (mod(r, primes(p)) == 0)
+                    r = r/primes(p)
+                end do
+            end do
+            e11 = 0; e13 = 0
+            do while (mod(r, 11) == 0)
+                r = r/11; e11 = e11 + 1
+            end do
+            do while (mod(r, 13) == 0)
+                r = r/13; e13 = e13 + 1
+            end do
+            good = r == 1 .and. e11 + e13 <= 1
+        end function good
+    end subroutine test_circulant_sizes
+
+    !> On a 17×19 grid (2n = 34 = 2·17, 38 = 2·19: slow transforms) the products run on a
+    !! 36×40 circulant and still equal the direct sums (even, odd-in-both and odd-in-x
+    !! blocks, and the normal Toeplitz inverse); the Strang circulants get an 18×20 period,
+    !! hold the kernel's coefficients and their product equals the direct periodic sum.
+    subroutine test_products_slow_sizes(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_material) :: mat
+        type(fc_grid) :: grid
+        type(fc_bttb) :: op, prec, circ
+        real(dp), allocatable :: x(:, :), y(:, :), yd(:, :), k(:, :)
+        integer, parameter :: blocks(3) = [IC_ZZ, IC_XY, IC_XZ]
+        integer :: stat, b, i, j, nx, ny
+        character(len=200) :: msg, label
+        call dissimilar(mat)
+        nx = 17; ny = 19
+        call make_grid(grid, nx, ny, -1.0_dp, 1.0_dp, -1.0_dp, 0.5_dp, stat, msg)
+        allocate (x(nx, ny), y(nx, ny), yd(nx, ny))
+        do j = 1, ny
+            do i = 1, nx
+                x(i, j) = sin(0.7_dp*i) + cos(1.3_dp*j) + 0.1_dp*i*j
+            end do
+        end do
+        do b = 1, 3
+            write (label, '(a,i0)') 'block ', blocks(b)
+            call build_bttb(op, blocks(b), mat, grid)
+            call check(error, op%mx == 36 .and. op%my == 40, trim(label)//': circulant 36 x 40')
+            call op%apply(x, y)
+            call op%apply_direct(x, yd)
+            call check(error, maxval(abs(y - yd)) <= 1e-13_dp*maxval(abs(yd)), trim(label)//': FFT product = direct sum')
+            call ic_kernel(blocks(b), mat, grid, k)
+            call strang_circulant(k, nx, ny, circ)
+            call check(error, circ%mx == 18 .and. circ%my == 20 .and. circ%nx == nx .and. circ%ny == ny, &
+                trim(label)//': Strang period 18 x 20 on the 17 x 19 grid')
+            call check(error, circ%kernel(8, 3), k(8, 3), trim(label)//': slot (8, 3) = offset (8, 3)', rel=1e-15_dp)
+            call check(error, circ%kernel(12, 15), k(-6, -5), trim(label)//': slot (12, 15) = offset (-6, -5)', rel=1e-15_dp)
+            call circ%apply(x, y)
+            call circ%apply_direct(x, yd)
+            call check(error, maxval(abs(y - yd)) <= 1e-13_dp*maxval(abs(yd)), trim(label)//': circulant product = direct sum')
+            if (allocated(error)) return
+        end do
+        call build_inverse_toeplitz(IC_ZZ, mat, grid, prec)
+        call prec%apply(x, y)
+        call prec%apply_direct(x, yd)
+        call check(error, maxval(abs(y - yd)) <= 1e-13_dp*maxval(abs(yd)), 'Toeplitz inverse: FFT product = direct sum')
+    end subroutine test_products_slow_sizes
+
+    !> BCCG's preconditioner on a grid whose doubled size FFTW transforms slowly (17×19) is
+    !! still the one of the 2nx×2ny circulant (thesis §3.3.1): its coefficients equal those
+    !! computed here by direct (O(N²)) discrete Fourier sums of that circulant, although its
+    !! products run on 36×40.
+    subroutine test_inverse_doubled_grid(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_material) :: mat
+        type(fc_grid) :: grid
+        type(fc_bttb) :: prec
+        real(dp), allocatable :: kext(:, :), c(:, :), lam(:, :), m(:, :)
+        integer :: stat, nx, ny
+        character(len=200) :: msg
+        call dissimilar(mat)
+        nx = 17; ny = 19
+        call make_grid(grid, nx, ny, -1.0_dp, 1.0_dp, -1.0_dp, 0.5_dp, stat, msg)
+        call build_inverse_toeplitz(IC_ZZ, mat, grid, prec)
+        call check(error, prec%mx == 36 .and. prec%my == 40, 'products on 36 x 40')
+        call ic_kernel_extended(IC_ZZ, mat, grid, nx, ny, kext)
+        call doubled_circulant(kext, nx, ny, .false., c)
+        lam = direct_even_symbol(c)
+        lam = 1/max(lam, 1.0e-8_dp*maxval(lam))
+        m = central_coefficients(lam, nx, ny)
+        call check(error, maxval(abs(prec%kernel - m)) <= 1e-12_dp*maxval(abs(m)), &
+            'coefficients = the 34 x 38 circulant inverse''s (direct sums)')
+    end subroutine test_inverse_doubled_grid
+
+    !> TangCG's block preconditioner on 17×19, applied on the products' 36×40 circulant, is
+    !! the block Toeplitz operator of the central coefficients of the inverse of the 34×38
+    !! block circulant (the definition in fc_tangprec): equal to that operator computed here
+    !! by direct Fourier sums, the 2×2 inversion per frequency and a direct product.
+    subroutine test_block_inverse_doubled_grid(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_material) :: mat
+        type(fc_grid) :: grid
+        type(fc_tangential_operator) :: top
+        real(dp), allocatable :: kxx(:, :), kxy(:, :), kyy(:, :), c(:, :), a(:, :), b(:, :), d(:, :), det(:, :)
+        real(dp), allocatable :: mxx(:, :), mxy(:, :), myy(:, :), dx(:, :), dy(:, :), zx(:, :), zy(:, :), rx(:, :), ry(:, :)
+        real(dp) :: lmax, lmin
+        integer :: stat, nx, ny, i, j, k, l
+        character(len=200) :: msg
+        mat%g1 = 200; mat%g2 = 200; mat%nu1 = 0.3_dp; mat%nu2 = 0.3_dp
+        call combine_material(mat, stat, msg)
+        nx = 17; ny = 19
+        call make_grid(grid, nx, ny, -1.0_dp, 1.0_dp, -1.0_dp, 0.5_dp, stat, msg)
+        call build_tangential_operator(top, mat, grid)
+        call ic_kernel_extended(IC_XX, mat, grid, nx, ny, kxx)
+        call ic_kernel_extended(IC_XY, mat, grid, nx, ny, kxy)
+        call ic_kernel_extended(IC_YY, mat, grid, nx, ny, kyy)
+        call doubled_circulant(kxx, nx, ny, .false., c); a = direct_even_symbol(c)
+        call doubled_circulant(kxy, nx, ny, .true., c); b = direct_even_symbol(c)
+        call doubled_circulant(kyy, nx, ny, .false., c); d = direct_even_symbol(c)
+        det = a*d - b*b
+        lmax = maxval(0.5_dp*(a + d) + sqrt(0.25_dp*(a - d)**2 + b**2))
+        lmin = minval(0.5_dp*(a + d) - sqrt(0.25_dp*(a - d)**2 + b**2))
+        call check(error, lmin > 1.0e-8_dp*lmax, 'no symbol eigenvalue floored (plain 2x2 inverses)')
+        if (allocated(error)) return
+        mxx = central_coefficients(d/det, nx, ny)
+        mxy = central_coefficients(-b/det, nx, ny)
+        myy = central_coefficients(a/det, nx, ny)
+        allocate (dx(nx, ny), dy(nx, ny), zx(nx, ny), zy(nx, ny), rx(nx, ny), ry(nx, ny))
+        do j = 1, ny
+            do i = 1, nx
+                dx(i, j) = sin(0.7_dp*i) + cos(1.3_dp*j); dy(i, j) = cos(0.4_dp*i*j) - 0.05_dp*j
+            end do
+        end do
+        rx = 0; ry = 0
+        do j = 1, ny
+            do i = 1, nx
+                do l = 1, ny
+                    do k = 1, nx
+                        ! the coefficient arrays are 1-based here: offset d at d + n
+                        rx(i, j) = rx(i, j) + mxx(i - k + nx, j - l + ny)*dx(k, l) + mxy(i - k + nx, j - l + ny)*dy(k, l)
+                        ry(i, j) = ry(i, j) + mxy(i - k + nx, j - l + ny)*dx(k, l) + myy(i - k + nx, j - l + ny)*dy(k, l)
+                    end do
+                end do
+            end do
+        end do
+        call apply_block_inverse(top, dx, dy, zx, zy, circulant=.false.)
+        call check(error, maxval(abs(zx - rx)) + maxval(abs(zy - ry)) <= 1e-12_dp*(maxval(abs(rx)) + maxval(abs(ry))), &
+            'M (dx, dy) = the 34 x 38 block circulant inverse''s Toeplitz part (direct sums)')
+    end subroutine test_block_inverse_doubled_grid
+
+    !> c(0:2nx−1, 0:2ny−1) ← the circulant of k(−n…n) on the doubled grid: the slot of offset
+    !! ±n holds k(n) (even kernels) or 0 (`odd`, odd in x and in y).
+    subroutine doubled_circulant(k, nx, ny, odd, c)
+        integer, intent(in) :: nx, ny
+        real(dp), intent(in) :: k(-nx:, -ny:)
+        logical, intent(in) :: odd
+        real(dp), allocatable, intent(out) :: c(:, :)
+        integer :: i, j, di, dj
+        allocate (c(0:2*nx - 1, 0:2*ny - 1))
+        do j = 0, 2*ny - 1
+            dj = j; if (j > ny) dj = j - 2*ny
+            do i = 0, 2*nx - 1
+                di = i; if (i > nx) di = i - 2*nx
+                c(i, j) = k(di, dj)
+                if (odd .and. (i == nx .or. j == ny)) c(i, j) = 0
+            end do
+        end do
+    end subroutine doubled_circulant
+
+    !> Real symbol of an even circulant by the direct sums λ(p, q) = Σ c(i, j) cos 2π(pi/mx + qj/my).
+    function direct_even_symbol(c) result(lam)
+        real(dp), intent(in) :: c(0:, 0:)
+        real(dp), allocatable :: lam(:, :)
+        integer :: p, q, i, j, mx, my
+        mx = size(c, 1); my = size(c, 2)
+        allocate (lam(0:mx - 1, 0:my - 1), source=0.0_dp)
+        do q = 0, my - 1
+            do p = 0, mx - 1
+                do j = 0, my - 1
+                    do i = 0, mx - 1
+                        lam(p, q) = lam(p, q) + c(i, j)*cos(2*pi*(real(mod(p*i, mx), dp)/mx + real(mod(q*j, my), dp)/my))
+                    end do
+                end do
+            end do
+        end do
+    end function direct_even_symbol
+
+    !> Coefficients at the offsets |di| < nx, |dj| < ny of the even circulant with real symbol
+    !! lam(0:mx−1, 0:my−1): (1/(mx·my)) Σ lam(p, q) cos 2π(p·di/mx + q·dj/my).
+    function central_coefficients(lam, nx, ny) result(m)
+        real(dp), intent(in) :: lam(0:, 0:)
+        integer, intent(in) :: nx, ny
+        real(dp), allocatable :: m(:, :)
+        integer :: p, q, di, dj, mx, my
+        mx = size(lam, 1); my = size(lam, 2)
+        allocate (m(-(nx - 1):nx - 1, -(ny - 1):ny - 1), source=0.0_dp)
+        do dj = -(ny - 1), ny - 1
+            do di = -(nx - 1), nx - 1
+                do q = 0, my - 1
+                    do p = 0, mx - 1
+                        m(di, dj) = m(di, dj) + lam(p, q)*cos(2*pi*(real(modulo(p*di, mx), dp)/mx + &
+                            real(modulo(q*dj, my), dp)/my))
+                    end do
+                end do
+            end do
+        end do
+        m = m/real(mx*my, dp)
+    end function central_coefficients
 
     !> On the thesis' Cattaneo grid (240×200, where rounding in the double differences of
     !! large antiderivative values used to leave A^xy a complex symbol) every block has its
