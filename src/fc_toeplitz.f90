@@ -23,7 +23,7 @@
 !! Blocks sharing a plan set must not be applied concurrently (one set of buffers).  Plans
 !! are made and destroyed inside the critical section `fc_fftw_planner` (see fc_threads).
 !!
-!! Size (~1010 lines): construction (Strang circulants included, which read the plan set's
+!! Size (~1050 lines): construction (Strang circulants included, which read the plan set's
 !! buffers), lifetime, the products and the block products' lanes (which add a second
 !! plan set and buffer to it) share the plan set and its buffers; splitting them would
 !! make the plan set public, and a module of its own below this one would add a layer to
