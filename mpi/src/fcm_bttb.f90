@@ -24,7 +24,7 @@
 !! owns in step 3.  sym(ky, kx) is stored for ky ∈ [0, my/2] (ky and my−ky share a value).
 module fcm_bttb
     use mpi
-    use fc_kinds, only: dp
+    use fc_kinds, only: dp, FC_ERR_GRID, FC_ERR_INTERNAL
     use fcm_fftw_mpi
     implicit none
     private
@@ -77,7 +77,7 @@ contains
         call mpi_comm_size(comm, lay%nprocs, ierr)
         call mpi_comm_rank(comm, lay%rank, ierr)
         if (nx < 2 .or. ny < lay%nprocs .or. ny < 2) then
-            stat = 1
+            stat = FC_ERR_GRID
             write (errmsg, '(a,i0,a,i0,a,i0,a)') 'distributed grid: nx = ', nx, ', ny = ', ny, &
                 ' cannot be split over ', lay%nprocs, ' ranks (need nx >= 2 and ny >= max(2, ranks))'
             return
@@ -118,7 +118,7 @@ contains
             nql, q0, nkl2, k02)
         lay%nql = int(nql); lay%q0 = int(q0)
         if (nkl2 /= nkl .or. (nkl > 0 .and. k02 /= k0)) then
-            stat = 1; errmsg = 'distributed grid: FFTW distributions of the transpose and the cosine transform differ'
+            stat = FC_ERR_INTERNAL; errmsg = 'distributed grid: FFTW distributions of the transpose and the cosine transform differ'
         end if
     end subroutine layout_init
 

@@ -20,7 +20,8 @@
 module fcm_norm
     use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
     use mpi
-    use fc_kinds, only: dp, msg_len, FC_CONVERGED, FC_NOT_CONVERGED, FC_DIVERGED, FC_ERROR, check_iteration_settings
+    use fc_kinds, only: dp, msg_len, FC_CONVERGED, FC_NOT_CONVERGED, FC_DIVERGED, FC_ERROR, check_iteration_settings, &
+        FC_ERR_NOT_READY, FC_ERR_SHAPE, FC_ERR_VALUE, FC_ERR_UNSUPPORTED
     use fc_geometry, only: fc_grid, h_no_contact
     use fc_influence, only: fc_material, element_coefficient, IC_ZZ
     use fc_norm, only: fc_normal_settings, fc_normal_result
@@ -156,35 +157,36 @@ contains
         stat = 0; errmsg = ''
         nx = dop%grid%nx; nyl = dop%lay%nyl
         if (.not. allocated(dop%sym_a)) then
-            stat = 1; errmsg = 'solve_dist_normal: operator not built'; return
+            stat = FC_ERR_NOT_READY; errmsg = 'solve_dist_normal: operator not built'; return
         end if
         if (size(h0, 1) /= nx .or. size(h0, 2) /= nyl) then
-            stat = 1; write (errmsg, '(a,2(i0,1x),a,2(i0,1x))') 'solve_dist_normal: h0 has shape ', shape(h0), &
+            stat = FC_ERR_SHAPE; write (errmsg, '(a,2(i0,1x),a,2(i0,1x))') 'solve_dist_normal: h0 has shape ', shape(h0), &
                 'but this rank holds ', nx, nyl
             return
         end if
         if (present(approach) .eqv. present(fn)) then
-            stat = 1; errmsg = 'solve_dist_normal: give exactly one of approach and fn'; return
+            stat = FC_ERR_VALUE; errmsg = 'solve_dist_normal: give exactly one of approach and fn'; return
         end if
         if (trim(settings%solver) /= 'bccg') then
-            stat = 1; errmsg = "solver: normal = '"//trim(settings%solver)//"': the distributed solver is 'bccg'"; return
+            stat = FC_ERR_UNSUPPORTED
+            errmsg = "solver: normal = '"//trim(settings%solver)//"': the distributed solver is 'bccg'"; return
         end if
         if (settings%deflation) then
-            stat = 1; errmsg = 'solver: deflation = .true. is not available in the distributed solver'; return
+            stat = FC_ERR_UNSUPPORTED; errmsg = 'solver: deflation = .true. is not available in the distributed solver'; return
         end if
         force_mode = present(fn)
         fnv = 0; delta = 0
         if (force_mode) then
             fnv = fn
             if (.not. (fn > 0)) then
-                stat = 1; write (errmsg, '(a,es12.4,a)') 'normal: fn = ', fn, ' must be > 0'; return
+                stat = FC_ERR_VALUE; write (errmsg, '(a,es12.4,a)') 'normal: fn = ', fn, ' must be > 0'; return
             end if
         else
             delta = approach
             any_contact = any(h0 - delta <= 0 .and. h0 < 0.5_dp*h_no_contact)
             call mpi_allreduce(MPI_IN_PLACE, any_contact, 1, MPI_LOGICAL, MPI_LOR, dop%lay%comm, ierr)
             if (.not. any_contact) then
-                stat = 1; write (errmsg, '(a,es12.4,a)') 'normal: approach = ', approach, &
+                stat = FC_ERR_VALUE; write (errmsg, '(a,es12.4,a)') 'normal: approach = ', approach, &
                     ' gives no contact (h0 − approach > 0 everywhere)'
                 return
             end if
