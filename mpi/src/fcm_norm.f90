@@ -21,7 +21,7 @@ module fcm_norm
     use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
     use mpi
     use fc_kinds, only: dp, msg_len, FC_CONVERGED, FC_NOT_CONVERGED, FC_DIVERGED, FC_ERROR, check_iteration_settings, &
-        FC_ERR_NOT_READY, FC_ERR_SHAPE, FC_ERR_VALUE, FC_ERR_UNSUPPORTED
+        FC_ERR_NOT_READY, FC_ERR_SHAPE, FC_ERR_VALUE, FC_ERR_UNSUPPORTED, FC_ERR_NO_CONTACT
     use fc_geometry, only: fc_grid, h_no_contact
     use fc_influence, only: fc_material, element_coefficient, IC_ZZ
     use fc_norm, only: fc_normal_settings, fc_normal_result
@@ -186,7 +186,7 @@ contains
             any_contact = any(h0 - delta <= 0 .and. h0 < 0.5_dp*h_no_contact)
             call mpi_allreduce(MPI_IN_PLACE, any_contact, 1, MPI_LOGICAL, MPI_LOR, dop%lay%comm, ierr)
             if (.not. any_contact) then
-                stat = FC_ERR_VALUE; write (errmsg, '(a,es12.4,a)') 'normal: approach = ', approach, &
+                stat = FC_ERR_NO_CONTACT; write (errmsg, '(a,es12.4,a)') 'normal: approach = ', approach, &
                     ' gives no contact (h0 − approach > 0 everywhere)'
                 return
             end if
