@@ -88,11 +88,14 @@ contains
             ! on one thread (the loops and transforms inside are nested regions).  Their serial
             ! parts (FFTW's first planning, allocation and first touch) then overlap; the same
             ! operators result (the element loops have no reductions, the plans are the same).
+            ! The longer build (the tangential one) is the first section, which the thread
+            ! that opens the region takes at once; the other thread may start late (a first
+            ! parallel region waits 1–10 ms for its thread on this machine).
             !$omp parallel sections num_threads(2)
             !$omp section
-            call build_normal()
-            !$omp section
             call build_tangential()
+            !$omp section
+            call build_normal()
             !$omp end parallel sections
         else
             if (build_n) call build_normal()
