@@ -90,6 +90,25 @@ contains
         call combine_material(mat, stat, msg)
     end subroutine dissimilar
 
+    !> The dissimilar material (K ≠ 0), an nx×ny grid on [−1, 1]×[−1, 0.5] and a smooth
+    !! field on it, for the product checks.
+    subroutine grid_and_field(nx, ny, mat, grid, x)
+        integer, intent(in) :: nx, ny
+        type(fc_material), intent(out) :: mat
+        type(fc_grid), intent(out) :: grid
+        real(dp), allocatable, intent(out) :: x(:, :)
+        integer :: stat, i, j
+        character(len=200) :: msg
+        call dissimilar(mat)
+        call make_grid(grid, nx, ny, -1.0_dp, 1.0_dp, -1.0_dp, 0.5_dp, stat, msg)
+        allocate (x(nx, ny))
+        do j = 1, ny
+            do i = 1, nx
+                x(i, j) = sin(0.7_dp*i) + cos(1.3_dp*j) + 0.1_dp*i*j
+            end do
+        end do
+    end subroutine grid_and_field
+
     !> Copy the normal and the tangential operator, destroy the originals, use the copies:
     !! FFT products of the copies equal the direct sums (own plans, valid buffers).
     subroutine test_copy_survives_original(error)
@@ -197,17 +216,11 @@ contains
         type(fc_bttb) :: circ
         real(dp), allocatable :: k(:, :), x(:, :), y(:, :), yd(:, :)
         integer, parameter :: blocks(3) = [IC_ZZ, IC_XY, IC_XZ], parity(3) = [SYMBOL_EVEN, SYMBOL_EVEN, SYMBOL_ODD]
-        integer :: stat, b, i, j, nx, ny
-        character(len=200) :: msg, label
-        call dissimilar(mat)
+        integer :: b, nx, ny
+        character(len=200) :: label
         nx = 8; ny = 7
-        call make_grid(grid, nx, ny, -1.0_dp, 1.0_dp, -1.0_dp, 0.5_dp, stat, msg)
-        allocate (x(nx, ny), y(nx, ny), yd(nx, ny))
-        do j = 1, ny
-            do i = 1, nx
-                x(i, j) = sin(0.7_dp*i) + cos(1.3_dp*j) + 0.1_dp*i*j
-            end do
-        end do
+        call grid_and_field(nx, ny, mat, grid, x)
+        allocate (y(nx, ny), yd(nx, ny))
         do b = 1, 3
             write (label, '(a,i0)') 'block ', blocks(b)
             call ic_kernel(blocks(b), mat, grid, k)
@@ -316,17 +329,11 @@ contains
         type(fc_bttb) :: op, prec, circ
         real(dp), allocatable :: x(:, :), y(:, :), yd(:, :), k(:, :)
         integer, parameter :: blocks(3) = [IC_ZZ, IC_XY, IC_XZ]
-        integer :: stat, b, i, j, nx, ny
-        character(len=200) :: msg, label
-        call dissimilar(mat)
+        integer :: b, nx, ny
+        character(len=200) :: label
         nx = 17; ny = 19
-        call make_grid(grid, nx, ny, -1.0_dp, 1.0_dp, -1.0_dp, 0.5_dp, stat, msg)
-        allocate (x(nx, ny), y(nx, ny), yd(nx, ny))
-        do j = 1, ny
-            do i = 1, nx
-                x(i, j) = sin(0.7_dp*i) + cos(1.3_dp*j) + 0.1_dp*i*j
-            end do
-        end do
+        call grid_and_field(nx, ny, mat, grid, x)
+        allocate (y(nx, ny), yd(nx, ny))
         do b = 1, 3
             write (label, '(a,i0)') 'block ', blocks(b)
             call build_bttb(op, blocks(b), mat, grid)
