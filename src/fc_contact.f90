@@ -610,14 +610,17 @@ contains
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
         type(fc_contact_loading) :: load
-        type(fc_contact_state) :: state, good
+        type(fc_contact_state) :: state, good, before
         real(dp) :: dq, value, mufn, secs, first_failed
         integer :: k, n, nfailed, worst
+        logical :: two_good   !! the last two points converged (a predictor may use them)
+        logical :: prev_ok    !! the point before converged
         integer(i8) :: t0, t1, rate
         stat = 0; errmsg = ''
         load = load_in
         state%warm_start = .true.
         good = state
+        two_good = .false.; prev_ok = .false.
         nfailed = 0; worst = FC_CONVERGED; first_failed = 0
         if (seq%transient) then
             dq = seq%dq
@@ -646,6 +649,16 @@ contains
                 case ('fx'); load%tangential%fx = value
                 case ('fy'); load%tangential%fy = value
                 end select
+                ! creepage sweeps, equally spaced points: the tractions extrapolated linearly
+                ! from the two converged points before (2·p_k − p_k−1) are a closer start than
+                ! p_k; the warm start then sorts them (beyond the bound: slip, projected), and
+                ! the slip elements of p_k are lifted to the new bound as for any warm start.
+                ! Not for force sweeps: their first solve runs at the previous creepages, which
+                ! the predicted tractions do not match (measured: 24 % more Krylov iterations),
+                ! and creepages extrapolated as well overshoot near saturation (doc/rolling.md)
+                if (two_good .and. settings%rolling%sweep_predictor .and. .not. load%tangential%force_prescribed) then
+                    state%px = 2*good%px - before%px; state%py = 2*good%py - before%py
+                end if
             end if
             call system_clock(t0, rate)
             call solve_contact(ops, grid, mat, h0, load, settings, res, stat, errmsg, state=state)
@@ -667,7 +680,12 @@ contains
                 end if
             end associate
             if (res%status == FC_CONVERGED) then
-                if (.not. seq%transient) good = state
+                if (.not. seq%transient) then
+                    two_good = prev_ok
+                    if (two_good) before = good
+                    good = state
+                    prev_ok = .true.
+                end if
             else if (seq%transient) then
                 rows = rows(1:k, :)
                 exit
@@ -678,6 +696,7 @@ contains
                 if (nfailed == 1) first_failed = value
                 worst = max(worst, res%status)
                 state = good
+                two_good = .false.; prev_ok = .false.
             end if
         end do
         if (nfailed > 0) then

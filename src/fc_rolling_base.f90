@@ -32,6 +32,9 @@ module fc_rolling_base
         !! the grid, [[fastsim_on_grid]]: the slip area starts near its place) or 'adhesion'
         !! (zero tractions, every contact element in adhesion)
         character(len=8) :: start = 'fastsim'
+        !> Creep-force sweeps ([[rolling_sequence]]): start a point from the linear
+        !! extrapolation of the two converged points before it instead of from the last one
+        logical :: sweep_predictor = .true.
     end type fc_rolling_settings
 
     !> Loading of a steady rolling problem.

@@ -11,6 +11,9 @@ module test_rolling
     use fc_fastsim
     use fc_legacy
     use fc_driver, only: run_driver
+    use fc_contact, only: rolling_sequence, fc_contact_operators, fc_contact_loading, fc_contact_settings, &
+        fc_contact_result, FC_PROBLEM_ROLLING
+    use fc_rolling_base, only: fc_rolling_case
     use fc_testing, file_text => file_lines
     implicit none
     private
@@ -33,6 +36,7 @@ contains
             new_unittest('symmetry_and_signs', test_symmetry), &
             new_unittest('prescribed_creep_force', test_force), &
             new_unittest('warm_starts_of_a_sweep', test_warm_starts), &
+            new_unittest('sweep_predictor', test_sweep_predictor), &
             new_unittest('creep_force_loop_bounded', test_force_bounded), &
             new_unittest('status_and_input_errors', test_status), &
             new_unittest('driver_rolling_sweep_transient', test_driver_cases), &
@@ -697,6 +701,47 @@ contains
         call execute_command_line("rm -rf '"//dir//"'")
         call top%destroy()
     end subroutine test_driver_cases
+
+    !> A creep-force sweep (ξ 0 … 0.006, η = 0.001, φ = 0.003, 10 points, 60×50) through
+    !! the orchestrator's [[rolling_sequence]], with the linear predictor of the starting
+    !! tractions (default) and without: every point converges both ways to the same forces
+    !! (1e−5·μFn: tol 1e−5 on the tractions) and the predictor saves Krylov iterations
+    !! (measured: 294 against 331, points 3–10).  Fails when the predictor is not applied.
+    subroutine test_sweep_predictor(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_grid) :: grid
+        type(fc_material) :: mat
+        type(fc_contact_operators) :: ops
+        type(fc_contact_loading) :: load
+        type(fc_contact_settings) :: set
+        type(fc_contact_result) :: res
+        type(fc_rolling_case) :: seq
+        real(dp), allocatable :: rows(:, :, :), r(:, :)
+        integer :: stat, k
+        character(len=msg_len) :: msg
+        call make_grid(grid, 60, 50, -l_cat, l_cat, -l_cat, l_cat, stat, msg)
+        mat%g1 = g_cat; mat%g2 = g_cat; mat%nu1 = nu_cat; mat%nu2 = nu_cat
+        call combine_material(mat, stat, msg)
+        load%problem = FC_PROBLEM_ROLLING
+        load%normal%force_prescribed = .true.; load%normal%fn = fn_cat
+        load%tangential%mu = mu_cat; load%tangential%eta = 0.001_dp; load%tangential%phi = 0.003_dp
+        seq%sweep = 'xi'; seq%sweep_from = 0; seq%sweep_to = 0.006_dp; seq%sweep_n = 10
+        allocate (rows(10, 14, 2))
+        do k = 1, 2
+            set%rolling%sweep_predictor = k == 1
+            call rolling_sequence(seq, ops, grid, mat, quadratic_gap(grid, r_cat, r_cat), load, set, res, r, stat, msg)
+            call check(error, stat == 0 .and. size(r, 1) == 10, 'sweep ran: '//trim(msg))
+            if (allocated(error)) return
+            rows(:, :, k) = r
+        end do
+        call check(error, all(nint(rows(:, 14, :)) == FC_CONVERGED), 'every point converged, with and without')
+        call check(error, maxval(abs(rows(:, 5:6, 1) - rows(:, 5:6, 2))), 0.0_dp, 'same Fx, Fy', abs=1e-5_dp*mu_cat*fn_cat)
+        call check(error, sum(rows(3:, 12, 1)) < sum(rows(3:, 12, 2)), 'predictor: fewer Krylov iterations')
+        call check(error, all(rows(1:2, 12, 1) == rows(1:2, 12, 2)), 'points 1, 2 (no predictor yet) unchanged')
+        write (*, '(a,2i6)') '    sweep_predictor: Krylov iterations of points 3-10 with / without: ', &
+            nint(sum(rows(3:, 12, 1))), nint(sum(rows(3:, 12, 2)))
+        call ops%destroy()
+    end subroutine test_sweep_predictor
 
     !> A sweep goes on past points that do not converge: ξ from 0.01 to −0.01 in 11 points
     !! (30×25) with `maxit = 25` Krylov iterations, where points 3–10 need more and do not
