@@ -26,9 +26,9 @@
 !! pressure and tractions change by less than 10·max(tol_n, tol_t) (relative RMS), at most
 !! [[max_rounds]] rounds.  With K = 0 one normal and one tangential solve.
 !!
-!! Size (~690 lines): the operators' construction, the rounds of both stages with their
-!! transient bookkeeping, and the sequences of solves (loops of [[solve_contact]]) are the
-!! one orchestrator; its types are in [[fc_contact_types]].
+!! Size (~740 lines): the operators' construction, the rounds of both stages with their
+!! transient bookkeeping, and the sequences of solves (loops of [[solve_contact]]) with their
+!! predicted starts are the one orchestrator; its types are in [[fc_contact_types]].
 module fc_contact
     use fc_kinds, only: dp, i8, pi, FC_CONVERGED, FC_NOT_CONVERGED, FC_ERROR
     use fc_errors, only: FC_ERR_VALUE, FC_ERR_NOT_READY, FC_ERR_SHAPE, FC_ERR_UNSUPPORTED, FC_ERR_FRICTION_BOUND
@@ -58,7 +58,7 @@ module fc_contact
         FC_FROM_REST, FC_TRANSIENT_SHIFT, FC_TRANSIENT_ROLLING
     public :: solve_contact, ensure_operators, solve_normal_tangential, shift_along_x, fc_tangential_loading
     public :: set_influence_coefficients, clear_influence_coefficients
-    public :: rolling_sequence
+    public :: rolling_sequence, continuation_factor, extrapolate_tractions
 
 contains
 
@@ -656,9 +656,8 @@ contains
                 ! Not for force sweeps: their first solve runs at the previous creepages, which
                 ! the predicted tractions do not match (measured: 24 % more Krylov iterations),
                 ! and creepages extrapolated as well overshoot near saturation (doc/rolling.md)
-                if (two_good .and. settings%rolling%sweep_predictor .and. .not. load%tangential%force_prescribed) then
-                    state%px = 2*good%px - before%px; state%py = 2*good%py - before%py
-                end if
+                if (two_good .and. settings%rolling%sweep_predictor .and. .not. load%tangential%force_prescribed) &
+                    call extrapolate_tractions(state, before, 1.0_dp)
             end if
             call system_clock(t0, rate)
             call solve_contact(ops, grid, mat, h0, load, settings, res, stat, errmsg, state=state)
@@ -711,5 +710,35 @@ contains
             res%tangential%phi = load_in%tangential%phi
         end if
     end subroutine rolling_sequence
+
+    !> Tractions of a start predicted along a sequence of solves: state%p ← state%p +
+    !! α·(state%p − before%p), the linear extrapolation from the converged solution `before`
+    !! of the step before over α steps.  The warm start of [[solve_contact]] sorts them as
+    !! any start (slip lifted to the new bound; beyond the static bound: slip, projected).
+    pure subroutine extrapolate_tractions(state, before, alpha)
+        type(fc_contact_state), intent(inout) :: state
+        type(fc_contact_state), intent(in) :: before
+        real(dp), intent(in) :: alpha
+        state%px = state%px + alpha*(state%px - before%px)
+        state%py = state%py + alpha*(state%py - before%py)
+    end subroutine extrapolate_tractions
+
+    !> How many of the last input steps d1 the new step d2 amounts to (inputs scaled to be
+    !! comparable, see the callers): α = d2·d1/|d1|² when d2 continues d1 — α in (0, 2] and
+    !! the part of d2 across d1 at most half of |d2| — else 0 (no prediction: a reversal, a
+    !! jump or a turn of the inputs).
+    pure real(dp) function continuation_factor(d1, d2) result(alpha)
+        real(dp), intent(in) :: d1(:), d2(:)
+        real(dp) :: n1
+        alpha = 0
+        n1 = sum(d1**2)
+        if (.not. n1 > 0) return
+        alpha = sum(d1*d2)/n1
+        if (.not. (alpha > 0 .and. alpha <= 2)) then
+            alpha = 0
+        else if (sum((d2 - alpha*d1)**2) > 0.25_dp*sum(d2**2)) then
+            alpha = 0
+        end if
+    end function continuation_factor
 
 end module fc_contact

@@ -195,6 +195,7 @@ contains
                 if (s%gap_kind == GAP_ARRAY .and. .not. same_area(s%grid, g)) s%gap_kind = GAP_NONE
             else
                 call s%prev%reset()
+                s%converged_in_row = 0
                 if (s%gap_kind == GAP_ARRAY) s%gap_kind = GAP_NONE
                 s%has_result = .false.
             end if
@@ -617,6 +618,8 @@ contains
         integer :: stat
         character(len=msg_len) :: msg
         real(dp) :: key(8)
+        type(fc_contact_state) :: keep
+        logical :: predicted
         ierr = FCL_OK
         ! --- required data ---
         if (.not. s%has_material) then
@@ -662,10 +665,14 @@ contains
                 s%hq = quadratic_gap(s%grid, s%rx, s%ry)
                 s%hq_key = key
             end if
+        end if
+        call rolling_start(s, keep, predicted)
+        if (s%gap_kind == GAP_QUADRATIC) then
             call solve_contact(s%ops, s%grid, s%mat, s%hq, s%load, s%settings, s%result, stat, msg, state=s%prev)
         else
             call solve_contact(s%ops, s%grid, s%mat, s%h0, s%load, s%settings, s%result, stat, msg, state=s%prev)
         end if
+        call rolling_advance(s, keep, predicted, stat == 0 .and. s%result%status == FC_CONVERGED)
         if (stat /= 0) then
             call fail(s, ierr, flat_code(stat), 'fc_calculate: '//trim(msg)); return
         end if
@@ -679,6 +686,65 @@ contains
                 trim(s%result%tangential%message))
         end if
     end subroutine calculate
+
+    !> Steady rolling with prescribed creepages, warm-started: when the two converged calls
+    !! before this one moved the inputs (ξ, η, φ, Fn or δ, μ) along one direction and this
+    !! call continues it, the start is extrapolated from their solutions
+    !! ([[continuation_factor]], [[extrapolate_tractions]]), as a multibody code's time steps
+    !! do; `keep` is the previous converged state.  Measured: doc/rolling.md, "Flat API".
+    subroutine rolling_start(s, keep, predicted)
+        type(legacy_state), intent(inout) :: s
+        type(fc_contact_state), intent(out) :: keep
+        logical, intent(out) :: predicted
+        real(dp) :: v(5), sc(5), alpha
+        predicted = .false.
+        if (.not. predictable(s)) return
+        keep = s%prev
+        if (s%converged_in_row < 2 .or. .not. (s%prev%has_tangential .and. s%prev2%has_tangential)) return
+        v = rolling_inputs(s)
+        ! creepages on one scale (φ times the half length of the area), Fn or δ and μ relative
+        sc(1:3) = max(abs(v(1)), abs(v(2)), abs(v(3)), tiny(1.0_dp))
+        sc(4) = max(abs(v(4)), tiny(1.0_dp)); sc(5) = max(abs(v(5)), tiny(1.0_dp))
+        alpha = continuation_factor((s%inputs1 - s%inputs2)/sc, (v - s%inputs1)/sc)
+        if (alpha <= 0) return
+        call extrapolate_tractions(s%prev, s%prev2, alpha)
+        predicted = .true.
+    end subroutine rolling_start
+
+    !> After the solve: a converged call becomes the newest of the two the predictor uses; a
+    !! call that did not converge leaves the previous converged state as the warm start
+    !! (undoing a prediction) and restarts the count.
+    subroutine rolling_advance(s, keep, predicted, converged)
+        type(legacy_state), intent(inout) :: s
+        type(fc_contact_state), intent(in) :: keep
+        logical, intent(in) :: predicted, converged
+        if (.not. predictable(s)) then
+            s%converged_in_row = 0
+        else if (converged) then
+            s%prev2 = keep
+            s%inputs2 = s%inputs1; s%inputs1 = rolling_inputs(s)
+            s%converged_in_row = min(2, s%converged_in_row + 1)
+        else
+            if (predicted) s%prev = keep
+            s%converged_in_row = 0
+        end if
+    end subroutine rolling_advance
+
+    logical function predictable(s)
+        type(legacy_state), intent(in) :: s
+        predictable = s%load%problem == FC_PROBLEM_ROLLING .and. s%load%transient == FC_FROM_REST .and. &
+            .not. s%load%tangential%force_prescribed .and. s%prev%warm_start
+    end function predictable
+
+    !> (ξ, η, φ·half length of the area in x [–], Fn [N] or δ [mm], μ) of the current loading.
+    function rolling_inputs(s) result(v)
+        type(legacy_state), intent(in) :: s
+        real(dp) :: v(5)
+        v(1) = s%load%tangential%xi; v(2) = s%load%tangential%eta
+        v(3) = s%load%tangential%phi*0.5_dp*(s%grid%xmax - s%grid%xmin)
+        v(4) = merge(s%load%normal%fn, s%load%normal%approach, s%load%normal%force_prescribed)
+        v(5) = s%load%tangential%mu
+    end function rolling_inputs
 
     !> Let the C heap keep the solvers' per-call work arrays.  The solvers allocate some 30
     !! arrays of nx·ny reals per call and free them on return; glibc returns freed memory at
