@@ -657,7 +657,7 @@ contains
                 ! the predicted tractions do not match (measured: 24 % more Krylov iterations),
                 ! and creepages extrapolated as well overshoot near saturation (doc/rolling.md)
                 if (two_good .and. settings%rolling%sweep_predictor .and. .not. load%tangential%force_prescribed) &
-                    call extrapolate_tractions(state, before, 1.0_dp)
+                    call extrapolate_tractions(state%px, state%py, before%px, before%py, 1.0_dp)
             end if
             call system_clock(t0, rate)
             call solve_contact(ops, grid, mat, h0, load, settings, res, stat, errmsg, state=state)
@@ -711,16 +711,16 @@ contains
         end if
     end subroutine rolling_sequence
 
-    !> Tractions of a start predicted along a sequence of solves: state%p ← state%p +
-    !! α·(state%p − before%p), the linear extrapolation from the converged solution `before`
-    !! of the step before over α steps.  The warm start of [[solve_contact]] sorts them as
-    !! any start (slip lifted to the new bound; beyond the static bound: slip, projected).
-    pure subroutine extrapolate_tractions(state, before, alpha)
-        type(fc_contact_state), intent(inout) :: state
-        type(fc_contact_state), intent(in) :: before
+    !> Tractions of a start predicted along a sequence of solves: p ← p + α·(p − p_before),
+    !! the linear extrapolation from the converged tractions of the step before over α steps,
+    !! in place.  The warm start of [[solve_contact]] sorts them as any start (slip lifted to
+    !! the new bound; beyond the static bound: slip, projected).
+    pure subroutine extrapolate_tractions(px, py, px_before, py_before, alpha)
+        real(dp), intent(inout) :: px(:, :), py(:, :)
+        real(dp), intent(in) :: px_before(:, :), py_before(:, :)
         real(dp), intent(in) :: alpha
-        state%px = state%px + alpha*(state%px - before%px)
-        state%py = state%py + alpha*(state%py - before%py)
+        px = px + alpha*(px - px_before)
+        py = py + alpha*(py - py_before)
     end subroutine extrapolate_tractions
 
     !> How many of the last input steps d1 the new step d2 amounts to (inputs scaled to be

@@ -196,6 +196,7 @@ contains
             else
                 call s%prev%reset()
                 s%converged_in_row = 0
+                if (allocated(s%px2)) deallocate (s%px2, s%py2)
                 if (s%gap_kind == GAP_ARRAY) s%gap_kind = GAP_NONE
                 s%has_result = .false.
             end if
@@ -618,7 +619,7 @@ contains
         integer :: stat
         character(len=msg_len) :: msg
         real(dp) :: key(8)
-        type(fc_contact_state) :: keep
+        real(dp), allocatable :: keep_x(:, :), keep_y(:, :)
         logical :: predicted
         ierr = FCL_OK
         ! --- required data ---
@@ -666,13 +667,13 @@ contains
                 s%hq_key = key
             end if
         end if
-        call rolling_start(s, keep, predicted)
+        call rolling_start(s, keep_x, keep_y, predicted)
         if (s%gap_kind == GAP_QUADRATIC) then
             call solve_contact(s%ops, s%grid, s%mat, s%hq, s%load, s%settings, s%result, stat, msg, state=s%prev)
         else
             call solve_contact(s%ops, s%grid, s%mat, s%h0, s%load, s%settings, s%result, stat, msg, state=s%prev)
         end if
-        call rolling_advance(s, keep, predicted, stat == 0 .and. s%result%status == FC_CONVERGED)
+        call rolling_advance(s, keep_x, keep_y, predicted, stat == 0 .and. s%result%status == FC_CONVERGED)
         if (stat /= 0) then
             call fail(s, ierr, flat_code(stat), 'fc_calculate: '//trim(msg)); return
         end if
@@ -687,56 +688,65 @@ contains
         end if
     end subroutine calculate
 
-    !> Steady rolling with prescribed creepages, warm-started: when the two converged calls
-    !! before this one moved the inputs (ξ, η, φ, Fn or δ, μ) along one direction and this
-    !! call continues it, the start is extrapolated from their solutions
-    !! ([[continuation_factor]], [[extrapolate_tractions]]), as a multibody code's time steps
-    !! do; `keep` is the previous converged state.  Measured: doc/rolling.md, "Flat API".
-    subroutine rolling_start(s, keep, predicted)
+    !> Steady rolling with prescribed creepages, or the shift problem with prescribed shifts
+    !! (from rest), warm-started: when the two converged calls before this one moved the
+    !! inputs (ξ, η, φ, Fn or δ, μ) along one direction and this call continues it, the start
+    !! is extrapolated from their solutions ([[continuation_factor]],
+    !! [[extrapolate_tractions]]), as a multibody code's time steps do.  `keep_x`, `keep_y`:
+    !! the previous converged tractions (allocated when the call is predictable).  Measured:
+    !! doc/rolling.md, "Flat API".
+    subroutine rolling_start(s, keep_x, keep_y, predicted)
         type(legacy_state), intent(inout) :: s
-        type(fc_contact_state), intent(out) :: keep
+        real(dp), allocatable, intent(out) :: keep_x(:, :), keep_y(:, :)
         logical, intent(out) :: predicted
         real(dp) :: v(5), sc(5), alpha
         predicted = .false.
-        if (.not. predictable(s)) return
-        keep = s%prev
-        if (s%converged_in_row < 2 .or. .not. (s%prev%has_tangential .and. s%prev2%has_tangential)) return
+        if (.not. (predictable(s) .and. s%prev%has_tangential)) return
+        keep_x = s%prev%px; keep_y = s%prev%py
+        if (s%converged_in_row < 2 .or. .not. allocated(s%px2)) return
+        if (any(shape(s%px2) /= shape(keep_x))) return
         v = rolling_inputs(s)
         ! creepages on one scale (φ times the half length of the area), Fn or δ and μ relative
         sc(1:3) = max(abs(v(1)), abs(v(2)), abs(v(3)), tiny(1.0_dp))
         sc(4) = max(abs(v(4)), tiny(1.0_dp)); sc(5) = max(abs(v(5)), tiny(1.0_dp))
         alpha = continuation_factor((s%inputs1 - s%inputs2)/sc, (v - s%inputs1)/sc)
         if (alpha <= 0) return
-        call extrapolate_tractions(s%prev, s%prev2, alpha)
+        call extrapolate_tractions(s%prev%px, s%prev%py, s%px2, s%py2, alpha)
         predicted = .true.
     end subroutine rolling_start
 
     !> After the solve: a converged call becomes the newest of the two the predictor uses; a
-    !! call that did not converge leaves the previous converged state as the warm start
+    !! call that did not converge leaves the previous converged tractions as the warm start
     !! (undoing a prediction) and restarts the count.
-    subroutine rolling_advance(s, keep, predicted, converged)
+    subroutine rolling_advance(s, keep_x, keep_y, predicted, converged)
         type(legacy_state), intent(inout) :: s
-        type(fc_contact_state), intent(in) :: keep
+        real(dp), allocatable, intent(inout) :: keep_x(:, :), keep_y(:, :)
         logical, intent(in) :: predicted, converged
         if (.not. predictable(s)) then
             s%converged_in_row = 0
         else if (converged) then
-            s%prev2 = keep
+            if (allocated(keep_x)) then
+                call move_alloc(keep_x, s%px2); call move_alloc(keep_y, s%py2)
+            end if
             s%inputs2 = s%inputs1; s%inputs1 = rolling_inputs(s)
             s%converged_in_row = min(2, s%converged_in_row + 1)
         else
-            if (predicted) s%prev = keep
+            if (predicted) then
+                call move_alloc(keep_x, s%prev%px); call move_alloc(keep_y, s%prev%py)
+            end if
             s%converged_in_row = 0
         end if
     end subroutine rolling_advance
 
     logical function predictable(s)
         type(legacy_state), intent(in) :: s
-        predictable = s%load%problem == FC_PROBLEM_ROLLING .and. s%load%transient == FC_FROM_REST .and. &
+        predictable = (s%load%problem == FC_PROBLEM_ROLLING .or. s%load%problem == FC_PROBLEM_TANGENTIAL) .and. &
+            s%load%transient == FC_FROM_REST .and. &
             .not. s%load%tangential%force_prescribed .and. s%prev%warm_start
     end function predictable
 
-    !> (ξ, η, φ·half length of the area in x [–], Fn [N] or δ [mm], μ) of the current loading.
+    !> (ξ, η, φ·half length of the area in x, Fn [N] or δ [mm], μ) of the current loading:
+    !! creepages [–] or shifts [mm], spin creepage [1/mm] or spin shift [rad].
     function rolling_inputs(s) result(v)
         type(legacy_state), intent(in) :: s
         real(dp) :: v(5)

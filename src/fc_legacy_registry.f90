@@ -54,10 +54,11 @@ module fc_legacy_registry
         ! --- reusable operators and previous state (warm start, u' and p' of transient steps) ---
         type(fc_contact_operators) :: ops
         type(fc_contact_state) :: prev
-        !> steady rolling with prescribed creepages: the converged state before `prev` and the
-        !! inputs of both, for the start predicted from them ([[fc_legacy]]'s rolling_start)
-        type(fc_contact_state) :: prev2
-        real(dp) :: inputs1(5) = 0, inputs2(5) = 0   !! (ξ, η, φ, Fn or δ, μ) of `prev` and `prev2`
+        !> steady rolling with prescribed creepages or shifts from rest: the converged tractions
+        !! before `prev`'s and the inputs of both, for the start predicted from them
+        !! ([[fc_legacy]]'s rolling_start)
+        real(dp), allocatable :: px2(:, :), py2(:, :)  !! the tractions of the call before `prev`
+        real(dp) :: inputs1(5) = 0, inputs2(5) = 0   !! (ξ, η, φ, Fn or δ, μ) of `prev` and the call before
         integer :: converged_in_row = 0              !! such calls converged in a row (≤ 2 counted)
         integer :: calculations = 0
         integer :: threads = 0                     !! threads of the solves (0: OMP_NUM_THREADS, else 1)
