@@ -51,6 +51,20 @@ contains
             ]
     end subroutine collect_rolling
 
+    !> A flat-API handle with the Cattaneo material, an nx×ny grid over [−l, l]², the sphere's
+    !! gap, Fn and μ.
+    subroutine cattaneo_handle(h, nx, ny)
+        integer, intent(out) :: h
+        integer, intent(in) :: nx, ny
+        integer :: ierr
+        call fc_init(h, ierr)
+        call fc_set_material(h, g_cat, g_cat, nu_cat, nu_cat, ierr)
+        call fc_set_grid(h, nx, ny, -l_cat, l_cat, -l_cat, l_cat, ierr)
+        call fc_set_gap_quadratic(h, r_cat, r_cat, ierr)
+        call fc_set_normal_force(h, fn_cat, ierr)
+        call fc_set_friction(h, mu_cat, ierr)
+    end subroutine cattaneo_handle
+
     !> Cattaneo-size scene (sphere R = 50, G = 200, ν = 0.42, Fn = 9.1954, μ = 0.4).
     subroutine cattaneo_setup(nx, ny, grid, pn, top)
         integer, intent(in) :: nx, ny
@@ -345,12 +359,7 @@ contains
         call solve_rolling(top, pn, rl, rs, rg, stat, msg)
         call check(error, stat == 0 .and. rg%status == FC_CONVERGED, 'steady solve')
         dq = grid%dx
-        call fc_init(h, ierr)
-        call fc_set_material(h, g_cat, g_cat, nu_cat, nu_cat, ierr)
-        call fc_set_grid(h, 30, 25, -l_cat, l_cat, -l_cat, l_cat, ierr)
-        call fc_set_gap_quadratic(h, r_cat, r_cat, ierr)
-        call fc_set_normal_force(h, fn_cat, ierr)
-        call fc_set_friction(h, mu_cat, ierr)
+        call cattaneo_handle(h, 30, 25)
         call fc_set_solver(h, 1, 1, 1e-10_dp, 5000, 3, 1, ierr)
         call fc_set_shifts(h, rl%xi*dq, rl%eta*dq, rl%phi*dq, ierr)
         call fc_set_transient(h, FCL_ROLLING, ierr)
@@ -874,12 +883,7 @@ contains
         call cattaneo_setup(30, 25, grid, pn, top)
         rl%mu = mu_cat; rl%xi = 0.0021_dp; rl%eta = 0.001_dp; rl%phi = 0.003_dp
         call solve_rolling(top, pn, rl, rs, r1, stat, msg)
-        call fc_init(h, ierr)
-        call fc_set_material(h, g_cat, g_cat, nu_cat, nu_cat, ierr)
-        call fc_set_grid(h, 30, 25, -l_cat, l_cat, -l_cat, l_cat, ierr)
-        call fc_set_gap_quadratic(h, r_cat, r_cat, ierr)
-        call fc_set_normal_force(h, fn_cat, ierr)
-        call fc_set_friction(h, mu_cat, ierr)
+        call cattaneo_handle(h, 30, 25)
         call fc_set_solver(h, 1, 1, 1e-8_dp, 1000, 3, 1, ierr)
         call fc_set_rolling(h, 0.002_dp, 0.001_dp, 0.003_dp, ierr)
         call fc_calculate(h, ierr)
@@ -927,7 +931,7 @@ contains
         real(dp) :: fn, fx, fy, mz, fa(n), fb(n)
         character(len=8), parameter :: names(2) = ['rolling ', 'shift   ']
         do mode = 1, 2
-            call open_case(ha); call open_case(hb)
+            call cattaneo_handle(ha, 60, 50); call cattaneo_handle(hb, 60, 50)
             do k = 1, n
                 call set_step(ha, xis(k))
                 call fc_calculate(ha, ierr)
@@ -953,15 +957,6 @@ contains
             if (allocated(error)) return
         end do
     contains
-        subroutine open_case(h)
-            integer, intent(out) :: h
-            call fc_init(h, ierr)
-            call fc_set_material(h, g_cat, g_cat, nu_cat, nu_cat, ierr)
-            call fc_set_grid(h, 60, 50, -l_cat, l_cat, -l_cat, l_cat, ierr)
-            call fc_set_gap_quadratic(h, r_cat, r_cat, ierr)
-            call fc_set_normal_force(h, fn_cat, ierr)
-            call fc_set_friction(h, mu_cat, ierr)
-        end subroutine open_case
         !> Rolling: creepage ξ; shift problem: shift ξ·1 mm (the same numbers in mm).
         subroutine set_step(h, xi)
             integer, intent(in) :: h
