@@ -706,9 +706,12 @@ contains
         if (s%converged_in_row < 2 .or. .not. allocated(s%px2)) return
         if (any(shape(s%px2) /= shape(keep_x))) return
         v = rolling_inputs(s)
-        ! creepages on one scale (φ times the half length of the area), Fn or δ and μ relative
-        sc(1:3) = max(abs(v(1)), abs(v(2)), abs(v(3)), tiny(1.0_dp))
-        sc(4) = max(abs(v(4)), tiny(1.0_dp)); sc(5) = max(abs(v(5)), tiny(1.0_dp))
+        ! creepages on one scale (φ times the half length of the area), Fn or δ and μ relative,
+        ! each scale the largest magnitude of the three calls (1 where all are zero), so that
+        ! every scaled difference lies in [−2, 2]
+        sc(1:3) = max(maxval(abs(v(1:3))), maxval(abs(s%inputs1(1:3))), maxval(abs(s%inputs2(1:3))))
+        sc(4:5) = max(abs(v(4:5)), abs(s%inputs1(4:5)), abs(s%inputs2(4:5)))
+        where (.not. sc > 0) sc = 1
         alpha = continuation_factor((s%inputs1 - s%inputs2)/sc, (v - s%inputs1)/sc)
         if (alpha <= 0) return
         call extrapolate_tractions(s%prev%px, s%prev%py, s%px2, s%py2, alpha)
