@@ -703,7 +703,7 @@ contains
         predicted = .false.
         if (.not. (predictable(s) .and. s%prev%has_tangential)) return
         keep_x = s%prev%px; keep_y = s%prev%py
-        if (s%converged_in_row < 2 .or. .not. allocated(s%px2)) return
+        if (s%converged_in_row < 2 .or. .not. allocated(s%px2) .or. s%load%problem /= s%inputs_problem) return
         if (any(shape(s%px2) /= shape(keep_x))) return
         v = rolling_inputs(s)
         ! creepages on one scale (φ times the half length of the area), Fn or δ and μ relative,
@@ -731,6 +731,8 @@ contains
             if (allocated(keep_x)) then
                 call move_alloc(keep_x, s%px2); call move_alloc(keep_y, s%py2)
             end if
+            if (s%load%problem /= s%inputs_problem) s%converged_in_row = 0   ! shifts are not creepages
+            s%inputs_problem = s%load%problem
             s%inputs2 = s%inputs1; s%inputs1 = rolling_inputs(s)
             s%converged_in_row = min(2, s%converged_in_row + 1)
         else

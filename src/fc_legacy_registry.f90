@@ -59,7 +59,8 @@ module fc_legacy_registry
         !! ([[fc_legacy]]'s rolling_start)
         real(dp), allocatable :: px2(:, :), py2(:, :)  !! the tractions of the call before `prev`
         real(dp) :: inputs1(5) = 0, inputs2(5) = 0   !! (ξ, η, φ, Fn or δ, μ) of `prev` and the call before
-        integer :: converged_in_row = 0              !! such calls converged in a row (≤ 2 counted)
+        integer :: converged_in_row = 0              !! such calls of one problem kind converged in a row (≤ 2 counted)
+        integer :: inputs_problem = -1               !! the problem kind of those calls
         integer :: calculations = 0
         integer :: threads = 0                     !! threads of the solves (0: OMP_NUM_THREADS, else 1)
         logical :: busy = .false.                  !! fc_calculate running (guards against a second caller)
