@@ -105,12 +105,15 @@ contains
 
     !> Build A^zz and its preconditioner for `grid` and `material` (combined constants
     !! already set by [[combine_material]]); with `ic`, from that set's coefficients (checked
-    !! against the grid by the caller, see [[ic_set_kernel]]) instead of the half-space ones.
-    subroutine build_normal_operator(nop, material, grid, ic)
+    !! against the grid by the caller, see [[ic_set_kernel]]) instead of the half-space ones;
+    !! with `kernel`, from the half-space coefficients the caller computed already.
+    subroutine build_normal_operator(nop, material, grid, ic, kernel)
         type(fc_normal_operator), intent(inout) :: nop
         type(fc_material), intent(in) :: material
         type(fc_grid), intent(in) :: grid
         type(fc_ic_set), intent(in), optional :: ic
+        !> A^zz for offsets −nx…nx, −ny…ny ([[ic_kernels_uncoupled]]); taken (deallocated)
+        real(dp), allocatable, intent(inout), optional :: kernel(:, :)
         integer :: t0, t1, rate, stat
         real(dp), allocatable :: kext(:, :)
         character(len=msg_len) :: msg
@@ -121,6 +124,8 @@ contains
         ! one coefficient evaluation serves both A (offsets < n) and M (offsets ≤ n)
         if (present(ic)) then
             call ic_set_kernel(ic, IC_ZZ, grid, kext, stat, msg)
+        else if (present(kernel)) then
+            call move_alloc(kernel, kext)
         else
             call ic_kernel_extended(IC_ZZ, material, grid, grid%nx, grid%ny, kext)
         end if

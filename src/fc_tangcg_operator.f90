@@ -45,11 +45,14 @@ module fc_tangcg_operator
 contains
 
     !> Build the tangential blocks (and coupling blocks if K ≠ 0) for `grid`.
-    subroutine build_tangential_operator(top, material, grid, ic)
+    subroutine build_tangential_operator(top, material, grid, ic, kxx_in, kxy_in, kyy_in)
         type(fc_tangential_operator), intent(inout) :: top
         type(fc_material), intent(in) :: material
         type(fc_grid), intent(in) :: grid
         type(fc_ic_set), intent(in), optional :: ic   !! coefficients instead of the half-space ones
+        !> the half-space A^xx, A^xy, A^yy for offsets −nx…nx, −ny…ny computed by the caller
+        !! ([[ic_kernels_uncoupled]]); taken (deallocated).  All three or none.
+        real(dp), allocatable, intent(inout), optional :: kxx_in(:, :), kxy_in(:, :), kyy_in(:, :)
         integer :: t0, t1, rate
         call system_clock(t0, rate)
         call top%destroy()
@@ -59,7 +62,13 @@ contains
         ! preconditioner (offsets ≤ n)
         block
             real(dp), allocatable :: kxx(:, :), kxy(:, :), kyy(:, :)
-            call block_kernel(IC_XX, kxx); call block_kernel(IC_XY, kxy); call block_kernel(IC_YY, kyy)
+            if (present(kxx_in) .and. present(kxy_in) .and. present(kyy_in)) then
+                call move_alloc(kxx_in, kxx); call move_alloc(kxy_in, kxy); call move_alloc(kyy_in, kyy)
+            else if (present(ic)) then
+                call ic_block(IC_XX, kxx); call ic_block(IC_XY, kxy); call ic_block(IC_YY, kyy)
+            else
+                call ic_kernels_uncoupled(material, grid, grid%nx, grid%ny, kxx=kxx, kxy=kxy, kyy=kyy)
+            end if
             call build_from(top%a_xx, kxx)
             call build_from(top%a_xy, kxy, top%a_xx)
             call build_from(top%a_yy, kyy, top%a_xx)
@@ -93,18 +102,14 @@ contains
                 call build_bttb(op, block, material, grid, plans_from=plans_from)
             end if
         end subroutine build_block
-        !> Coefficients of one block for offsets −n…n (half-space formulas or `ic`).
-        subroutine block_kernel(block, k)
+        !> Coefficients of one block for offsets −n…n from `ic`.
+        subroutine ic_block(block, k)
             integer, intent(in) :: block
             real(dp), allocatable, intent(out) :: k(:, :)
             integer :: stat
             character(len=msg_len) :: msg
-            if (present(ic)) then
-                call ic_set_kernel(ic, block, grid, k, stat, msg)
-            else
-                call ic_kernel_extended(block, material, grid, grid%nx, grid%ny, k)
-            end if
-        end subroutine block_kernel
+            call ic_set_kernel(ic, block, grid, k, stat, msg)
+        end subroutine ic_block
         subroutine build_from(op, k, plans_from)
             type(fc_bttb), intent(inout) :: op
             real(dp), intent(in) :: k(-grid%nx:, -grid%ny:)
