@@ -96,7 +96,7 @@ contains
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
         real(dp), intent(in), optional :: approach, fn
-        integer :: t0, t1, rate
+        integer(i8) :: t0, t1, rate   ! 64-bit: a µs clock (default integers tick in ms)
         stat = 0; errmsg = ''
         call check_settings(hier, settings, stat, errmsg)
         if (stat /= 0) return

@@ -514,7 +514,8 @@ contains
         character(len=*), intent(out) :: errmsg
         type(strip_hierarchy) :: hier
         real(dp) :: unorm, d0, dn
-        integer :: k, n, t0, t1, rate, vstat
+        integer :: k, n, vstat
+        integer(i8) :: t0, t1, rate   ! 64-bit: a µs clock (default integers tick in ms)
         character(len=msg_len) :: vmsg
         call check_input(prob, settings, stat, errmsg)
         if (stat /= 0) return

@@ -114,7 +114,8 @@ contains
         type(fc_ic_set), intent(in), optional :: ic
         !> A^zz for offsets −nx…nx, −ny…ny ([[ic_kernels_uncoupled]]); taken (deallocated)
         real(dp), allocatable, intent(inout), optional :: kernel(:, :)
-        integer :: t0, t1, rate, stat
+        integer :: stat
+        integer(i8) :: t0, t1, rate   ! 64-bit: a µs clock (default integers tick in ms)
         real(dp), allocatable :: kext(:, :)
         character(len=msg_len) :: msg
         call system_clock(t0, rate)
@@ -198,7 +199,8 @@ contains
         character(len=*), intent(out) :: errmsg
         real(dp), intent(in), optional :: approach, fn
         real(dp), intent(in), optional :: p_start(:, :)
-        integer :: nx, ny, t0, t1, rate
+        integer :: nx, ny
+        integer(i8) :: t0, t1, rate   ! 64-bit: a µs clock (default integers tick in ms)
         logical :: force_mode
         real(dp) :: delta
         stat = 0; errmsg = ''

@@ -29,7 +29,7 @@
 !! the circulant on mean-free vectors: symbol 1/ŵ (zero mode 0, values floored at 1e−8 of
 !! the largest as in [[inverse_toeplitz_from_kernel]]).
 module fc_periodic
-    use fc_kinds, only: dp, msg_len, FC_ERR_VALUE
+    use fc_kinds, only: dp, i8, msg_len, FC_ERR_VALUE
     use fc_geometry, only: fc_grid
     use fc_influence, only: fc_material, element_coefficient, IC_ZZ, build_bttb_from_kernel
     use fc_norm, only: fc_normal_operator
@@ -107,7 +107,8 @@ contains
         complex(dp), allocatable :: cb(:, :)
         type(c_ptr) :: plan_f, plan_b
         real(dp) :: smax, s
-        integer :: nx, ny, nim, i, j, t0, t1, rate
+        integer :: nx, ny, nim, i, j
+        integer(i8) :: t0, t1, rate   ! 64-bit: a µs clock (default integers tick in ms)
         call system_clock(t0, rate)
         nim = periodic_images_default
         if (present(images)) nim = images

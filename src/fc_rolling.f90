@@ -93,7 +93,8 @@ contains
         real(dp), intent(in), optional :: px_start(:, :), py_start(:, :), offset_x(:, :), offset_y(:, :)
         real(dp), allocatable :: wx(:, :), wy(:, :), gs(:, :), gk(:, :), ox(:, :), oy(:, :), dox(:, :), doy(:, :)
         real(dp) :: muk
-        integer :: nx, ny, t0, t1, rate
+        integer :: nx, ny
+        integer(i8) :: t0, t1, rate   ! 64-bit: a µs clock (default integers tick in ms)
         stat = 0; errmsg = ''
         nx = top%grid%nx; ny = top%grid%ny
         if (.not. top%a_xx%built()) then

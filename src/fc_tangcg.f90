@@ -70,7 +70,8 @@ contains
         real(dp), intent(in), optional :: ux_prev(:, :), uy_prev(:, :), px_start(:, :), py_start(:, :)
         real(dp), intent(in), optional :: offset_x(:, :), offset_y(:, :)
         real(dp), allocatable :: wx(:, :), wy(:, :), g(:, :)
-        integer :: nx, ny, i, j, t0, t1, rate
+        integer :: nx, ny, i, j
+        integer(i8) :: t0, t1, rate   ! 64-bit: a µs clock (default integers tick in ms)
         stat = 0; errmsg = ''
         nx = top%grid%nx; ny = top%grid%ny
         if (.not. top%a_xx%built()) then

@@ -53,7 +53,7 @@ contains
         !> the half-space A^xx, A^xy, A^yy for offsets −nx…nx, −ny…ny computed by the caller
         !! ([[ic_kernels_uncoupled]]); taken (deallocated).  All three or none.
         real(dp), allocatable, intent(inout), optional :: kxx_in(:, :), kxy_in(:, :), kyy_in(:, :)
-        integer :: t0, t1, rate
+        integer(i8) :: t0, t1, rate   ! 64-bit: a µs clock (default integers tick in ms)
         call system_clock(t0, rate)
         call top%destroy()
         top%grid = grid
