@@ -320,7 +320,7 @@ contains
         real(dp), allocatable :: p0(:, :), pn_old(:, :), px_old(:, :), py_old(:, :)
         logical :: tangential, coupled, use_fmg, lift_state, has_guess
         integer :: round, nx, ny, it_n, mv_n, pa_n, out_n, it_t, mv_t, out_t
-        real(dp) :: cpu_n, cpu_t, dn, dt, guess_base(2)
+        real(dp) :: cpu_n, cpu_t, dn, dt, guess_base(2), p0_total, p0_scale
         stat = 0; errmsg = ''
         nx = grid%nx; ny = grid%ny
         tangential = load%problem /= FC_PROBLEM_NORMAL
@@ -328,8 +328,6 @@ contains
         use_fmg = settings%normal%solver == 'fmg'
         ! coupling displacements only when coupled, u' only in the transient modes: an
         ! unallocated array passed to an optional argument is absent (no zero arrays per call)
-        allocate (pxs(nx, ny), pys(nx, ny))
-        pxs = 0; pys = 0
         if (coupled) then
             allocate (uzt(nx, ny), uxn(nx, ny), uyn(nx, ny))
             uzt = 0; uxn = 0; uyn = 0
@@ -340,17 +338,27 @@ contains
         if (allocated(load%px_start) .and. allocated(load%py_start)) then
             pxs = load%px_start; pys = load%py_start
         end if
+        if (.not. allocated(pxs)) then
+            allocate (pxs(nx, ny), pys(nx, ny))
+            pxs = 0; pys = 0
+        end if
         if (allocated(load%normal%p_start)) then
             p0 = possible(load%normal%p_start)
         else if (present(state)) then
             if (state%warm_start .and. state%has_normal) then
-                p0 = possible(state%pn)
-                ! a force-constrained solve keeps the start's total force: scale it to Fn
-                if (load%normal%force_prescribed .and. sum(p0) > 0) p0 = p0*(load%normal%fn/(sum(p0)*grid%area()))
+                if (load%normal%force_prescribed) then
+                    ! a force-constrained solve keeps the start's total force: scale it to Fn
+                    ! (one pass for the sum, one for the start)
+                    p0_total = sum(state%pn, mask=h0 < 0.5_dp*h_no_contact)
+                    p0_scale = 1
+                    if (p0_total > 0) p0_scale = load%normal%fn/(p0_total*grid%area())
+                    p0 = merge(state%pn*p0_scale, 0.0_dp, h0 < 0.5_dp*h_no_contact)
+                else
+                    p0 = possible(state%pn)
+                end if
             end if
         end if
         ! ---- rounds: normal, then tangential; repeated only when coupled
-        allocate (pn_old(nx, ny), px_old(nx, ny), py_old(nx, ny))
         it_n = 0; mv_n = 0; pa_n = 0; out_n = 0; cpu_n = 0; it_t = 0; mv_t = 0; out_t = 0; cpu_t = 0
         do round = 1, max_rounds
             if (round == 1 .and. .not. coupled) then
@@ -416,7 +424,7 @@ contains
             case (FC_TRANSIENT_SHIFT)
                 uxp = st%ux; uyp = st%uy; pxs = st%px; pys = st%py
             case (FC_TRANSIENT_ROLLING)
-                allocate (uxp(nx, ny), uyp(nx, ny))
+                allocate (uxp(nx, ny), uyp(nx, ny), pxs(nx, ny), pys(nx, ny))
                 call shift_along_x(st%ux, load%dq/grid%dx, uxp)
                 call shift_along_x(st%uy, load%dq/grid%dx, uyp)
                 call shift_along_x(st%px, load%dq/grid%dx, pxs)

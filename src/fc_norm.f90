@@ -201,8 +201,8 @@ contains
         real(dp), intent(in), optional :: p_start(:, :)
         integer :: nx, ny
         integer(i8) :: t0, t1, rate   ! 64-bit: a µs clock (default integers tick in ms)
-        logical :: force_mode
-        real(dp) :: delta
+        logical :: force_mode, started
+        real(dp) :: delta, fn_sum
         stat = 0; errmsg = ''
         nx = nop%grid%nx; ny = nop%grid%ny
         if (.not. nop%a_zz%built()) then
@@ -255,12 +255,14 @@ contains
             return
         end select
         allocate (res%pn(nx, ny), res%gap(nx, ny))
-        res%pn = 0
-        if (present(p_start)) then
-            if (all(shape(p_start) == [nx, ny])) res%pn = max(0.0_dp, p_start)
+        started = .false.
+        if (present(p_start)) started = all(shape(p_start) == [nx, ny])
+        if (started) then
             ! no start pressure where contact is impossible (outside a punch): it would count
             ! toward the force and never be released by the iteration
-            where (.not. h0 < 0.5_dp*h_no_contact) res%pn = 0
+            res%pn = merge(max(0.0_dp, p_start), 0.0_dp, h0 < 0.5_dp*h_no_contact)
+        else
+            res%pn = 0
         end if
         nop%a_zz%nproducts = 0; nop%precond%nproducts = 0; nop%precond_circulant%nproducts = 0
         call system_clock(t0, rate)
@@ -277,9 +279,8 @@ contains
         res%cpu_seconds = real(t1 - t0, dp)/rate
         res%matvecs = nop%a_zz%nproducts
         res%precond_applications = nop%precond%nproducts + nop%precond_circulant%nproducts
-        res%fn = sum(res%pn)*nop%grid%area()
-        res%pmax = maxval(res%pn)
-        res%ncon = count(res%pn > 0)
+        call pressure_summary(res%pn, fn_sum, res%pmax, res%ncon)
+        res%fn = fn_sum*nop%grid%area()
         res%touches_boundary = contact_on_edge(res%pn)
         if (res%touches_boundary .and. res%status == FC_CONVERGED) &
             res%message = 'converged; contact reaches the edge of the potential contact area (enlarge it)'
@@ -836,5 +837,22 @@ contains
         where (.not. allowed) res%gap = h_no_contact
         allocate (res%history(min(res%outer_iterations, settings%maxit)), source=hist(1:min(res%outer_iterations, settings%maxit)))
     end subroutine run_norm
+
+    !> Σp, max p and the count of p > 0 in one pass; the sum runs in element order, as
+    !! `sum` does.
+    pure subroutine pressure_summary(p, total, pmax, n)
+        real(dp), intent(in) :: p(:, :)
+        real(dp), intent(out) :: total, pmax
+        integer, intent(out) :: n
+        integer :: i, j
+        total = 0; pmax = -huge(1.0_dp); n = 0
+        do j = 1, size(p, 2)
+            do i = 1, size(p, 1)
+                total = total + p(i, j)
+                if (p(i, j) > pmax) pmax = p(i, j)
+                if (p(i, j) > 0) n = n + 1
+            end do
+        end do
+    end subroutine pressure_summary
 
 end module fc_norm
