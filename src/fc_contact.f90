@@ -58,7 +58,7 @@ module fc_contact
         FC_FROM_REST, FC_TRANSIENT_SHIFT, FC_TRANSIENT_ROLLING
     public :: solve_contact, ensure_operators, solve_normal_tangential, shift_along_x, fc_tangential_loading
     public :: set_influence_coefficients, clear_influence_coefficients
-    public :: rolling_sequence, continuation_factor, extrapolate_tractions
+    public :: rolling_sequence, continuation_factor, extrapolate_tractions, extrapolate_tractions_swap
 
 contains
 
@@ -742,6 +742,21 @@ contains
         px = px + alpha*(px - px_before)
         py = py + alpha*(py - py_before)
     end subroutine extrapolate_tractions
+
+    !> [[extrapolate_tractions]] that also hands back the tractions before the step: on return
+    !! px_before, py_before hold the px, py given (one pass, no copy of them).
+    pure subroutine extrapolate_tractions_swap(px, py, px_before, py_before, alpha)
+        real(dp), intent(inout) :: px(:, :), py(:, :), px_before(:, :), py_before(:, :)
+        real(dp), intent(in) :: alpha
+        real(dp) :: t
+        integer :: i, j
+        do j = 1, size(px, 2)
+            do i = 1, size(px, 1)
+                t = px(i, j); px(i, j) = t + alpha*(t - px_before(i, j)); px_before(i, j) = t
+                t = py(i, j); py(i, j) = t + alpha*(t - py_before(i, j)); py_before(i, j) = t
+            end do
+        end do
+    end subroutine extrapolate_tractions_swap
 
     !> How many of the last input steps d1 the new step d2 amounts to (inputs scaled to be
     !! comparable, see the callers): α = d2·d1/|d1|² when d2 continues d1 — α in (0, 2] and

@@ -622,8 +622,7 @@ contains
         integer :: stat
         character(len=msg_len) :: msg
         real(dp) :: key(8)
-        real(dp), allocatable :: keep_x(:, :), keep_y(:, :)
-        logical :: predicted
+        logical :: kept, predicted
         ierr = FCL_OK
         ! --- required data ---
         if (.not. s%has_material) then
@@ -670,13 +669,13 @@ contains
                 s%hq_key = key
             end if
         end if
-        call rolling_start(s, keep_x, keep_y, predicted)
+        call rolling_start(s, kept, predicted)
         if (s%gap_kind == GAP_QUADRATIC) then
             call solve_contact(s%ops, s%grid, s%mat, s%hq, s%load, s%settings, s%result, stat, msg, state=s%prev)
         else
             call solve_contact(s%ops, s%grid, s%mat, s%h0, s%load, s%settings, s%result, stat, msg, state=s%prev)
         end if
-        call rolling_advance(s, keep_x, keep_y, predicted, stat == 0 .and. s%result%status == FC_CONVERGED)
+        call rolling_advance(s, kept, predicted, stat == 0 .and. s%result%status == FC_CONVERGED)
         if (stat /= 0) then
             call fail(s, ierr, flat_code(stat), 'fc_calculate: '//trim(msg)); return
         end if
@@ -695,52 +694,53 @@ contains
     !! (from rest), warm-started: when the two converged calls before this one moved the
     !! inputs (ξ, η, φ, Fn or δ, μ) along one direction and this call continues it, the start
     !! is extrapolated from their solutions ([[continuation_factor]],
-    !! [[extrapolate_tractions]]), as a multibody code's time steps do.  `keep_x`, `keep_y`:
-    !! the previous converged tractions (allocated when the call is predictable).  Measured:
-    !! doc/rolling.md, "Flat API".
-    subroutine rolling_start(s, keep_x, keep_y, predicted)
+    !! [[extrapolate_tractions_swap]]), as a multibody code's time steps do.  The previous
+    !! converged tractions move to px2, py2 (`kept`: the call is predictable), where
+    !! [[rolling_advance]] finds them.  Measured: doc/rolling.md, "Flat API".
+    subroutine rolling_start(s, kept, predicted)
         type(legacy_state), intent(inout) :: s
-        real(dp), allocatable, intent(out) :: keep_x(:, :), keep_y(:, :)
-        logical, intent(out) :: predicted
+        logical, intent(out) :: kept, predicted
         real(dp) :: v(5), sc(5), alpha
-        predicted = .false.
+        kept = .false.; predicted = .false.
         if (.not. (predictable(s) .and. s%prev%has_tangential)) return
-        keep_x = s%prev%px; keep_y = s%prev%py
-        if (s%converged_in_row < 2 .or. .not. allocated(s%px2) .or. s%load%problem /= s%inputs_problem) return
-        if (any(shape(s%px2) /= shape(keep_x))) return
-        v = rolling_inputs(s)
-        ! creepages on one scale (φ times the half length of the area), Fn or δ and μ relative,
-        ! each scale the largest magnitude of the three calls (1 where all are zero), so that
-        ! every scaled difference lies in [−2, 2]
-        sc(1:3) = max(maxval(abs(v(1:3))), maxval(abs(s%inputs1(1:3))), maxval(abs(s%inputs2(1:3))))
-        sc(4:5) = max(abs(v(4:5)), abs(s%inputs1(4:5)), abs(s%inputs2(4:5)))
-        where (.not. sc > 0) sc = 1
-        alpha = continuation_factor((s%inputs1 - s%inputs2)/sc, (v - s%inputs1)/sc)
-        if (alpha <= 0) return
-        call extrapolate_tractions(s%prev%px, s%prev%py, s%px2, s%py2, alpha)
-        predicted = .true.
+        kept = .true.
+        if (s%converged_in_row >= 2 .and. allocated(s%px2) .and. s%load%problem == s%inputs_problem) then
+            if (all(shape(s%px2) == shape(s%prev%px))) then
+                v = rolling_inputs(s)
+                ! creepages on one scale (φ times the half length of the area), Fn or δ and μ
+                ! relative, each scale the largest magnitude of the three calls (1 where all
+                ! are zero), so that every scaled difference lies in [−2, 2]
+                sc(1:3) = max(maxval(abs(v(1:3))), maxval(abs(s%inputs1(1:3))), maxval(abs(s%inputs2(1:3))))
+                sc(4:5) = max(abs(v(4:5)), abs(s%inputs1(4:5)), abs(s%inputs2(4:5)))
+                where (.not. sc > 0) sc = 1
+                alpha = continuation_factor((s%inputs1 - s%inputs2)/sc, (v - s%inputs1)/sc)
+                if (alpha > 0) then
+                    call extrapolate_tractions_swap(s%prev%px, s%prev%py, s%px2, s%py2, alpha)
+                    predicted = .true.
+                    return
+                end if
+            end if
+        end if
+        s%px2 = s%prev%px; s%py2 = s%prev%py      ! in place when the shapes agree
     end subroutine rolling_start
 
-    !> After the solve: a converged call becomes the newest of the two the predictor uses; a
-    !! call that did not converge leaves the previous converged tractions as the warm start
-    !! (undoing a prediction) and restarts the count.
-    subroutine rolling_advance(s, keep_x, keep_y, predicted, converged)
+    !> After the solve: a converged call becomes the newest of the two the predictor uses
+    !! (px2, py2 already hold the one before); a call that did not converge leaves the
+    !! previous converged tractions as the warm start (undoing a prediction) and restarts
+    !! the count.
+    subroutine rolling_advance(s, kept, predicted, converged)
         type(legacy_state), intent(inout) :: s
-        real(dp), allocatable, intent(inout) :: keep_x(:, :), keep_y(:, :)
-        logical, intent(in) :: predicted, converged
+        logical, intent(in) :: kept, predicted, converged
         if (.not. predictable(s)) then
             s%converged_in_row = 0
         else if (converged) then
-            if (allocated(keep_x)) then
-                call move_alloc(keep_x, s%px2); call move_alloc(keep_y, s%py2)
-            end if
             if (s%load%problem /= s%inputs_problem) s%converged_in_row = 0   ! shifts are not creepages
             s%inputs_problem = s%load%problem
             s%inputs2 = s%inputs1; s%inputs1 = rolling_inputs(s)
             s%converged_in_row = min(2, s%converged_in_row + 1)
         else
-            if (predicted) then
-                call move_alloc(keep_x, s%prev%px); call move_alloc(keep_y, s%prev%py)
+            if (predicted .and. kept) then
+                s%prev%px = s%px2; s%prev%py = s%py2
             end if
             s%converged_in_row = 0
         end if
