@@ -26,7 +26,7 @@
 !! pressure and tractions change by less than 10·max(tol_n, tol_t) (relative RMS), at most
 !! [[max_rounds]] rounds.  With K = 0 one normal and one tangential solve.
 !!
-!! Size (~740 lines): the operators' construction, the rounds of both stages with their
+!! Size (~780 lines): the operators' construction, the rounds of both stages with their
 !! transient bookkeeping, and the sequences of solves (loops of [[solve_contact]]) with their
 !! predicted starts are the one orchestrator; its types are in [[fc_contact_types]].
 module fc_contact

@@ -5,6 +5,10 @@
 !! it and [[fc_input_scene]] turns it into the library's [[fc_case]].  The record keeps the
 !! values as written (solver names, cycle text); the typed settings exist only in the case.
 !!
+!! Size (~620 lines): one namelist group per block — its keys, defaults, the record of which
+!! were given and the inheritance rules — most of it declarations that mirror
+!! doc/namelist.md; validation and the scene are in their own modules.
+!!
 !! Groups, keys and defaults (see also doc/namelist.md):
 !!
 !! * `&case name, title, problem` — name: file stem of the outputs, not inherited, default

@@ -24,7 +24,7 @@
 !! Residual (both solvers): ‖g‖₂/‖h_F‖₂, g the gap on the free set — thesis (2.18) with
 !! the norm taken over the free set.
 !!
-!! Size (~830 lines): the operator type and its lifetime, and the two normal solvers of
+!! Size (~860 lines): the operator type and its lifetime, and the two normal solvers of
 !! thesis ch. 2 (BCCG, NORM) that share its preconditioner, the force constraint and the
 !! result type; kept in one home like CONTACT's `norm` while the solver internals are tuned.
 module fc_norm

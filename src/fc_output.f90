@@ -2,6 +2,9 @@
 !! the element values and a readable text report with a character map of the contact area
 !! in the style of Kalker's CONTACT.  It writes results only: the summary of a case and the
 !! outcome of the automatic layer ([[fc_case_result]]), never computing them.
+!!
+!! Size (~600 lines): the 60-field summary type and its three writers (JSON, report with
+!! the contact map, tables through [[fc_table_io]]), which share the summary's fields.
 module fc_output
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use fc_kinds, only: dp, msg_len
