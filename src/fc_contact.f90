@@ -37,7 +37,8 @@ module fc_contact
     use fc_norm, only: fc_normal_operator, fc_normal_settings, fc_normal_result, build_normal_operator, solve_normal, &
         prepare_precond_circulant
     use fc_tangcg, only: fc_tangential_operator, fc_tangential_settings, fc_tangential_result, fc_tangential_loading, &
-        build_tangential_operator, solve_tangential_loading, coupling_displacements, EL_EXTERIOR, EL_ADHESION, EL_SLIP
+        build_tangential_operator, solve_tangential_loading, solve_tangential, coupling_displacements, EL_EXTERIOR, &
+        EL_ADHESION, EL_SLIP
     use fc_tangcg_operator, only: prepare_block_inverse_circulant
     use fc_fmg, only: fc_fmg_settings, fc_fmg_stats, fc_surface, solve_normal_fmg
     use fc_rolling, only: fc_rolling_loading, solve_rolling_loading, fc_rolling_case
@@ -494,7 +495,12 @@ contains
                         return
                     end if
                 end if
-                if (has_guess) then
+                if (.not. load%tangential%force_prescribed) then
+                    ! prescribed shifts: one solve; unallocated arrays are absent arguments
+                    call solve_tangential(top, pn, load%tangential%mu, settings%tangential, res%tangential, stat, &
+                        errmsg, load%tangential%xi, load%tangential%eta, load%tangential%phi, ux_prev=uxp, &
+                        uy_prev=uyp, px_start=pxs, py_start=pys, offset_x=uxn, offset_y=uyn)
+                else if (has_guess) then
                     ! initial stiffness 8Ga/(2−ν) of Mindlin, a from the contact area
                     a = sqrt(count(pn > 0)*grid%area()/pi)
                     k0 = 8*material%g*a/(2 - material%nu)

@@ -35,6 +35,11 @@ module fc_rolling_base
         !> Creep-force sweeps ([[rolling_sequence]]): start a point from the linear
         !! extrapolation of the two converged points before it instead of from the last one
         logical :: sweep_predictor = .true.
+        !> GMRES, circulant form: apply the FFT block inverse in every Newton step of a solve
+        !! started from given tractions (a previous solution: sweep points, flat-API calls,
+        !! the inner solves of a creep-force loop), whatever the adhesion share; .false.: only
+        !! from 50 % adhesion, as from a cold start
+        logical :: fft_resumed = .true.
     end type fc_rolling_settings
 
     !> Loading of a steady rolling problem.

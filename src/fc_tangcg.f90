@@ -167,9 +167,18 @@ contains
         logical :: accepted, done
         nx = size(pn, 1); ny = size(pn, 2)
         if (.not. load%force_prescribed) then
-            ! prescribed shifts: one solve, the optional arrays passed on as they are
+            ! prescribed shifts: one solve.  The optional arrays go on as allocatables, absent
+            ! when unallocated: passed on as optional dummies, gfortran's bounds checking
+            ! computes a descriptor from an absent one (signed overflow on garbage under
+            ! UBSan).  The orchestrator calls solve_tangential itself and copies nothing.
+            if (present(ux_prev)) zx = ux_prev
+            if (present(uy_prev)) zy = uy_prev
+            if (present(px_start)) qx = px_start
+            if (present(py_start)) qy = py_start
+            if (present(offset_x)) ox = offset_x
+            if (present(offset_y)) oy = offset_y
             call solve_tangential(top, pn, load%mu, settings, res, stat, errmsg, load%xi, load%eta, load%phi, &
-                                  ux_prev, uy_prev, px_start, py_start, offset_x, offset_y)
+                                  zx, zy, qx, qy, ox, oy)
             return
         end if
         allocate (zx(nx, ny), zy(nx, ny), ox(nx, ny), oy(nx, ny), qx(nx, ny), qy(nx, ny))

@@ -37,6 +37,7 @@ contains
             new_unittest('prescribed_creep_force', test_force), &
             new_unittest('warm_starts_of_a_sweep', test_warm_starts), &
             new_unittest('sweep_predictor', test_sweep_predictor), &
+            new_unittest('fft_resumed', test_fft_resumed), &
             new_unittest('creep_force_loop_bounded', test_force_bounded), &
             new_unittest('status_and_input_errors', test_status), &
             new_unittest('driver_rolling_sweep_transient', test_driver_cases), &
@@ -752,6 +753,48 @@ contains
             nint(sum(rows(3:, 12, 1))), nint(sum(rows(3:, 12, 2)))
         call ops%destroy()
     end subroutine test_sweep_predictor
+
+    !> The FFT block inverse in every Newton step of a resumed solve (`fft_resumed`): the
+    !! slip-dominated half of a ξ sweep (60×50, ξ 0.003 … 0.006 with η = 0.001, φ = 0.003:
+    !! adhesion below half of the contact from the second point on) takes fewer Krylov
+    !! iterations with it than with the cold-start rule (from 50 % adhesion), to the same forces.
+    subroutine test_fft_resumed(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_grid) :: grid
+        type(fc_material) :: mat
+        type(fc_contact_operators) :: ops
+        type(fc_contact_loading) :: load
+        type(fc_contact_settings) :: set
+        type(fc_contact_result) :: res
+        type(fc_rolling_case) :: seq
+        real(dp), allocatable :: rows(:, :, :), r(:, :)
+        integer :: stat, k
+        character(len=msg_len) :: msg
+        call make_grid(grid, 60, 50, -l_cat, l_cat, -l_cat, l_cat, stat, msg)
+        mat%g1 = g_cat; mat%g2 = g_cat; mat%nu1 = nu_cat; mat%nu2 = nu_cat
+        call combine_material(mat, stat, msg)
+        load%problem = FC_PROBLEM_ROLLING
+        load%normal%force_prescribed = .true.; load%normal%fn = fn_cat
+        load%tangential%mu = mu_cat; load%tangential%eta = 0.001_dp; load%tangential%phi = 0.003_dp
+        seq%sweep = 'xi'; seq%sweep_from = 0.003_dp; seq%sweep_to = 0.006_dp; seq%sweep_n = 8
+        allocate (rows(8, 14, 2))
+        do k = 1, 2
+            set%rolling%fft_resumed = k == 1
+            call rolling_sequence(seq, ops, grid, mat, quadratic_gap(grid, r_cat, r_cat), load, set, res, r, stat, msg)
+            call check(error, stat == 0 .and. size(r, 1) == 8, 'sweep ran: '//trim(msg))
+            if (allocated(error)) return
+            rows(:, :, k) = r
+        end do
+        call check(error, all(nint(rows(:, 14, :)) == FC_CONVERGED), 'every point converged, with and without')
+        call check(error, all(rows(2:, 10, 1) < rows(2:, 11, 1)), 'points 2-8 slip-dominated (nadh < nslip)')
+        call check(error, maxval(abs(rows(:, 5:6, 1) - rows(:, 5:6, 2))), 0.0_dp, 'same Fx, Fy', abs=1e-5_dp*mu_cat*fn_cat)
+        call check(error, rows(1, 12, 1) == rows(1, 12, 2), 'point 1 (a cold start) unchanged')
+        call check(error, sum(rows(2:, 12, 1)) < 0.9_dp*sum(rows(2:, 12, 2)), &
+            'resumed: at least 10 % fewer Krylov iterations with the FFT block inverse')
+        write (*, '(a,2i6)') '    fft_resumed: Krylov iterations of points 2-8 with / without: ', &
+            nint(sum(rows(2:, 12, 1))), nint(sum(rows(2:, 12, 2)))
+        call ops%destroy()
+    end subroutine test_fft_resumed
 
     !> A sweep goes on past points that do not converge: ξ from 0.01 to −0.01 in 11 points
     !! (30×25) with `maxit = 25` Krylov iterations, where points 3–10 need more and do not
