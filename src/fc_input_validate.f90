@@ -427,6 +427,11 @@ contains
         errmsg = ''
         steady = s%problem == 'rolling'
         transient = s%problem == 'transient_rolling'
+        if ((steady .or. transient) .and. .not. all(real_in_range([s%xi, s%eta], -max_creepage, max_creepage))) then
+            errmsg = '&tangential xi = '//fmt_real(s%xi)//', eta = '//fmt_real(s%eta)//': rolling creepages (ratios '// &
+                'of slip to rolling speed) must satisfy |xi|, |eta| <= '//fmt_limit(max_creepage)
+            return
+        end if
         select case (s%rolling)
         case ('gmres', 'march', 'steadygs')
         case default
@@ -511,6 +516,12 @@ contains
         end if
         if ((s%sweep == 'xi' .or. s%sweep == 'eta') .and. s%tforce_prescribed) then
             errmsg = "&tangential sweep = '"//trim(s%sweep)//"': needs creepages (give xi or eta, not fx, fy)"; return
+        end if
+        if ((s%sweep == 'xi' .or. s%sweep == 'eta') .and. &
+            .not. all(real_in_range([s%sweep_from, s%sweep_to], -max_creepage, max_creepage))) then
+            errmsg = '&tangential sweep_from = '//fmt_real(s%sweep_from)//', sweep_to = '//fmt_real(s%sweep_to)// &
+                ": sweep = '"//trim(s%sweep)//"' runs over a creepage: |value| <= "//fmt_limit(max_creepage)
+            return
         end if
     end subroutine validate_rolling
 

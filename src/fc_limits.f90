@@ -25,6 +25,7 @@ module fc_limits
     real(dp), parameter, public :: max_friction = 100.0_dp       !! coefficient of friction μ
     real(dp), parameter, public :: min_friction = 1.0e-12_dp     !! smallest μ > 0 (0 is frictionless; below: denormal bounds)
     real(dp), parameter, public :: max_spin = 1.0e3_dp           !! |φ| [rad/mm]
+    real(dp), parameter, public :: max_creepage = 1.0e3_dp       !! |ξ|, |η| of steady or transient rolling [-]
     integer, parameter, public :: max_cases = 10000              !! cases in one namelist file
     integer, parameter, public :: max_modes = 4096               !! m_modes, n_modes of a rough surface
     integer, parameter, public :: max_mode_pairs = 65536         !! m_modes·n_modes (mode tables: 24 bytes each)

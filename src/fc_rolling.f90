@@ -39,6 +39,7 @@
 module fc_rolling
     use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
     use fc_kinds
+    use fc_limits, only: max_creepage
     use fc_geometry, only: fc_grid
     use fc_tangcg, only: fc_tangential_operator, fc_tangential_result, EL_EXTERIOR, EL_ADHESION, EL_SLIP, &
         finish_force_loop, finish_status, traction_change
@@ -116,8 +117,8 @@ contains
             stat = FC_ERR_VALUE; write (errmsg, '(a,g0.6,a,g0.6,a)') 'rolling: mu_kinetic = ', muk, ' must be <= mu = ', &
                 load%mu, ' (static)'; return
         end if
-        if (.not. (abs(load%xi) < 1.0e3_dp .and. abs(load%eta) < 1.0e3_dp .and. abs(load%phi) < 1.0e6_dp)) then
-            stat = FC_ERR_VALUE; errmsg = 'rolling: creepages xi, eta (|.| < 1e3) and phi (|.| < 1e6 1/mm) must be finite'
+        if (.not. (abs(load%xi) <= max_creepage .and. abs(load%eta) <= max_creepage .and. abs(load%phi) < 1.0e6_dp)) then
+            stat = FC_ERR_VALUE; errmsg = 'rolling: creepages xi, eta (|.| <= 1e3) and phi (|.| < 1e6 1/mm) must be finite'
             return
         end if
         if (.not. (settings%tol > 0 .and. settings%tol < 1)) then

@@ -901,6 +901,14 @@ contains
         call check(error, code /= 0 .and. index(errors, 'mu_kinetic = NaN') > 0, 'mu_kinetic NaN: '//errors)
         call drive(scene('b10', 'transient_rolling', 'mu = 0.4, xi = 0.001, dq = NaN'), dir, code, errors)
         call check(error, code /= 0 .and. index(errors, 'dq = NaN') > 0, 'dq NaN: '//errors)
+        ! creepages beyond the rolling solver's range: named by the input check (found by the
+        ! driver fuzzer: the solver's own message named no key)
+        call drive(scene('b11', 'rolling', 'mu = 0.4, xi = 0.001, eta = 4097'), dir, code, errors)
+        call check(error, code /= 0 .and. index(errors, '&tangential xi = ') > 0 .and. index(errors, 'eta = 4097') > 0 &
+                   .and. index(errors, '<= 1.0E+03') > 0, 'eta beyond the creepage limit: '//errors)
+        call drive(scene('b12', 'rolling', "mu = 0.4, xi = 0.001, sweep = 'xi', sweep_from = 0, sweep_to = 5000"), &
+                   dir, code, errors)
+        call check(error, code /= 0 .and. index(errors, 'sweep_to = 5000') > 0, 'creepage sweep beyond the limit: '//errors)
     end subroutine test_driver_errors
 
     !> Flat API: fc_set_rolling gives the library's steady solution; the handle reuses its
