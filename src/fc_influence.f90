@@ -255,6 +255,9 @@ contains
 
     !> The coefficients of `blocks` (IC_*, each at most once) for offsets −mx…mx, −my…my into
     !! k(1:size(blocks)).  The 1/ρ term of A^zz, A^xx, A^yy is evaluated once for all of them.
+    !! (`add_primitive` stays internal, on this routine's work arrays: as a module procedure
+    !! on dummy arrays gfortran vectorised its uv/ρ³ loop differently — libmvec's hypot or
+    !! not — and A^xy changed in the last bits.)
     subroutine half_space_kernels(mat, grid, mx, my, blocks, k)
         type(fc_material), intent(in) :: mat
         type(fc_grid), intent(in) :: grid
