@@ -3,6 +3,9 @@
 !! the limit.  Validation never changes the record: values implied by others (a cylinder's
 !! y extent, a strip's single row) are derived by [[effective_record]], which the scene
 !! builder uses as well.
+!!
+!! Size (~630 lines): one validator per group, each with the messages that name its keys,
+!! values and limits; most lines are those messages.
 module fc_input_validate
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use fc_kinds, only: dp, i8, msg_len, max_iterations
