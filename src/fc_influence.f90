@@ -284,7 +284,12 @@ contains
         do b = 1, size(blocks)
             select case (blocks(b))
             case (IC_ZZ, IC_XX, IC_YY)
-                k(b)%c = base
+                ! the last block that needs the shared term takes it instead of a copy
+                if (any(blocks(b + 1:) == IC_ZZ .or. blocks(b + 1:) == IC_XX .or. blocks(b + 1:) == IC_YY)) then
+                    k(b)%c = base
+                else
+                    call move_alloc(base, k(b)%c)
+                end if
             case default
                 allocate (k(b)%c(-mx:mx, -my:my))
                 k(b)%c = 0
