@@ -58,11 +58,13 @@ contains
         character(len=*), parameter :: nl = new_line('a')
         text = 'usage: fastcontact CASES.nml [--out DIR]'//nl// &
             '       fastcontact --help'//nl//nl// &
-            'Solves every case of the namelist file CASES.nml in order (groups &case, &material,'//nl// &
-            '&grid, &geometry, &normal, &tangential, &solver, &output; a later case repeats only what'//nl// &
-            'changes)'//nl// &
-            'and writes DIR/<name>.json and DIR/<name>.csv per case (DIR: --out, else &output dir,'//nl// &
-            "else 'out').  See doc/user_guide.md and doc/namelist.md."//nl//nl// &
+            'Solves every case of the namelist file CASES.nml in order: groups &case, &material,'//nl// &
+            '&grid, &geometry, &normal, &tangential, &solver, &output; a later case repeats only'//nl// &
+            'what changes.  &case problem = normal, normal+tangential, tangential, rolling (steady'//nl// &
+            'creep forces; sweeps write DIR/<name>_creep.csv), transient_rolling, hertz, strip_mp1..3.'//nl// &
+            'Writes DIR/<name>.json (summary) and DIR/<name>.csv (one row per element) per case'//nl// &
+            "(DIR: --out, else &output dir, else 'out').  Threads: &solver threads or"//nl// &
+            'OMP_NUM_THREADS.  See doc/user_guide.md and doc/namelist.md.'//nl//nl// &
             'Exit status: 0 all cases converged, 1 input error in some case, 2 some solver did not converge.'
     end function driver_usage
 
