@@ -442,6 +442,7 @@ contains
         character(len=:), allocatable :: lines(:)
         integer :: sx, sy, j
         real(dp) :: pct, pct_adh, pct_slip
+        logical :: rolling   !! steady or transient rolling: creepages, not rigid shifts
         character(len=*), parameter :: rule = &
             '------------------------------------------------------------------------------------------'
         write (unit, '(a)') rule
@@ -474,11 +475,23 @@ contains
                 s%hertz%p0, '   Fn = ', s%hertz%fn
         end if
         if (s%tangential) then
-            write (unit, '(a,es12.5,a)') ' friction     mu = ', s%mu, &
-                trim(merge('   prescribed tangential forces', '   prescribed rigid shifts     ', s%tforce_prescribed))
+            rolling = s%problem == 'rolling' .or. s%problem == 'transient_rolling'
+            if (rolling) then
+                write (unit, '(a,es12.5,a)') ' friction     mu = ', s%mu, &
+                    trim(merge('   prescribed creep forces', '   prescribed creepages   ', s%tforce_prescribed))
+            else
+                write (unit, '(a,es12.5,a)') ' friction     mu = ', s%mu, &
+                    trim(merge('   prescribed tangential forces', '   prescribed rigid shifts     ', s%tforce_prescribed))
+            end if
             if (s%tforce_prescribed) write (unit, '(a,es12.5,a,es12.5,a,es12.5,a)') '              Fx = ', &
                 s%fx_prescribed, '   Fy = ', s%fy_prescribed, '   (mu*Fn = ', s%mu*s%fn, ')'
-            write (unit, '(a,es14.6,a,es14.6,a,es14.6)') ' shifts used  xi = ', s%xi, '   eta = ', s%eta, '   phi = ', s%phi
+            if (rolling) then
+                write (unit, '(a,es14.6,a,es14.6,a,es14.6,a)') ' creepages    xi = ', s%xi, '   eta = ', s%eta, &
+                    '   phi = ', s%phi, ' /mm'
+            else
+                write (unit, '(a,es14.6,a,es14.6,a,es14.6)') ' shifts used  xi = ', s%xi, '   eta = ', s%eta, &
+                    '   phi = ', s%phi
+            end if
             write (unit, '(a,es14.6,a,es14.6,a,es14.6)') ' tangential   Fx = ', s%fx, '   Fy = ', s%fy, '   Mz = ', s%mz
             if (s%mu*s%fn > 0) write (unit, '(a,f9.5,a,f9.5)') '              Fx/(mu Fn) = ', s%fx/(s%mu*s%fn), &
                 '   Fy/(mu Fn) = ', s%fy/(s%mu*s%fn)

@@ -709,6 +709,10 @@ contains
         call csv_last(dir//'/trans_steps.csv', 3, n, v)
         call check(error, n == 181, 'transient: header + 180 rows')
         call check(error, v, r1%fx, 'transient Fx -> steady', abs=1e-3_dp*ftol)
+        ! the report names creepages, not the shift problem's rigid shifts
+        text = file_text(dir//'/report.txt')
+        call check(error, index(text, 'prescribed creepages') > 0 .and. index(text, ' creepages    xi =') > 0 &
+            .and. index(text, 'shifts used') == 0, 'report: creepages of a rolling case')
         call execute_command_line("rm -rf '"//dir//"'")
         call top%destroy()
     end subroutine test_driver_cases
