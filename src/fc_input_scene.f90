@@ -100,6 +100,12 @@ contains
             trim(s%normal_solver)//"'). "
         if (s%periodic) notes = notes//'periodic half-space: the grid is one cell of a surface repeated in x and y; '// &
             'mean pressure fn/area = '//fmt_real(s%fn/((s%xmax - s%xmin)*(s%ymax - s%ymin)))//' N/mm2. '
+        ! a sequence writes every point to its table; the summary holds the last solve
+        if (s%problem == 'transient_rolling') notes = notes//'transient rolling: forces, counts and stage times '// &
+            'are those of the last step; '//trim(s%name)//'_steps.csv has every step. '
+        if (s%problem == 'rolling' .and. len_trim(s%sweep) > 0) notes = notes//'creep-force sweep over '// &
+            trim(s%sweep)//': forces, counts and stage times are those of the last point; '//trim(s%name)// &
+            '_creep.csv has every point. '
     end function case_notes
 
 end module fc_input_scene

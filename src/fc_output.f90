@@ -443,6 +443,7 @@ contains
         integer :: sx, sy, j
         real(dp) :: pct, pct_adh, pct_slip
         logical :: rolling   !! steady or transient rolling: creepages, not rigid shifts
+        logical :: gridless  !! a model without elements (FASTSIM on the Hertz ellipse, analytic answers)
         character(len=*), parameter :: rule = &
             '------------------------------------------------------------------------------------------'
         write (unit, '(a)') rule
@@ -454,10 +455,15 @@ contains
         write (unit, '(a,es12.5,a,f8.5,a,es12.5)') ' combined     G = ', s%outcome%material%g, '   nu = ', &
             s%outcome%material%nu, &
             '   K = ', s%outcome%material%k
-        write (unit, '(a,i0,a,i0,a,4(1x,g0.6),a)') ' grid         ', s%outcome%grid%nx, ' x ', s%outcome%grid%ny, &
-            ' elements on [xmin,xmax]x[ymin,ymax] =', s%outcome%grid%xmin, s%outcome%grid%xmax, s%outcome%grid%ymin, &
-            s%outcome%grid%ymax, ''
-        write (unit, '(a,es12.5,a,es12.5)') '              dx = ', s%outcome%grid%dx, '   dy = ', s%outcome%grid%dy
+        gridless = s%outcome%grid%nx*s%outcome%grid%ny == 0
+        if (gridless) then
+            write (unit, '(a)') ' grid         none (a model without elements: no element counts, no map)'
+        else
+            write (unit, '(a,i0,a,i0,a,4(1x,g0.6),a)') ' grid         ', s%outcome%grid%nx, ' x ', s%outcome%grid%ny, &
+                ' elements on [xmin,xmax]x[ymin,ymax] =', s%outcome%grid%xmin, s%outcome%grid%xmax, &
+                s%outcome%grid%ymin, s%outcome%grid%ymax, ''
+            write (unit, '(a,es12.5,a,es12.5)') '              dx = ', s%outcome%grid%dx, '   dy = ', s%outcome%grid%dy
+        end if
         if (s%force_prescribed) then
             write (unit, '(a)') ' load         prescribed total normal force fn'
         else
@@ -468,8 +474,8 @@ contains
         write (unit, '(a,es16.8,a,es16.8)') ' approach     ', s%approach, '      pmax = ', s%pmax
         pct = 0
         if (s%outcome%grid%nx*s%outcome%grid%ny > 0) pct = 100.0_dp*s%ncon/(real(s%outcome%grid%nx, dp)*s%outcome%grid%ny)
-        write (unit, '(a,i0,a,f6.2,a,i0,a,i0)') ' contact      ncon = ', s%ncon, ' (', pct, ' % of the grid)   nadh = ', &
-            s%nadh, '   nslip = ', s%nslip
+        if (.not. gridless) write (unit, '(a,i0,a,f6.2,a,i0,a,i0)') ' contact      ncon = ', s%ncon, ' (', pct, &
+            ' % of the grid)   nadh = ', s%nadh, '   nslip = ', s%nslip
         if (s%has_hertz) then
             write (unit, '(a,4(a,es12.5))') ' Hertz        ', 'a = ', s%hertz%a, '   b = ', s%hertz%b, '   p0 = ', &
                 s%hertz%p0, '   Fn = ', s%hertz%fn
@@ -499,16 +505,20 @@ contains
             if (s%nadh + s%nslip > 0) then
                 pct_adh = 100.0_dp*s%nadh/(s%nadh + s%nslip); pct_slip = 100.0_dp*s%nslip/(s%nadh + s%nslip)
             end if
-            write (unit, '(a,i0,a,f6.2,a,i0,a,f6.2,a)') ' adhesion     nadh = ', s%nadh, ' (', pct_adh, &
-                ' % of contact)   nslip = ', s%nslip, ' (', pct_slip, ' % of contact)'
+            if (.not. gridless) write (unit, '(a,i0,a,f6.2,a,i0,a,f6.2,a)') ' adhesion     nadh = ', s%nadh, ' (', &
+                pct_adh, ' % of contact)   nslip = ', s%nslip, ' (', pct_slip, ' % of contact)'
             write (unit, '(a,a,a,i0,a,i0,a,i0,a,es10.3,a)') ' normal       ', trim(s%solver_normal), ':  iterations ', &
                 s%iterations_normal, ' (outer ', s%outer_iterations_normal, ')   matvecs ', s%matvecs_normal, &
                 '   residual ', s%residual_normal, '   '//trim(s%status_normal)
             write (unit, '(a,a,a,i0,a,i0,a,i0,a,es10.3,a)') ' tangential   ', trim(s%solver_tangential), ':  iterations ', &
                 s%iterations_tangential, ' (outer ', s%outer_iterations_tangential, ')   matvecs ', s%matvecs_tangential, &
                 '   residual ', s%residual_tangential, '   '//trim(s%status_tangential)
-            write (unit, '(a,i0,a,es10.3)') '              Panagiotopoulos rounds ', s%panagiotopoulos_rounds, &
-                '   (1: K = 0, decoupled)   tol ', s%tol
+            if (s%panagiotopoulos_rounds > 0) then
+                write (unit, '(a,i0,a,es10.3)') '              Panagiotopoulos rounds ', s%panagiotopoulos_rounds, &
+                    '   (1: K = 0, decoupled)   tol ', s%tol
+            else
+                write (unit, '(a,es10.3)') '              tol ', s%tol
+            end if
         else
             write (unit, '(a,a,a,i0,a,i0,a,i0,a,es10.3,a,es10.3)') ' solver       ', trim(s%solver), ':  iterations ', &
                 s%iterations, ' (outer ', s%outer_iterations, ')   matvecs ', s%matvecs, '   residual ', s%residual, &

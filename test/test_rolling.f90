@@ -713,6 +713,8 @@ contains
         text = file_text(dir//'/report.txt')
         call check(error, index(text, 'prescribed creepages') > 0 .and. index(text, ' creepages    xi =') > 0 &
             .and. index(text, 'shifts used') == 0, 'report: creepages of a rolling case')
+        call check(error, index(text, 'creep-force sweep over xi') > 0 .and. index(text, 'curve_creep.csv has every') > 0 &
+            .and. index(text, 'trans_steps.csv has every step') > 0, 'report: sequences say the summary is the last solve')
         call execute_command_line("rm -rf '"//dir//"'")
         call top%destroy()
     end subroutine test_driver_cases
@@ -1175,6 +1177,10 @@ contains
         call check(error, index(file_text(dir//'/t1.json'), '"model": "fastsim"') > 0, 'target 0.1: FASTSIM chosen')
         call check(error, index(file_text(dir//'/t2.json'), '"model": "full"') > 0 .and. &
                    index(file_text(dir//'/t2.json'), 'FASTSIM not used') > 0, 'target 0.02: full theory')
+        ! the report of the grid-free model shows no grid and no element counts
+        text = file_text(dir//'/report.txt')
+        call check(error, index(text, 'grid         none') > 0 .and. index(text, '0 x 0 elements') == 0 .and. &
+                   index(text, 'ncon = 0') == 0, 'report of FASTSIM: no grid, no element counts')
         call execute_command_line("rm -rf '"//dir//"'")
     end subroutine test_driver_fastsim
 
