@@ -5,8 +5,9 @@
  * the previous solution.  Prints creepage, Fx/(mu Fn), Fy/(mu Fn), Mz, slip elements and
  * iterations per step.
  *
- * Build and run (see doc/legacy_api.md):
- *   scripts/build_shared.sh
+ * Build and run (see doc/legacy_api.md; .ci/run runs it):
+ *   scripts/build_shared.sh --examples && build/rolling_api
+ * or, against an existing build/libfastcontact.so:
  *   gcc -Iinclude example/rolling_api.c -Lbuild -lfastcontact -Wl,-rpath,$PWD/build -o rolling_api && ./rolling_api
  */
 #include <stdio.h>

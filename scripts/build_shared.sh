@@ -4,7 +4,7 @@
 #
 #   build/libfastcontact.so      the library (every module of src/, bind(C) names fc_*)
 #   build/shared/mod/*.mod       module files for Fortran programs (`use fc_legacy`)
-#   build/legacy_sphere_f, build/legacy_sphere_c, build/legacy_f77   (with --examples) examples
+#   build/legacy_sphere_f, build/legacy_sphere_c, build/legacy_f77, build/rolling_api   (with --examples) examples
 #
 # Sources are compiled in dependency order (worked out from `module`/`use` lines), with
 # FC (default gfortran) and FFLAGS (default -O2).  Needs FFTW3, LAPACK and BLAS.
@@ -67,5 +67,7 @@ if [ "${1:-}" = "--examples" ]; then
     $CC -O2 -Iinclude example/legacy_sphere.c -o build/legacy_sphere_c \
         -Lbuild -lfastcontact -Wl,-rpath,"$PWD/build" -lm
     $FC $FFLAGS -std=legacy example/legacy_f77.f -o build/legacy_f77 -Lbuild -lfastcontact -Wl,-rpath,"$PWD/build"
-    echo "built build/legacy_sphere_f, build/legacy_sphere_c and build/legacy_f77"
+    $CC -O2 -Iinclude example/rolling_api.c -o build/rolling_api \
+        -Lbuild -lfastcontact -Wl,-rpath,"$PWD/build" -lm
+    echo "built build/legacy_sphere_f, build/legacy_sphere_c, build/legacy_f77 and build/rolling_api"
 fi
