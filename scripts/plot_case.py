@@ -99,7 +99,10 @@ def main():
         smag = np.hypot(sx, sy)
         im = ax.imshow(np.where(state == 2, smag, np.nan), origin="lower", extent=extent, cmap="plasma",
                        aspect="equal")
-        fig.colorbar(im, ax=ax, shrink=0.8, label="|s| [mm]")
+        # steady rolling: slip velocity over rolling velocity (dimensionless); shift
+        # problems and transient steps: the slip of the step [mm]
+        rolling = js.get("problem", "") == "rolling"
+        fig.colorbar(im, ax=ax, shrink=0.8, label="|s| [-] (slip / rolling velocity)" if rolling else "|s| [mm]")
         ax.set_title("slip (slip area)")
 
     ax = axes[k]
