@@ -172,6 +172,12 @@ contains
         call kv_str('model', s%outcome%model)
         call kv_list('reductions', s%outcome%reductions)
         call kv_list('warnings', s%outcome%warnings)
+        ! the report's note line (keys without effect, what a sequence's summary holds)
+        if (allocated(s%notes)) then
+            call kv_str('notes', s%notes)
+        else
+            call kv_str('notes', '')
+        end if
         write (u, '(a)') '  "grid_auto": '//trim(merge('true ', 'false', s%outcome%grid_auto))//','
         call kv_int('enlargements', s%outcome%enlargements)
         write (u, '(a)') '  "touches_boundary": '//trim(merge('true ', 'false', s%outcome%touches_boundary))//','

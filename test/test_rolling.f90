@@ -715,6 +715,8 @@ contains
             .and. index(text, 'shifts used') == 0, 'report: creepages of a rolling case')
         call check(error, index(text, 'creep-force sweep over xi') > 0 .and. index(text, 'curve_creep.csv has every') > 0 &
             .and. index(text, 'trans_steps.csv has every step') > 0, 'report: sequences say the summary is the last solve')
+        call check(error, index(file_text(dir//'/curve.json'), '"notes": "creep-force sweep over xi') > 0, &
+            'JSON: the sweep note')
         call execute_command_line("rm -rf '"//dir//"'")
         call top%destroy()
     end subroutine test_driver_cases
