@@ -50,6 +50,10 @@ void fc_set_fft_wisdom(const int *h, const char *path, int *ierr);
 void fc_set_rolling(const int *h, const double *xi, const double *eta, const double *phi, int *ierr);
 void fc_set_rolling_forces(const int *h, const double *fx, const double *fy, const double *phi, int *ierr);
 void fc_set_rolling_options(const int *h, const int *solver, const double *mu_kinetic, int *ierr);
+/* periodic half-space: 0 or 1 (even nx, ny; normal contact; doc/parallel.md) */
+void fc_set_periodic(const int *h, const int *periodic, int *ierr);
+/* threads of this handle's solves: 0 (OMP_NUM_THREADS if set, else 1) ... 1024 */
+void fc_set_threads(const int *h, const int *nthreads, int *ierr);
 
 void fc_calculate(const int *h, int *ierr);
 
@@ -58,6 +62,9 @@ void fc_get_approach(const int *h, double *approach, int *ierr);
 void fc_get_pmax(const int *h, double *pmax, int *ierr);
 void fc_get_shifts(const int *h, double *xi, double *eta, double *phi, int *ierr);
 void fc_get_contact_stats(const int *h, int *ncon, int *nadh, int *nslip, int *ierr);
+/* 1 when the last calculation's contact reaches the first or last row or column of the grid
+   (the potential contact area clips it: enlarge it), else 0 */
+void fc_get_edge_contact(const int *h, int *touches, int *ierr);
 void fc_get_tractions(const int *h, const int *n, double *pn, double *px, double *py, int *ierr);
 void fc_get_slip(const int *h, const int *n, double *sx, double *sy, int *ierr);
 void fc_get_gap(const int *h, const int *n, double *gap, int *ierr);

@@ -53,7 +53,7 @@ module fc_legacy
     public :: fc_set_normal_approach, fc_set_normal_force, fc_set_friction, fc_set_shifts, fc_set_forces
     public :: fc_set_solver, fc_set_transient, fc_set_rolling_step, fc_set_reuse, fc_calculate
     public :: fc_set_rolling, fc_set_rolling_forces, fc_set_rolling_options
-    public :: fc_get_forces, fc_get_approach, fc_get_pmax, fc_get_shifts, fc_get_contact_stats
+    public :: fc_get_forces, fc_get_approach, fc_get_pmax, fc_get_shifts, fc_get_contact_stats, fc_get_edge_contact
     public :: fc_get_tractions, fc_get_slip, fc_get_gap, fc_get_status_array, fc_get_iterations
     public :: fc_get_rebuilds, fc_get_grid_size, fc_get_error_message, fc_get_nhandles
     public :: fc_set_influence_file
@@ -882,6 +882,21 @@ contains
             ncon = s%result%normal%ncon; nadh = ncon; nslip = 0
         end if
     end subroutine fc_get_contact_stats
+
+    !> 1 when the contact of the last calculation reaches the first or last row or column of
+    !! the grid, else 0.  The potential contact area then clips the contact and the solution
+    !! is not the one of the unbounded half-space: enlarge the area (`fc_set_grid`).  Always 0
+    !! for a periodic cell, which has no edge.
+    subroutine fc_get_edge_contact(handle, touches, ierr) bind(C, name='fc_get_edge_contact')
+        integer(c_int), intent(in) :: handle
+        integer(c_int), intent(out) :: touches   !! 0 or 1
+        integer(c_int), intent(out) :: ierr
+        type(legacy_state), pointer :: s
+        touches = 0
+        call lookup_result(handle, 'fc_get_edge_contact', s, ierr)
+        if (ierr /= FCL_OK) return
+        if (s%result%normal%touches_boundary) touches = 1
+    end subroutine fc_get_edge_contact
 
     !> Pressure and tangential tractions [N/mm²] per element (x fastest).
     subroutine fc_get_tractions(handle, n, pn, px, py, ierr) bind(C, name='fc_get_tractions')

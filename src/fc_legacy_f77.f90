@@ -186,6 +186,13 @@ contains
         call fc_get_contact_stats(handle, ncon, nadh, nslip, ierr)
     end subroutine fc_get_contact_stats_f77
 
+    subroutine fc_get_edge_contact_f77(handle, touches, ierr) bind(C, name='fc_get_edge_contact_')
+        integer(c_int), intent(in) :: handle
+        integer(c_int), intent(out) :: touches
+        integer(c_int), intent(out) :: ierr
+        call fc_get_edge_contact(handle, touches, ierr)
+    end subroutine fc_get_edge_contact_f77
+
     subroutine fc_get_tractions_f77(handle, n, pn, px, py, ierr) bind(C, name='fc_get_tractions_')
         integer(c_int), intent(in) :: handle
         integer(c_int), intent(in) :: n
@@ -246,5 +253,44 @@ contains
         integer(c_int), intent(out) :: ierr
         call fc_get_error_message(handle, buffer, buflen, ierr)
     end subroutine fc_get_error_message_f77
+
+    subroutine fc_set_rolling_f77(handle, xi, eta, phi, ierr) bind(C, name='fc_set_rolling_')
+        integer(c_int), intent(in) :: handle
+        real(c_double), intent(in) :: xi, eta, phi
+        integer(c_int), intent(out) :: ierr
+        call fc_set_rolling(handle, xi, eta, phi, ierr)
+    end subroutine fc_set_rolling_f77
+
+    subroutine fc_set_rolling_forces_f77(handle, fx, fy, phi, ierr) bind(C, name='fc_set_rolling_forces_')
+        integer(c_int), intent(in) :: handle
+        real(c_double), intent(in) :: fx, fy, phi
+        integer(c_int), intent(out) :: ierr
+        call fc_set_rolling_forces(handle, fx, fy, phi, ierr)
+    end subroutine fc_set_rolling_forces_f77
+
+    subroutine fc_set_rolling_options_f77(handle, solver, mu_kinetic, ierr) bind(C, name='fc_set_rolling_options_')
+        integer(c_int), intent(in) :: handle
+        integer(c_int), intent(in) :: solver
+        real(c_double), intent(in) :: mu_kinetic
+        integer(c_int), intent(out) :: ierr
+        call fc_set_rolling_options(handle, solver, mu_kinetic, ierr)
+    end subroutine fc_set_rolling_options_f77
+
+    !> The file names must end with CHAR(0), as for the C entry (the hidden length arguments
+    !! of a Fortran 77 call are not read).
+    subroutine fc_set_influence_file_f77(handle, path, path2, ierr) bind(C, name='fc_set_influence_file_')
+        integer(c_int), intent(in) :: handle
+        character(kind=c_char), intent(in) :: path(*), path2(*)
+        integer(c_int), intent(out) :: ierr
+        call fc_set_influence_file(handle, path, path2, ierr)
+    end subroutine fc_set_influence_file_f77
+
+    !> The file name must end with CHAR(0) (see [[fc_set_influence_file_f77]]).
+    subroutine fc_set_fft_wisdom_f77(handle, path, ierr) bind(C, name='fc_set_fft_wisdom_')
+        integer(c_int), intent(in) :: handle
+        character(kind=c_char), intent(in) :: path(*)
+        integer(c_int), intent(out) :: ierr
+        call fc_set_fft_wisdom(handle, path, ierr)
+    end subroutine fc_set_fft_wisdom_f77
 
 end module fc_legacy_f77

@@ -41,7 +41,8 @@ contains
             new_unittest('hysteresis_load_unload_reload', test_hysteresis), &
             new_unittest('continue_zero_increment_keeps_state', test_continue_still), &
             new_unittest('rolling_shift_and_steady_state', test_rolling), &
-            new_unittest('errors_and_handles', test_errors) ]
+            new_unittest('errors_and_handles', test_errors), &
+            new_unittest('edge_contact_reported', test_edge_contact) ]
     end subroutine collect_legacy
 
     !> Handle with the Cattaneo scene of doc/conventions.md (no tangential loading yet).
@@ -821,5 +822,35 @@ contains
         call fc_get_nhandles(nlive, ierr)
         call check(error, nlive == nlive0, 'no handle leaked')
     end subroutine test_errors
+
+    !> fc_get_edge_contact: Hertz Test I (a = 6.0, b = 4.0 mm at approach 0.1091) inside
+    !! ±10 × ±6 mm reports 0; on ±5 × ±3 mm, which clips the ellipse, 1 — also after a
+    !! tangential calculation that reuses the normal solution; an unknown handle is an error.
+    subroutine test_edge_contact(error)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: h, ierr, touches
+        call fc_init(h, ierr)
+        call fc_set_material(h, 82000.0_dp, 82000.0_dp, 0.28_dp, 0.28_dp, ierr)
+        call fc_set_grid(h, 32, 32, -10.0_dp, 10.0_dp, -6.0_dp, 6.0_dp, ierr)
+        call fc_set_gap_quadratic(h, 300.0_dp, 163.0_dp, ierr)
+        call fc_set_normal_approach(h, 0.1091_dp, ierr)
+        call fc_calculate(h, ierr)
+        call check(error, ierr == 0, 'calculate: '//last_message(h))
+        if (allocated(error)) return
+        call fc_get_edge_contact(h, touches, ierr)
+        call check(error, ierr == 0 .and. touches == 0, 'contact inside the area: 0')
+        call fc_set_grid(h, 32, 32, -5.0_dp, 5.0_dp, -3.0_dp, 3.0_dp, ierr)
+        call fc_calculate(h, ierr)
+        call fc_get_edge_contact(h, touches, ierr)
+        call check(error, ierr == 0 .and. touches == 1, 'area clips the contact: 1')
+        call fc_set_friction(h, 0.3_dp, ierr)
+        call fc_set_shifts(h, 0.001_dp, 0.0_dp, 0.0_dp, ierr)
+        call fc_calculate(h, ierr)
+        call fc_get_edge_contact(h, touches, ierr)
+        call check(error, ierr == 0 .and. touches == 1, 'still 1 after a tangential calculation')
+        call fc_finalize(h, ierr)
+        call fc_get_edge_contact(h, touches, ierr)
+        call check(error, ierr /= 0 .and. touches == 0, 'released handle: an error, 0')
+    end subroutine test_edge_contact
 
 end module test_legacy
