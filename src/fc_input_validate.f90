@@ -454,6 +454,12 @@ contains
                     '] (kinetic friction in slip)'
                 return
             end if
+            if (s%mu > 0 .and. s%mu_kinetic < min_mu_kinetic) then
+                errmsg = '&tangential mu_kinetic = '//fmt_real(s%mu_kinetic)//': with mu = '//fmt_real(s%mu)// &
+                    ' > 0 must be >= '//fmt_real(min_mu_kinetic)//' (slip without friction has no direction; '// &
+                    'mu = 0 for frictionless contact)'
+                return
+            end if
         end if
         if (is_given(s, 'tangential', 'dq')) then
             if (.not. real_in_range(s%dq, tiny(1.0_dp), huge(1.0_dp))) then

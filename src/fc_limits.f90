@@ -26,6 +26,9 @@ module fc_limits
     real(dp), parameter, public :: min_friction = 1.0e-12_dp     !! smallest μ > 0 (0 is frictionless; below: denormal bounds)
     real(dp), parameter, public :: max_spin = 1.0e3_dp           !! |φ| [rad/mm]
     real(dp), parameter, public :: max_creepage = 1.0e3_dp       !! |ξ|, |η| of steady or transient rolling [-]
+    !> smallest kinetic coefficient of friction of steady rolling when the static one is > 0
+    !! (slip without friction has no traction direction); as the smallest positive μ accepted
+    real(dp), parameter, public :: min_mu_kinetic = 1.0e-12_dp
     integer, parameter, public :: max_cases = 10000              !! cases in one namelist file
     integer, parameter, public :: max_modes = 4096               !! m_modes, n_modes of a rough surface
     integer, parameter, public :: max_mode_pairs = 65536         !! m_modes·n_modes (mode tables: 24 bytes each)

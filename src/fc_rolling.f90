@@ -37,9 +37,9 @@
 !! product as contained procedures on the loop's work arrays (no allocation per Krylov step);
 !! the reference solvers live in [[fc_rolling_refsolvers]].
 module fc_rolling
-    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_nan, ieee_is_finite
     use fc_kinds
-    use fc_limits, only: max_creepage
+    use fc_limits, only: max_creepage, min_mu_kinetic
     use fc_geometry, only: fc_grid
     use fc_tangcg, only: fc_tangential_operator, fc_tangential_result, EL_EXTERIOR, EL_ADHESION, EL_SLIP, &
         finish_force_loop, finish_status, traction_change
@@ -116,6 +116,13 @@ contains
         if (.not. (muk <= load%mu)) then
             stat = FC_ERR_VALUE; write (errmsg, '(a,g0.6,a,g0.6,a)') 'rolling: mu_kinetic = ', muk, ' must be <= mu = ', &
                 load%mu, ' (static)'; return
+        end if
+        ! slip without friction has no traction direction (the angles of the slip elements are
+        ! undefined): a kinetic coefficient needs the static one's lower bound
+        if (load%mu > 0 .and. .not. (muk >= min_mu_kinetic)) then
+            stat = FC_ERR_VALUE; write (errmsg, '(a,g0.6,a,g0.6,a,es7.1,a)') 'rolling: mu_kinetic = ', muk, &
+                ' with mu = ', load%mu, ' > 0 must be >= ', min_mu_kinetic, &
+                ' (slip without friction has no direction); mu = 0 for frictionless contact'; return
         end if
         if (.not. (abs(load%xi) <= max_creepage .and. abs(load%eta) <= max_creepage .and. abs(load%phi) < 1.0e6_dp)) then
             stat = FC_ERR_VALUE; errmsg = 'rolling: creepages xi, eta (|.| <= 1e3) and phi (|.| < 1e6 1/mm) must be finite'
@@ -469,6 +476,11 @@ contains
             res%residual = change
         else
             call finish_status(res, converged, 'Newton-GMRES', settings%maxit, 'Krylov iterations', change)
+        end if
+        ! no non-finite traction is reported as a solution, whatever the path out of the loop
+        if (.not. (all(ieee_is_finite(px)) .and. all(ieee_is_finite(py)))) then
+            res%status = FC_DIVERGED
+            res%message = 'Newton-GMRES diverged (tractions not finite)'
         end if
         res%px = px; res%py = py; res%ux = ux; res%uy = uy; res%sx = sx; res%sy = sy
         res%state = EL_EXTERIOR

@@ -589,6 +589,11 @@ contains
         rl%mu_kinetic = 0.5_dp
         call solve_rolling(top, pn, rl, rs, res, stat, msg)
         call check(error, stat /= 0 .and. index(msg, 'mu_kinetic') > 0, 'mu_kinetic > mu rejected')
+        ! frictionless slip under static friction has no traction direction (NaN before)
+        rl%mu_kinetic = 0
+        call solve_rolling(top, pn, rl, rs, res, stat, msg)
+        call check(error, stat /= 0 .and. index(msg, 'mu_kinetic = 0') > 0 .and. index(msg, '>= 1') > 0, &
+                   'mu_kinetic = 0 with mu > 0 rejected: '//trim(msg))
         rl%mu_kinetic = 0.3_dp
         call solve_rolling(top, pn, rl, rs, res, stat, msg)
         call check(error, stat == 0 .and. res%status == FC_CONVERGED, 'mu_kinetic < mu solves')
@@ -886,6 +891,9 @@ contains
         call drive(scene('b1', 'rolling', 'mu = 0.4, xi = 0.001, mu_kinetic = 0.5'), dir, code, errors)
         call check(error, code /= 0 .and. index(errors, '&tangential mu_kinetic = 0.5') > 0, &
                    'mu_kinetic > mu: '//errors)
+        call drive(scene('b1z', 'rolling', 'mu = 0.4, xi = 0.001, mu_kinetic = 0'), dir, code, errors)
+        call check(error, code /= 0 .and. index(errors, '&tangential mu_kinetic = 0.0') > 0 .and. &
+                   index(errors, 'must be >=') > 0, 'mu_kinetic = 0 with mu > 0: '//errors)
         call drive(scene('b2', 'rolling', "mu = 0.4, sweep = 'xi', sweep_from = 0"), dir, code, errors)
         call check(error, code /= 0 .and. index(errors, 'sweep_to') > 0, 'sweep without sweep_to: '//errors)
         call drive(scene('b3', 'transient_rolling', 'mu = 0.4, xi = 0.001, dq = -1'), dir, code, errors)
