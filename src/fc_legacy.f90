@@ -21,9 +21,9 @@
 !! grid size/spacing and the material are unchanged; the previous solution warm-starts the
 !! next call and, in the transient modes, is the previous state (u', p') of the step.
 !!
-!! Size (~1030 lines): one bind(C) routine with its argument checks per entry of the
-!! documented API (31 entries), kept together so that this module, include/fc_legacy.h and
-!! doc/legacy_api.md list the same surface, plus the start predicted across calls
+!! Size (~1045 lines): one bind(C) routine with its argument checks per entry of the
+!! documented API (39 entries), kept together so that this module, include/fc_legacy.h and
+!! doc/legacy_api.md list the same surface (.ci/run checks the header and the F77 aliases), plus the start predicted across calls
 !! ([[rolling_start]], [[rolling_advance]], ~80 lines), which needs both the handle's state
 !! and the orchestrator: in a module of its own it would add a layer to the module graph
 !! (doc/architecture.md).  The handles live in [[fc_legacy_registry]]; every calculation goes
