@@ -296,7 +296,13 @@ contains
         real(dp), dimension(size(gs, 1), size(gs, 2)) :: px, py, sx, sy, ux, uy, cx, cy, dx_, dy_, mx, my, &
             pox, poy, tnorm, ex, ey, th
         logical, dimension(size(gs, 1), size(gs, 2)) :: adh, slp
-        real(dp), allocatable :: vb(:, :, :, :), hess(:, :), cs(:), sn(:), gvec(:), yv(:), hist(:)
+        real(dp), allocatable :: vb(:, :), hess(:, :), cs(:), sn(:), gvec(:), yv(:), hist(:)
+        ! GMRES works on the unknowns of the active set only (x of adhesion and slip, y of
+        ! adhesion: a quarter to a third of the grid's 2·nx·ny values), gathered at positions
+        ! iu (column-major element index); the Jacobian product reads and writes whole arrays
+        real(dp), allocatable :: solc(:), ec(:), tvx(:, :), tvy(:, :), tqx(:, :), tqy(:, :)
+        integer, allocatable :: iu(:)
+        integer :: nax, nact   !! unknowns of the active set: x components, all
         real(dp), allocatable :: wkx(:, :), wky(:, :), qsx(:, :), qsy(:, :), zx(:, :), zy(:, :)
         real(dp) :: dxx, dyy, axx, gdx, yscale, change, dnorm, beta, rnorm, tol_in, h, tmp, pscale, eta_k, dnorm_prev, gscale
         real(dp) :: adhesion_share   !! smallest adhesion share of the contact for the FFT block inverse
@@ -307,7 +313,8 @@ contains
         integer, parameter :: max_idle = 20               !! Newton steps without a Krylov step
         nx = size(gs, 1); ny = size(gs, 2)
         m = settings%restart
-        allocate (vb(nx, ny, 2, m + 1), hess(m + 1, m), cs(m), sn(m), gvec(m + 1), yv(m))
+        allocate (vb(2*nx*ny, m + 1), hess(m + 1, m), cs(m), sn(m), gvec(m + 1), yv(m))
+        allocate (solc(2*nx*ny), ec(2*nx*ny), iu(2*nx*ny), tvx(nx, ny), tvy(nx, ny), tqx(nx, ny), tqy(nx, ny))
         allocate (wkx(nx, ny), wky(nx, ny), qsx(nx, ny), qsy(nx, ny), zx(nx, ny), zy(nx, ny))
         allocate (hist(max(1, settings%maxit)))
         call steady_diagonal(top, dxx, dyy)
@@ -594,38 +601,41 @@ contains
         end subroutine jacobian_product
 
         !> Restarted GMRES(m) on J M z = d, δ = M z, from z = 0; at most the iterations left
-        !! in maxit.  Result in (dx_, dy_); `nit` Krylov iterations.
+        !! in maxit.  Result in (dx_, dy_); `nit` Krylov iterations.  The Krylov vectors hold the
+        !! active set's unknowns only (fixed during the call).
         subroutine gmres(nit)
             integer, intent(out) :: nit
             integer :: j, i
-            real(dp) :: solx(nx, ny), soly(nx, ny)
-            solx = 0; soly = 0
+            call active_unknowns()
+            tvx = 0; tvy = 0      ! zero outside the active set for the whole call
+            call gather(ex, ey, ec)
+            solc(1:nact) = 0
             nit = 0
             do
                 ! residual r = d − J M z
                 if (nit == 0) then
-                    vb(:, :, 1, 1) = ex; vb(:, :, 2, 1) = ey
+                    vb(1:nact, 1) = ec(1:nact)
                 else
-                    call jacobian_product(solx, soly, vb(:, :, 1, 1), vb(:, :, 2, 1))
-                    vb(:, :, 1, 1) = ex - vb(:, :, 1, 1); vb(:, :, 2, 1) = ey - vb(:, :, 2, 1)
+                    call product(solc, vb(:, 1))
+                    vb(1:nact, 1) = ec(1:nact) - vb(1:nact, 1)
                 end if
-                beta = sqrt(pdot(vb(:, :, :, 1), vb(:, :, :, 1), 2*nx*ny))
+                beta = sqrt(pdot(vb(:, 1), vb(:, 1), nact))
                 if (beta <= tol_in .or. beta == 0) exit
-                call pdivide(vb(:, :, :, 1), beta, 2*nx*ny)
+                call pdivide(vb(:, 1), beta, nact)
                 gvec = 0; gvec(1) = beta
                 kk = 0
                 do k = 1, m
                     if (it_total + nit >= settings%maxit) exit
                     nit = nit + 1
                     kk = k
-                    call jacobian_product(vb(:, :, 1, k), vb(:, :, 2, k), vb(:, :, 1, k + 1), vb(:, :, 2, k + 1))
+                    call product(vb(:, k), vb(:, k + 1))
                     do j = 1, k      ! modified Gram–Schmidt
-                        h = pdot(vb(:, :, :, j), vb(:, :, :, k + 1), 2*nx*ny)
+                        h = pdot(vb(:, j), vb(:, k + 1), nact)
                         hess(j, k) = h
-                        call paxpy(-h, vb(:, :, :, j), vb(:, :, :, k + 1), 2*nx*ny)
+                        call paxpy(-h, vb(:, j), vb(:, k + 1), nact)
                     end do
-                    hess(k + 1, k) = sqrt(pdot(vb(:, :, :, k + 1), vb(:, :, :, k + 1), 2*nx*ny))
-                    if (hess(k + 1, k) > 0) call pdivide(vb(:, :, :, k + 1), hess(k + 1, k), 2*nx*ny)
+                    hess(k + 1, k) = sqrt(pdot(vb(:, k + 1), vb(:, k + 1), nact))
+                    if (hess(k + 1, k) > 0) call pdivide(vb(:, k + 1), hess(k + 1, k), nact)
                     do j = 1, k - 1   ! previous Givens rotations
                         tmp = cs(j)*hess(j, k) + sn(j)*hess(j + 1, k)
                         hess(j + 1, k) = -sn(j)*hess(j, k) + cs(j)*hess(j + 1, k)
@@ -651,13 +661,71 @@ contains
                     end if
                 end do
                 do i = 1, kk
-                    call paxpy(yv(i), vb(:, :, 1, i), solx, nx*ny)
-                    call paxpy(yv(i), vb(:, :, 2, i), soly, nx*ny)
+                    call paxpy(yv(i), vb(:, i), solc, nact)
                 end do
                 if (abs(gvec(kk + 1)) <= tol_in .or. it_total + nit >= settings%maxit) exit
             end do
-            dx_ = solx; dy_ = soly
+            dx_ = 0; dy_ = 0
+            call scatter(solc, dx_, dy_)
         end subroutine gmres
+
+        !> The active set's unknowns: x of adhesion and slip elements (nax), then y of
+        !! adhesion elements, each by its column-major element index.
+        subroutine active_unknowns()
+            integer :: i, j
+            nax = 0
+            do j = 1, ny
+                do i = 1, nx
+                    if (adh(i, j) .or. slp(i, j)) then
+                        nax = nax + 1; iu(nax) = (j - 1)*nx + i
+                    end if
+                end do
+            end do
+            nact = nax
+            do j = 1, ny
+                do i = 1, nx
+                    if (adh(i, j)) then
+                        nact = nact + 1; iu(nact) = (j - 1)*nx + i
+                    end if
+                end do
+            end do
+        end subroutine active_unknowns
+
+        !> c = the active unknowns of the pair (fx, fy) (arrays of nx·ny elements).
+        subroutine gather(fx, fy, c)
+            real(dp), intent(in) :: fx(*), fy(*)
+            real(dp), intent(out) :: c(*)
+            integer :: k
+            do k = 1, nax
+                c(k) = fx(iu(k))
+            end do
+            do k = nax + 1, nact
+                c(k) = fy(iu(k))
+            end do
+        end subroutine gather
+
+        !> The active unknowns c into the pair (fx, fy); other elements are left as they are.
+        subroutine scatter(c, fx, fy)
+            real(dp), intent(in) :: c(*)
+            real(dp), intent(inout) :: fx(*), fy(*)
+            integer :: k
+            do k = 1, nax
+                fx(iu(k)) = c(k)
+            end do
+            do k = nax + 1, nact
+                fy(iu(k)) = c(k)
+            end do
+        end subroutine scatter
+
+        !> q = P·J·v on the active unknowns (the Jacobian product and the preconditioner
+        !! give zero outside them).
+        subroutine product(v, q)
+            real(dp), intent(in) :: v(*)
+            real(dp), intent(out) :: q(*)
+            call scatter(v, tvx, tvy)
+            call jacobian_product(tvx, tvy, tqx, tqy)
+            call gather(tqx, tqy, q)
+        end subroutine product
     end subroutine run_newton_gmres
 
 end module fc_rolling
