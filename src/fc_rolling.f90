@@ -26,14 +26,15 @@
 !!   then, when adhesion covers ≥ 50 % of the contact (≥ 90 % in the Toeplitz form), TangCG's
 !!   FFT block inverse of A (`preconditioner = 'fft'`); slip rows by TangCG's diagonal
 !!   scaling (thesis eq. 4.43 with the steady operator's diagonal).  Every Krylov step costs one FFT product of the
-!!   tangential operator (two with the block inverse).  Forcing term constant until the
+!!   tangential operator (two with the block inverse); the Krylov vectors hold the active
+!!   set's unknowns only (x of adhesion and slip, y of adhesion).  Forcing term constant until the
 !!   subdivision settles, then Eisenstat–Walker's superlinear choice.  A cold solve starts
 !!   from FASTSIM's tractions on the grid ([[fastsim_on_grid]], `start = 'fastsim'`).
 !!
 !! Stopping criterion as TangCG's (thesis eq. 4.49): relative RMS traction change of the last
 !! Newton step / sweep below `tol` with an unchanged subdivision.
 !!
-!! Size (~630 lines): the Newton–GMRES loop keeps its GMRES, preconditioner and Jacobian
+!! Size (~730 lines): the Newton–GMRES loop keeps its GMRES, preconditioner and Jacobian
 !! product as contained procedures on the loop's work arrays (no allocation per Krylov step);
 !! the reference solvers live in [[fc_rolling_refsolvers]].
 module fc_rolling
