@@ -41,6 +41,9 @@
 !!   --quick   small grids only (CI sanity, a few seconds in release)
 !!   --only C  run only the case family C: hertz, rough, cattaneo, mindlin, mp1
 !!   --out F   CSV file (default doc/bench_suite.csv)
+!!
+!! Size (~780 lines): one program for the one CSV; each case family's references and rows
+!! are one internal procedure.
 program fastcontact_bench_suite
     use, intrinsic :: iso_fortran_env, only: int64
     use fc_kinds, only: dp, pi, status_name, FC_CONVERGED

@@ -1,6 +1,9 @@
 !> Tests of the batch driver (doc/namelist.md): good files with inheritance, and every kind of bad
 !! input giving a non-zero exit code, a message naming group and key, and no outputs.
 !! The driver runs in-process on small grids; files go to a unique directory under /tmp.
+!!
+!! Size (~950 lines, 58 tests): one file per suite; most tests are a namelist text and the
+!! message or outputs it must give.
 module test_driver
     use fc_kinds, only: dp
     use fc_testing, only: error_type, unittest_type, new_unittest, check, read_all => file_lines

@@ -1,4 +1,7 @@
 !> Suite `legacy`: the flat handle-based API (fc_legacy, doc/legacy_api.md).
+!!
+!! Size (~860 lines, 15 tests): one file per suite, as pFUnit organises suites; each test
+!! drives a handle through its own sequence of flat-API calls, which reads best in place.
 module test_legacy
     use, intrinsic :: iso_c_binding, only: c_null_char
     use fc_kinds

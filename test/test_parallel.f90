@@ -2,6 +2,9 @@
 !! half-space (Johnson's wavy surface in full contact, circulant structure, grid checks) and
 !! the row-slab generation of rough surfaces used by distributed runs.  The distributed
 !! solver itself is tested in mpi/test (run under mpirun).
+!!
+!! Size (~670 lines, 16 tests): one file per suite; each thread test solves the same
+!! problem on one and on two threads, so its set-up is written out twice in one place.
 module test_parallel
     use fc_kinds, only: dp, pi, FC_CONVERGED
     use fc_geometry, only: fc_grid, make_grid, fc_rough_params, quadratic_gap, wavy_gap, rough_heights, &

@@ -1,5 +1,8 @@
 !> Steady-state rolling: solvers against each other and against the transient rolling of the
 !! flat API, Carter's 2D solution, Kalker's creep coefficients, full slip, symmetry, status.
+!!
+!! Size (~1200 lines, 22 tests): one file per suite; the Carter and Kalker studies and
+!! the comparisons with the flat API's transient rolling each need their own set-up.
 module test_rolling
     use fc_kinds
     use fc_geometry

@@ -1,4 +1,6 @@
 !> Suite `tangential`: TangCG(K) and ConvexGS on the Cattaneo cases (thesis ch. 4).
+!!
+!! Size (~600 lines, 15 tests): one file per suite.
 module test_tangential
     use fc_kinds
     use fc_geometry
