@@ -7,7 +7,8 @@ module fc_driver_strip
     use fc_geometry, only: fc_grid
     use fc_tangcg_types, only: EL_EXTERIOR, EL_ADHESION
     use fc_mg2d, only: fc_strip_problem, fc_mg2d_settings, fc_mg2d_result, strip_model_problem, solve_strip_mg, &
-        solve_strip_fft_rsm
+        solve_strip_fft_rsm, strip_level_sizes
+    use fc_fft_effort, only: use_fft_wisdom
     use fc_input, only: fc_case_input, strip_model_index, is_given
     use fc_input_scene, only: case_notes
     use fc_scene, only: fc_case
@@ -26,7 +27,8 @@ contains
     !! `&solver strip` = 'mg-fft-rsm' / 'mg-fft-sd' (multigrid V-cycles `cycle` with the FFT+RSM
     !! / FFT+SD smoother) or 'fft-rsm' (one-grid FFT+RSM).  Returns the summary, the grid, the
     !! traction px per element and the element states (A on the contact strips, E elsewhere).
-    !! tol is 1e−8 (thesis) unless `&solver tol` was given.
+    !! tol is 1e−8 (thesis) unless `&solver tol` was given.  With `&solver fft_wisdom` the
+    !! levels' FFT plans are measured once and kept in that file (fc_fft_effort).
     subroutine solve_strip_case(state, kase, s, grid, px, el, final_status, stat, errmsg)
         type(fc_case_input), intent(in) :: state
         type(fc_case), intent(in) :: kase
@@ -50,6 +52,16 @@ contains
         if (is_given(state, 'solver', 'tol')) t%tol = kase%settings%normal%tol
         t%maxit = kase%settings%normal%maxit
         t%nu1 = kase%settings%fmg%nu1; t%nu2 = kase%settings%fmg%nu2
+        if (len_trim(kase%fft_wisdom) > 0) then
+            block
+                logical :: new_plans
+                call use_fft_wisdom(trim(kase%fft_wisdom), state%nx, 1, .false., new_plans, stat, errmsg, &
+                    strip_sizes=strip_level_sizes(prob, t, state%strip /= 'fft-rsm'))
+                if (stat /= 0) then
+                    errmsg = "&solver fft_wisdom = '"//trim(kase%fft_wisdom)//"': "//trim(errmsg); return
+                end if
+            end block
+        end if
         select case (state%strip)
         case ('mg-fft-rsm', 'mg-fft-sd')
             t%smoother = state%strip(4:)

@@ -11,15 +11,21 @@
 !! overwrites the buffers, which are scratch arrays here.  [[use_fft_wisdom]] keeps the
 !! wisdom in a file, so that only the first process on a grid pays for the measurement.
 !!
+!! The strip solver's products (fc_mg2d_ops: one in-place real transform of 2n points per
+!! level) are measured the same way by [[prime_strip_plans]], and [[use_fft_wisdom]] keeps
+!! them when it is given the levels' sizes.
+!!
 !! Measured break-even and per-call gains: doc/legacy_api.md ("FFT planning effort"),
-!! doc/benchmarks.md (wisdom files).
+!! doc/benchmarks.md (wisdom files), doc/multigrid.md (strips at 2^20).
 module fc_fft_effort
     use fc_kinds, only: dp, FC_ERR_FFT_WISDOM
     use fc_fftw
+    use fc_threads, only: fftw_threads_for_size
     implicit none
     private
 
     public :: prime_fft_plans, fft_plans_in_wisdom, use_fft_wisdom
+    public :: prime_strip_plans, strip_plans_in_wisdom
 
 contains
 
@@ -42,22 +48,40 @@ contains
         known = product_plans(nx, ny, ior(FFTW_MEASURE, FFTW_WISDOM_ONLY), periodic)
     end function fft_plans_in_wisdom
 
-    !> Wisdom file `path` for an nx×ny grid: read it when it exists, measure the grid's plans
-    !! when neither the process nor the file has them, and write the file unless it already
-    !! held them.  `new_plans`: the process did not have the grid's plans before this call
-    !! (operators built earlier on estimated plans should be rebuilt).  stat =
-    !! FC_ERR_FFT_WISDOM when the file exists but is not FFTW wisdom, or cannot be written.
-    subroutine use_fft_wisdom(path, nx, ny, periodic, new_plans, stat, errmsg)
+    !> Measure (FFTW_MEASURE) the plans of the strip solver's products on levels of n cells
+    !! for every n in `sizes` (in-place real transforms of 2n points, planned with the
+    !! thread count fc_mg2d_ops uses for that size), so that the levels built afterwards get
+    !! them.  Cost: about 5 s for n = 2^20 on the 2-core test machine, once.
+    subroutine prime_strip_plans(sizes)
+        integer, intent(in) :: sizes(:)
+        logical :: all_made
+        all_made = strip_plans(sizes, FFTW_MEASURE)
+    end subroutine prime_strip_plans
+
+    !> Whether FFTW's wisdom already holds measured plans for the strip levels `sizes`.
+    logical function strip_plans_in_wisdom(sizes) result(known)
+        integer, intent(in) :: sizes(:)
+        known = strip_plans(sizes, ior(FFTW_MEASURE, FFTW_WISDOM_ONLY))
+    end function strip_plans_in_wisdom
+
+    !> Wisdom file `path` for an nx×ny grid, or for the levels `strip_sizes` of a strip
+    !! hierarchy when they are given: read it when it exists, measure the plans when neither
+    !! the process nor the file has them, and write the file unless it already held them.
+    !! `new_plans`: the process did not have the plans before this call (operators built
+    !! earlier on estimated plans should be rebuilt).  stat = FC_ERR_FFT_WISDOM when the
+    !! file exists but is not FFTW wisdom, or cannot be written.
+    subroutine use_fft_wisdom(path, nx, ny, periodic, new_plans, stat, errmsg, strip_sizes)
         character(len=*), intent(in) :: path
         integer, intent(in) :: nx, ny
         logical, intent(in) :: periodic
         logical, intent(out) :: new_plans
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
+        integer, intent(in), optional :: strip_sizes(:)  !! level sizes of a strip hierarchy
         logical :: exists, had, have
         integer :: u, ios
         stat = 0; errmsg = ''
-        had = fft_plans_in_wisdom(nx, ny, periodic)
+        had = known()
         new_plans = .not. had
         inquire (file=path, exist=exists)
         if (.not. exists) then
@@ -74,14 +98,28 @@ contains
             errmsg = 'the file exists but FFTW cannot read it as wisdom (delete it to measure again)'
             return
         end if
-        have = fft_plans_in_wisdom(nx, ny, periodic)
+        have = known()
         ! the plans came from the file alone: it is complete, leave it as it is
         if (exists .and. .not. had .and. have) return
-        if (.not. have) call prime_fft_plans(nx, ny, periodic)
+        if (.not. have) then
+            if (present(strip_sizes)) then
+                call prime_strip_plans(strip_sizes)
+            else
+                call prime_fft_plans(nx, ny, periodic)
+            end if
+        end if
         if (.not. wisdom_file(path, read=.false.)) then
             stat = FC_ERR_FFT_WISDOM
             errmsg = 'cannot write the wisdom file (does its directory exist?)'
         end if
+    contains
+        logical function known()
+            if (present(strip_sizes)) then
+                known = strip_plans_in_wisdom(strip_sizes)
+            else
+                known = fft_plans_in_wisdom(nx, ny, periodic)
+            end if
+        end function known
     end subroutine use_fft_wisdom
 
     !> Read FFTW's wisdom from `path` (merged with what the process has) or write it there;
@@ -138,5 +176,35 @@ contains
         end do
         !$omp end critical (fc_fftw_planner)
     end function product_plans
+
+    !> Plan (with `flags`) and destroy the strip levels' product transforms: as
+    !! fc_mg2d_ops's `strip_fft`, an FFTW-aligned buffer of 2n + 2 reals, r2c and c2r of 2n
+    !! points in place; .true. when every plan was made.
+    logical function strip_plans(sizes, flags) result(all_made)
+        integer, intent(in) :: sizes(:)
+        integer(c_int), intent(in) :: flags
+        real(dp), pointer, contiguous :: buf(:)
+        complex(dp), pointer, contiguous :: cbuf(:)
+        type(c_ptr) :: raw, pf, pb
+        integer :: l, m, saved
+        all_made = .true.
+        do l = 1, size(sizes)
+            m = 2*sizes(l)
+            raw = fftw_alloc_real(int(m + 2, c_size_t))
+            call c_f_pointer(raw, buf, [m + 2])
+            call c_f_pointer(raw, cbuf, [m/2 + 1])
+            saved = 1
+            !$omp critical (fc_fftw_planner)
+            call fftw_threads_for_size(m, saved)
+            pf = fftw_plan_dft_r2c_1d(int(m, c_int), buf, cbuf, flags)
+            pb = fftw_plan_dft_c2r_1d(int(m, c_int), cbuf, buf, flags)
+            call fftw_threads_for_size(-1, saved)
+            all_made = all_made .and. c_associated(pf) .and. c_associated(pb)
+            if (c_associated(pf)) call fftw_destroy_plan(pf)
+            if (c_associated(pb)) call fftw_destroy_plan(pb)
+            !$omp end critical (fc_fftw_planner)
+            call fftw_free(raw)
+        end do
+    end function strip_plans
 
 end module fc_fft_effort

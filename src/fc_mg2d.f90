@@ -40,7 +40,8 @@ module fc_mg2d
     use fc_kinds
     use fc_geometry, only: fc_grid, make_grid
     use fc_influence
-    use fc_mg2d_ops, only: strip_fft, strip_kernel, strip_toeplitz_inverse
+    use fc_mg2d_ops, only: strip_fft, strip_kernel, strip_toeplitz_inverse, strip_toeplitz_inverse_even, &
+        strip_workspace, strip_workspace_need
     use fc_lapack, only: solve_spd, eigenvalues_general
     use fc_threads, only: omp_min_elements
     implicit none
@@ -104,11 +105,12 @@ module fc_mg2d
 
     type :: strip_hierarchy
         type(strip_level), allocatable :: lev(:)   !! 1 = coarsest
+        type(strip_workspace) :: ws                !! FFT buffer shared by the levels
         integer :: nlev = 0
         real(dp) :: work = 0
     end type strip_hierarchy
 
-    public :: strip_model_problem, solve_strip_mg, solve_strip_fft_rsm, mg2d_spectral_radius
+    public :: strip_model_problem, solve_strip_mg, solve_strip_fft_rsm, mg2d_spectral_radius, strip_level_sizes
     public :: strip_toeplitz_inverse, strip_smoother_radius  ! strip_toeplitz_inverse from fc_mg2d_ops
 
 contains
@@ -164,27 +166,21 @@ contains
         type(strip_hierarchy), intent(inout) :: hier
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
-        integer :: n, nlev, l, i, nf
+        integer :: nlev, l, i, nf
         integer, allocatable :: sizes(:)
         stat = 0; errmsg = ''
         nf = prob%grid%nx
-        nlev = 1; n = nf
-        do while (mod(n, 2) == 0 .and. n/2 >= max(1, settings%coarsest) .and. nlev < nlev_max)
-            n = n/2; nlev = nlev + 1
-        end do
-        if (nlev_max > 1 .and. n > 4096) then
+        sizes = level_sizes(nf, settings%coarsest, nlev_max)
+        nlev = size(sizes)
+        if (nlev_max > 1 .and. sizes(1) > 4096) then
             stat = FC_ERR_GRID
-            write (errmsg, '(a,i0,a,i0,a)') 'strip2d: n = ', nf, ' coarsens only to ', n, &
+            write (errmsg, '(a,i0,a,i0,a)') 'strip2d: n = ', nf, ' coarsens only to ', sizes(1), &
                 ' cells (> 4096 for the direct coarsest solve); use n with more factors of 2'
             return
         end if
-        allocate (sizes(nlev))
-        sizes(nlev) = nf
-        do l = nlev - 1, 1, -1
-            sizes(l) = sizes(l + 1)/2
-        end do
         hier%nlev = nlev
         allocate (hier%lev(nlev))
+        call hier%ws%reserve(strip_workspace_need(sizes))
         do l = nlev, 1, -1
             associate (lv => hier%lev(l))
                 lv%n = sizes(l)
@@ -201,34 +197,62 @@ contains
                     end do
                 end if
                 lv%all_con = all(lv%con)
-                call build_level(prob, settings, lv)
+                call build_level(prob, settings, lv, hier%ws)
                 if (l == 1 .and. nlev_max > 1) call build_coarsest(lv)
             end associate
         end do
     end subroutine build_hierarchy
 
+    !> Cells of the levels (coarsest first, the finest nf last): halved while even and not
+    !! below `coarsest`, at most nlev_max levels.
+    pure function level_sizes(nf, coarsest, nlev_max) result(sizes)
+        integer, intent(in) :: nf, coarsest, nlev_max
+        integer, allocatable :: sizes(:)
+        integer :: n, nlev, l
+        nlev = 1; n = nf
+        do while (mod(n, 2) == 0 .and. n/2 >= max(1, coarsest) .and. nlev < nlev_max)
+            n = n/2; nlev = nlev + 1
+        end do
+        allocate (sizes(nlev))
+        sizes(nlev) = nf
+        do l = nlev - 1, 1, -1
+            sizes(l) = sizes(l + 1)/2
+        end do
+    end function level_sizes
+
+    !> Cells of the levels that [[solve_strip_mg]] (`multigrid`) or [[solve_strip_fft_rsm]]
+    !! builds for `prob`, coarsest first: the sizes whose FFT plans
+    !! fc_fft_effort's `use_fft_wisdom(..., strip_sizes=)` measures and keeps.
+    pure function strip_level_sizes(prob, settings, multigrid) result(sizes)
+        type(fc_strip_problem), intent(in) :: prob
+        type(fc_mg2d_settings), intent(in) :: settings
+        logical, intent(in) :: multigrid
+        integer, allocatable :: sizes(:)
+        sizes = level_sizes(prob%grid%nx, settings%coarsest, merge(64, 1, multigrid))
+    end function strip_level_sizes
+
     !> A, M, γ, the RSM shift, the SD matrices and the work arrays of one level.
-    subroutine build_level(prob, settings, lv)
+    !! M's coefficients pass through the level's defect array d, which is free until the
+    !! cycles start (no temporaries of the level's size: doc/multigrid.md, "Performance").
+    subroutine build_level(prob, settings, lv, ws)
         type(fc_strip_problem), intent(in) :: prob
         type(fc_mg2d_settings), intent(in) :: settings
         type(strip_level), intent(inout) :: lv
-        real(dp), allocatable :: ae(:), mk(:), ms(:)
+        type(strip_workspace), intent(inout) :: ws
         real(dp) :: e(2, 2), det
         integer :: n, j
         n = lv%n
-        allocate (lv%ka(0:n - 1), lv%sa(0:n), lv%sm(0:n), ae(-(n - 1):n - 1), mk(-(n - 1):n - 1), ms(0:n - 1))
+        allocate (lv%ka(0:n - 1), lv%sa(0:n), lv%sm(0:n))
         allocate (lv%r(n), lv%x(n), lv%d(n), lv%t(n), lv%shift(n))
-        call lv%fft%init(n)
+        call lv%fft%init(n, ws)
         call strip_kernel(prob%block, prob%material, lv%grid, lv%ka)
-        ae(0:n - 1) = lv%ka
-        ae(-(n - 1):-1) = lv%ka(n - 1:1:-1)
-        call strip_toeplitz_inverse(n, ae, mk)
-        ms(0) = mk(0)
-        ms(1:n - 1) = (mk(1:n - 1) + mk(-1:-(n - 1):-1))/2     ! even part (M is symmetric)
-        call lv%fft%symbol(lv%ka, lv%sa)
-        call lv%fft%symbol(ms, lv%sm)
-        ! row sums of M by a sliding window over its coefficients (O(n))
-        call toeplitz_row_sums(ms, lv%t)
+        associate (ms => lv%d)                               ! M's coefficients m(0:n−1)
+            call strip_toeplitz_inverse_even(n, lv%ka, ms, ws)  ! even part (M is symmetric)
+            call lv%fft%symbol(lv%ka, lv%sa)
+            call lv%fft%symbol(ms, lv%sm)
+            ! row sums of M by a sliding window over its coefficients (O(n))
+            call toeplitz_row_sums(ms, lv%t)
+        end associate
         lv%gamma = minval(lv%t)                              ! eq. (3.19), full potential strip
         if (.not. lv%all_con) then
             lv%d = merge(1.0_dp, 0.0_dp, lv%con)
@@ -306,6 +330,7 @@ contains
             call hier%lev(l)%fft%destroy()
         end do
         deallocate (hier%lev)
+        call hier%ws%release()
         hier%nlev = 0
     end subroutine destroy_hierarchy
 
@@ -578,7 +603,7 @@ contains
         if (res%status == FC_DIVERGED .or. res%status == FC_ERROR) then
             allocate (res%p(n)); res%p = 0       ! never hand back a diverged iterate as a result
         else
-            res%p = hier%lev(hier%nlev)%x
+            call move_alloc(hier%lev(hier%nlev)%x, res%p)
         end if
         call destroy_hierarchy(hier)
         call system_clock(t1)

@@ -39,21 +39,46 @@ module fc_mg2d_ops
         final :: strip_fft_final
     end type strip_fft
 
-    public :: strip_kernel, strip_toeplitz_inverse
+    !> One FFTW-aligned real buffer shared by the levels of a strip hierarchy, which use it
+    !! one after the other (their products, symbols and Toeplitz inverses).  One buffer of the
+    !! largest level's size instead of one per level and per inverse: the set-up at 2^20 cells
+    !! touched about 90 000 fresh pages, which cost a tenth of the solve (doc/multigrid.md,
+    !! "Performance at 2^20").  Freed by the final binding.
+    type, public :: strip_workspace
+        real(dp), pointer, contiguous :: buf(:) => null()   !! the buffer (FFTW alignment)
+        type(c_ptr) :: raw = c_null_ptr                     !! FFTW allocation behind buf
+    contains
+        procedure :: reserve => strip_workspace_reserve
+        procedure :: release => strip_workspace_release
+        final :: strip_workspace_final
+    end type strip_workspace
+
+    public :: strip_kernel, strip_toeplitz_inverse, strip_toeplitz_inverse_even, strip_workspace_need
 
 contains
 
     !> Plans and buffer for n×n products; the plans are made before anything is stored.
-    subroutine strip_fft_init(self, n)
+    !! With `ws` the products run in the workspace's buffer (at least 2n + 2 reals, see
+    !! [[strip_workspace_need]]), which must outlive these plans' use; else in a buffer of
+    !! their own.
+    subroutine strip_fft_init(self, n, ws)
         class(strip_fft), intent(inout) :: self
         integer, intent(in) :: n
+        type(strip_workspace), intent(in), optional, target :: ws
         integer :: saved
         saved = 1
         call self%destroy()
         self%n = n; self%m = 2*n
-        self%raw = fftw_alloc_real(int(self%m + 2, c_size_t))
-        call c_f_pointer(self%raw, self%buf, [self%m + 2])
-        call c_f_pointer(self%raw, self%cbuf, [n + 1])
+        if (present(ws)) then
+            if (.not. associated(ws%buf)) error stop 'strip_fft_init: workspace not reserved'
+            if (size(ws%buf) < self%m + 2) error stop 'strip_fft_init: workspace smaller than 2n + 2'
+            call c_f_pointer(ws%raw, self%buf, [self%m + 2])
+            call c_f_pointer(ws%raw, self%cbuf, [n + 1])
+        else
+            self%raw = fftw_alloc_real(int(self%m + 2, c_size_t))
+            call c_f_pointer(self%raw, self%buf, [self%m + 2])
+            call c_f_pointer(self%raw, self%cbuf, [n + 1])
+        end if
         !$omp critical (fc_fftw_planner)
         call fftw_threads_for_size(self%m, saved)
         self%pf = fftw_plan_dft_r2c_1d(int(self%m, c_int), self%buf, self%cbuf, FFTW_ESTIMATE)
@@ -134,6 +159,41 @@ contains
         call self%destroy()
     end subroutine strip_fft_final
 
+    !> Reals a workspace needs for the products (2n + 2) and the Toeplitz inverses
+    !! ([[strip_toeplitz_inverse_even]]) of every level size in `sizes`.
+    pure integer function strip_workspace_need(sizes) result(need)
+        integer, intent(in) :: sizes(:)
+        integer :: l
+        need = 0
+        do l = 1, size(sizes)
+            need = max(need, 2*sizes(l) + 2, inverse_buffer_reals(sizes(l)))
+        end do
+    end function strip_workspace_need
+
+    !> A buffer of at least `nreal` reals (kept if already large enough).
+    subroutine strip_workspace_reserve(self, nreal)
+        class(strip_workspace), intent(inout) :: self
+        integer, intent(in) :: nreal
+        if (associated(self%buf)) then
+            if (size(self%buf) >= nreal) return
+        end if
+        call self%release()
+        self%raw = fftw_alloc_real(int(nreal, c_size_t))
+        call c_f_pointer(self%raw, self%buf, [nreal])
+    end subroutine strip_workspace_reserve
+
+    subroutine strip_workspace_release(self)
+        class(strip_workspace), intent(inout) :: self
+        if (c_associated(self%raw)) call fftw_free(self%raw)
+        self%raw = c_null_ptr
+        self%buf => null()
+    end subroutine strip_workspace_release
+
+    impure elemental subroutine strip_workspace_final(self)
+        type(strip_workspace), intent(inout) :: self
+        call self%release()
+    end subroutine strip_workspace_final
+
     ! ---- coefficients ------------------------------------------------------------------------
 
     !> Coefficients a(0:n−1) (a(−d) = a(d)) of influence block `block` on the n×1 `grid`
@@ -144,9 +204,10 @@ contains
         type(fc_material), intent(in) :: mat
         type(fc_grid), intent(in) :: grid
         real(dp), intent(out) :: a(0:)
-        real(dp), allocatable :: f1(:), f2(:), kern(:, :)
-        real(dp) :: c, hy, u
-        integer :: n, i
+        real(dp), allocatable :: kern(:, :)
+        real(dp) :: c, hy, f1a, f2a, f1b, f2b
+        integer :: n, i, i0, b, nb
+        integer, parameter :: kernel_block = 4096
         n = grid%nx
         if (grid%ny /= 1 .or. .not. (block == IC_ZZ .or. block == IC_XX .or. block == IC_YY)) then
             call ic_kernel(block, mat, grid, kern)
@@ -155,26 +216,42 @@ contains
         end if
         ! Corners u_i = (i − ½)dx, v = ±dy/2; F(−u, v) = F(u, −v) = −F(u, v), so the double
         ! difference for offset d is 2[F(u_{d+1}, hy) − F(u_d, hy)] with F(u_0) = −F(u_1).
-        allocate (f1(0:n), f2(0:n))
+        ! Blocks of offsets, each carrying F from one offset to the next: every F is
+        ! evaluated once (plus once per block), and no array of n + 1 values is needed.
         hy = grid%dy/2
         c = 1/(pi*mat%g)
-        !$omp parallel do default(shared) private(u) schedule(static) if(n > omp_min_elements)
-        do i = 1, n
+        nb = (n + kernel_block - 1)/kernel_block
+        !$omp parallel do default(shared) private(i, i0, f1a, f2a, f1b, f2b) schedule(static) &
+        !$omp if(n > omp_min_elements)
+        do b = 1, nb
+            i0 = (b - 1)*kernel_block
+            if (i0 == 0) then
+                call antiderivatives(1, f1a, f2a)
+                f1a = -f1a; f2a = -f2a
+            else
+                call antiderivatives(i0, f1a, f2a)
+            end if
+            do i = i0, min(n, i0 + kernel_block) - 1
+                call antiderivatives(i + 1, f1b, f2b)
+                a(i) = 2*c*((1 - mat%nu)*(f1b - f1a) + mat%nu*(f2b - f2a))
+                f1a = f1b; f2a = f2b
+            end do
+        end do
+        !$omp end parallel do
+    contains
+        !> F1 = ∫∫ 1/ρ and F2 = ∫∫ u²/ρ³ (A^xx), ∫∫ v²/ρ³ (A^yy) or 0 (A^zz) at corner u_i.
+        pure subroutine antiderivatives(i, f1, f2)
+            integer, intent(in) :: i
+            real(dp), intent(out) :: f1, f2
+            real(dp) :: u
             u = (i - 0.5_dp)*grid%dx
-            f1(i) = u*asinh(hy/u) + hy*asinh(u/hy)      ! ∫∫ 1/ρ
+            f1 = u*asinh(hy/u) + hy*asinh(u/hy)
             select case (block)
-            case (IC_XX); f2(i) = hy*asinh(u/hy)        ! ∫∫ u²/ρ³
-            case (IC_YY); f2(i) = u*asinh(hy/u)         ! ∫∫ v²/ρ³
-            case default; f2(i) = 0
+            case (IC_XX); f2 = hy*asinh(u/hy)
+            case (IC_YY); f2 = u*asinh(hy/u)
+            case default; f2 = 0
             end select
-        end do
-        !$omp end parallel do
-        f1(0) = -f1(1); f2(0) = -f2(1)
-        !$omp parallel do default(shared) schedule(static) if(n > omp_min_elements)
-        do i = 0, n - 1
-            a(i) = 2*c*((1 - mat%nu)*(f1(i + 1) - f1(i)) + mat%nu*(f2(i + 1) - f2(i)))
-        end do
-        !$omp end parallel do
+        end subroutine antiderivatives
     end subroutine strip_kernel
 
     ! ---- Toeplitz inverse ----------------------------------------------------------------------
@@ -183,6 +260,7 @@ contains
     !! a_{−(n−1)…n−1} form a (2n−1)-circulant, its symbol is inverted pointwise and the
     !! inverse circulant's coefficients for offsets |d| ≤ n−1 are M's (equivalently: the
     !! centre column of the inverse of the circulant, "m = IFFT(FFT(u)./FFT(a))").
+    !! A is symmetric (a(−d) = a(d)); the circulant is built from a(0:n−1).
     !! The circulant is even, so both transforms are real; 2n−1 is often prime (2^13−1,
     !! 2^17−1, 2^19−1), where FFTW's complex transform plans and runs several times faster
     !! than its real one, so the complex one is used for sizes with a large prime factor.
@@ -195,10 +273,50 @@ contains
         real(dp), intent(in) :: a(-(n - 1):n - 1)        !! A's coefficients
         real(dp), intent(out) :: m(-(n - 1):n - 1)       !! M's coefficients
         real(dp), intent(out), optional :: min_symbol    !! smallest symbol / largest
+        type(strip_workspace) :: ws
+        call ws%reserve(inverse_buffer_reals(n))
+        call circulant_inverse(n, a(0:n - 1), ws, min_symbol, m_full=m)
+        call ws%release()
+    end subroutine strip_toeplitz_inverse
+
+    !> The even part (m(d) + m(−d))/2, d = 0…n−1, of [[strip_toeplitz_inverse]]'s M from A's
+    !! coefficients a(0:n−1), computed in the buffer of `ws` (at least
+    !! [[strip_workspace_need]]([n]) reals): no arrays of 2n − 1 offsets, no buffer of its own.
+    subroutine strip_toeplitz_inverse_even(n, a, m, ws, min_symbol)
+        integer, intent(in) :: n                         !! grid size
+        real(dp), intent(in) :: a(0:)                    !! A's coefficients a(0:n−1)
+        real(dp), intent(out) :: m(0:)                   !! M's coefficients m(0:n−1)
+        type(strip_workspace), intent(inout) :: ws       !! shared buffer
+        real(dp), intent(out), optional :: min_symbol    !! smallest symbol / largest
+        if (.not. associated(ws%buf)) error stop 'strip_toeplitz_inverse_even: workspace not reserved'
+        if (size(ws%buf) < inverse_buffer_reals(n)) error stop 'strip_toeplitz_inverse_even: workspace too small'
+        call circulant_inverse(n, a(0:n - 1), ws, min_symbol, m_even=m(0:n - 1))
+    end subroutine strip_toeplitz_inverse_even
+
+    !> Reals the (2n−1)-circulant inverse needs in place: 2n for the real transform, 2(2n−1)
+    !! for the complex one.
+    pure integer function inverse_buffer_reals(n) result(k)
+        integer, intent(in) :: n
+        if (largest_prime_factor(2*n - 1) > 2048) then
+            k = 2*(2*n - 1)
+        else
+            k = 2*n
+        end if
+    end function inverse_buffer_reals
+
+    !> The (2n−1)-circulant of the even coefficients a(0:n−1), inverted in the buffer of `ws`;
+    !! returns all offsets (m_full) or the even part (m_even).
+    subroutine circulant_inverse(n, a, ws, min_symbol, m_full, m_even)
+        integer, intent(in) :: n
+        real(dp), intent(in) :: a(0:n - 1)
+        type(strip_workspace), intent(in) :: ws
+        real(dp), intent(out), optional :: min_symbol
+        real(dp), intent(out), optional :: m_full(-(n - 1):n - 1)
+        real(dp), intent(out), optional :: m_even(0:n - 1)
         integer :: nn, d
         real(dp), pointer, contiguous :: rbuf(:)
         complex(dp), pointer, contiguous :: cbuf(:)
-        type(c_ptr) :: pf, pb, raw
+        type(c_ptr) :: pf, pb
         real(dp) :: smax, smin
         logical :: complex_fft, par
         integer :: saved
@@ -207,8 +325,7 @@ contains
         par = n > omp_min_elements      ! element loops threaded on large levels (same results)
         complex_fft = largest_prime_factor(nn) > 2048
         if (complex_fft) then
-            raw = fftw_alloc_complex(int(nn, c_size_t))
-            call c_f_pointer(raw, cbuf, [nn])
+            call c_f_pointer(ws%raw, cbuf, [nn])
             !$omp critical (fc_fftw_planner)
             call fftw_threads_for_size(nn, saved)
             pf = fftw_plan_dft_1d(int(nn, c_int), cbuf, cbuf, FFTW_FORWARD, FFTW_ESTIMATE)
@@ -216,8 +333,9 @@ contains
             !$omp end critical (fc_fftw_planner)
             pb = c_null_ptr
             !$omp parallel do default(shared) schedule(static) if(par)
-            do d = -(n - 1), n - 1
-                cbuf(modulo(d, nn) + 1) = a(d)
+            do d = 0, n - 1
+                cbuf(d + 1) = a(d)
+                if (d > 0) cbuf(nn - d + 1) = a(d)
             end do
             !$omp end parallel do
             call fftw_execute_dft(pf, cbuf, cbuf)
@@ -231,16 +349,25 @@ contains
             end do
             !$omp end parallel do
             call fftw_execute_dft(pf, cbuf, cbuf)
-            !$omp parallel do default(shared) schedule(static) if(par)
-            do d = -(n - 1), n - 1
-                m(d) = real(cbuf(modulo(d, nn) + 1), dp)
-            end do
-            !$omp end parallel do
+            if (present(m_full)) then
+                !$omp parallel do default(shared) schedule(static) if(par)
+                do d = -(n - 1), n - 1
+                    m_full(d) = real(cbuf(modulo(d, nn) + 1), dp)
+                end do
+                !$omp end parallel do
+            end if
+            if (present(m_even)) then
+                m_even(0) = real(cbuf(1), dp)
+                !$omp parallel do default(shared) schedule(static) if(par)
+                do d = 1, n - 1
+                    m_even(d) = (real(cbuf(d + 1), dp) + real(cbuf(nn - d + 1), dp))/2
+                end do
+                !$omp end parallel do
+            end if
         else
             ! in place: nn reals padded to nn + 1 = 2(nn/2 + 1)
-            raw = fftw_alloc_real(int(nn + 1, c_size_t))
-            call c_f_pointer(raw, rbuf, [nn + 1])
-            call c_f_pointer(raw, cbuf, [nn/2 + 1])
+            call c_f_pointer(ws%raw, rbuf, [nn + 1])
+            call c_f_pointer(ws%raw, cbuf, [nn/2 + 1])
             !$omp critical (fc_fftw_planner)
             call fftw_threads_for_size(nn, saved)
             pf = fftw_plan_dft_r2c_1d(int(nn, c_int), rbuf, cbuf, FFTW_ESTIMATE)
@@ -248,8 +375,9 @@ contains
             call fftw_threads_for_size(-1, saved)
             !$omp end critical (fc_fftw_planner)
             !$omp parallel do default(shared) schedule(static) if(par)
-            do d = -(n - 1), n - 1
-                rbuf(modulo(d, nn) + 1) = a(d)
+            do d = 0, n - 1
+                rbuf(d + 1) = a(d)
+                if (d > 0) rbuf(nn - d + 1) = a(d)
             end do
             !$omp end parallel do
             call fftw_execute_dft_r2c(pf, rbuf, cbuf)
@@ -261,18 +389,27 @@ contains
             end do
             !$omp end parallel do
             call fftw_execute_dft_c2r(pb, cbuf, rbuf)
-            !$omp parallel do default(shared) schedule(static) if(par)
-            do d = -(n - 1), n - 1
-                m(d) = rbuf(modulo(d, nn) + 1)
-            end do
-            !$omp end parallel do
+            if (present(m_full)) then
+                !$omp parallel do default(shared) schedule(static) if(par)
+                do d = -(n - 1), n - 1
+                    m_full(d) = rbuf(modulo(d, nn) + 1)
+                end do
+                !$omp end parallel do
+            end if
+            if (present(m_even)) then
+                m_even(0) = rbuf(1)
+                !$omp parallel do default(shared) schedule(static) if(par)
+                do d = 1, n - 1
+                    m_even(d) = (rbuf(d + 1) + rbuf(nn - d + 1))/2
+                end do
+                !$omp end parallel do
+            end if
         end if
         !$omp critical (fc_fftw_planner)
         call fftw_destroy_plan(pf)
         if (c_associated(pb)) call fftw_destroy_plan(pb)
         !$omp end critical (fc_fftw_planner)
-        call fftw_free(raw)
-    end subroutine strip_toeplitz_inverse
+    end subroutine circulant_inverse
 
     !> Largest and smallest entry of s (max and min are exact in any order).
     subroutine symbol_range(s, smax, smin)

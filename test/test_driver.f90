@@ -9,6 +9,8 @@ module test_driver
     use fc_testing, only: error_type, unittest_type, new_unittest, check, read_all => file_lines
     use fc_driver, only: run_driver
     use fc_fftw, only: fftw_forget_wisdom
+    use fc_fft_effort, only: strip_plans_in_wisdom
+    use fc_mg2d, only: fc_strip_problem, fc_mg2d_settings, strip_model_problem, strip_level_sizes
     implicit none
     private
 
@@ -48,6 +50,7 @@ contains
             new_unittest('tangential_prescribed_force', test_tangential_force), &
             new_unittest('tangcg_vs_convexgs', test_tangcg_vs_convexgs), &
             new_unittest('fft_wisdom_file', test_fft_wisdom_file), &
+            new_unittest('strip_fft_wisdom_file', test_strip_fft_wisdom_file), &
             new_unittest('tangential_normal_not_converged', test_tangential_normal_not_converged), &
             new_unittest('tangential_ignored_for_normal', test_tangential_ignored), &
             new_unittest('tangential_same_as_normal_plus', test_tangential_synonym), &
@@ -598,6 +601,53 @@ contains
         call fftw_forget_wisdom()
         call cleanup(dir)
     end subroutine test_fft_wisdom_file
+
+    !> `&solver fft_wisdom` on a strip model problem (MP1, 1024×1): the first run measures
+    !! the plans of every level's products and writes them to the file, a second run reads
+    !! it and measures nothing; cycles and force equal a run without wisdom (to rounding).
+    subroutine test_strip_fft_wisdom_file(error)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: code
+        character(len=:), allocatable :: errors, dir, plain, first, again, w1, w2, text
+        type(fc_strip_problem) :: prob
+        type(fc_mg2d_settings) :: t
+        integer :: stat
+        character(len=256) :: msg
+        text = "&case name = 'NAME', problem = 'strip_mp1' /"//nl//"&geometry kind = 'strip2d' /"//nl// &
+            '&grid nx = 1024 /'//nl//"&solver strip = 'mg-fft-rsm', cycle = 'V(1,1)' /"//nl
+        call run_text(strip_named('plain'), code, errors, dir)
+        call check(error, code == 0, 'strip without wisdom: exit code 0 expected, errors: '//errors)
+        if (allocated(error)) return
+        plain = read_all(dir//'/plain.json')
+        call run_again(dir, strip_named('first')//"&solver fft_wisdom = '"//dir//"/strip.fftw' /"//nl, code, errors)
+        call check(error, code == 0 .and. exists(dir//'/strip.fftw'), 'first run: exit 0 and the file written, errors: '// &
+            errors)
+        if (allocated(error)) return
+        call strip_model_problem(1, 1024, prob, stat, msg)
+        call check(error, strip_plans_in_wisdom(strip_level_sizes(prob, t, .true.)), &
+            "the process holds measured plans for every level's products")
+        w1 = read_all(dir//'/strip.fftw')
+        first = read_all(dir//'/first.json')
+        call check(error, json_num(first, 'iterations') == json_num(plain, 'iterations') .and. &
+            abs(json_num(first, 'fx') - json_num(plain, 'fx')) <= 1e-10_dp*abs(json_num(plain, 'fx')), &
+            'measured plans: same cycles, force equal to rounding')
+        call fftw_forget_wisdom()
+        call run_again(dir, strip_named('again')//"&solver fft_wisdom = '"//dir//"/strip.fftw' /"//nl, code, errors)
+        w2 = read_all(dir//'/strip.fftw')
+        again = read_all(dir//'/again.json')
+        call check(error, code == 0 .and. w1 == w2, 'second run: read, nothing measured, the file unchanged')
+        call check(error, json_num(again, 'fx') == json_num(first, 'fx'), 'second run: the same plans, the same force')
+        call fftw_forget_wisdom()
+        call cleanup(dir)
+    contains
+        function strip_named(name) result(s)
+            character(len=*), intent(in) :: name
+            character(len=:), allocatable :: s
+            integer :: p
+            p = index(text, 'NAME')
+            s = text(1:p - 1)//name//text(p + 4:)
+        end function strip_named
+    end subroutine test_strip_fft_wisdom_file
 
     !> The normal stage fails: JSON and CSV written, status not_converged, tangential not run.
     subroutine test_tangential_normal_not_converged(error)

@@ -4,7 +4,8 @@ module test_mg2d
     use fc_kinds
     use fc_influence
     use fc_mg2d
-    use fc_mg2d_ops, only: strip_fft, strip_kernel
+    use fc_geometry, only: make_grid
+    use fc_mg2d_ops, only: strip_fft, strip_kernel, strip_toeplitz_inverse_even, strip_workspace, strip_workspace_need
     use fc_testing
     implicit none
     private
@@ -19,6 +20,8 @@ contains
         tests = [ &
             new_unittest('toeplitz_inverse_approximates_interior', test_toeplitz_inverse), &
             new_unittest('strip_kernel_and_product_vs_direct', test_strip_ops), &
+            new_unittest('strip_kernel_blocks_vs_ic_kernel', test_strip_kernel_blocks), &
+            new_unittest('toeplitz_inverse_even_in_workspace', test_toeplitz_inverse_even), &
             new_unittest('plain_fft_spectral_radius_table31', test_table31), &
             new_unittest('plain_fft_divergence_reported', test_fft_diverges), &
             new_unittest('smoother_radius_fft_vs_rsm', test_smoother_radius), &
@@ -85,6 +88,56 @@ contains
             deallocate (a, sym, x, y, yd)
         end do
     end subroutine test_strip_ops
+
+    !> strip_kernel evaluates its antiderivatives in blocks of 4096 offsets, each block
+    !! starting afresh: on 3·4096 + 5 cells (four blocks, the last partial) it equals
+    !! ic_kernel to 1e−13 of the largest coefficient, as on one block above.
+    subroutine test_strip_kernel_blocks(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_strip_problem) :: prob
+        real(dp), allocatable :: kern(:, :), a(:)
+        integer :: b, stat, n
+        integer, parameter :: blocks(3) = [IC_XX, IC_ZZ, IC_YY]
+        character(len=256) :: msg
+        n = 3*4096 + 5
+        call strip_model_problem(1, 128, prob, stat, msg)           ! MP1's material
+        call make_grid(prob%grid, n, 1, -4.0_dp, 4.0_dp, -50.0_dp, 50.0_dp, stat, msg)
+        call check(error, stat == 0, msg)
+        allocate (a(0:n - 1))
+        do b = 1, 3
+            call ic_kernel(blocks(b), prob%material, prob%grid, kern)
+            call strip_kernel(blocks(b), prob%material, prob%grid, a)
+            call check(error, maxval(abs(a - kern(0:n - 1, 0)))/maxval(abs(kern)) < 1e-13_dp, &
+                'strip kernel = ic_kernel over four blocks of offsets')
+        end do
+    end subroutine test_strip_kernel_blocks
+
+    !> The even form of the Toeplitz inverse, computed in a shared workspace from a(0:n−1),
+    !! equals the even part of strip_toeplitz_inverse exactly, on the real-transform path
+    !! (n = 16: 31 points) and the complex one (n = 4096: 8191 is prime), also when the
+    !! workspace is larger than needed and holds other data.
+    subroutine test_toeplitz_inverse_even(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(strip_workspace) :: ws
+        real(dp), allocatable :: a(:), m(:), me(:)
+        integer :: n, d, k
+        integer, parameter :: sizes(2) = [16, 4096]
+        call ws%reserve(strip_workspace_need(sizes))
+        do k = 1, 2
+            n = sizes(k)
+            allocate (a(-(n - 1):n - 1), m(-(n - 1):n - 1), me(0:n - 1))
+            do d = 0, n - 1
+                a(d) = 1/(0.5_dp + d) + merge(1.0_dp, 0.0_dp, d == 0)
+                a(-d) = a(d)
+            end do
+            call strip_toeplitz_inverse(n, a, m)
+            ws%buf = 7
+            call strip_toeplitz_inverse_even(n, a(0:n - 1), me, ws)
+            call check(error, me(0) == m(0) .and. all(me(1:n - 1) == (m(1:n - 1) + m(-1:-(n - 1):-1))/2), &
+                'even inverse in the workspace = even part of M, n = '//merge('  16', '4096', n == 16))
+            deallocate (a, m, me)
+        end do
+    end subroutine test_toeplitz_inverse_even
 
     !> §3.3.1: M's coefficients approximate an interior column of A⁻¹ (16×1 MP1): the centre
     !! column of M equals that of the dense inverse to 5 % (relative, 2-norm); near the
