@@ -32,8 +32,9 @@
 !! (as counted in the thesis, §3.5.2).
 !!
 !! The products, coefficients and the Toeplitz inverse are [[fc_mg2d_ops]]'s: per level one
-!! in-place FFT plan pair shared by A and M, made with the hierarchy together with the work
-!! arrays, so that the cycles allocate nothing (doc/multigrid.md, "Performance at 2^20").
+!! in-place FFT plan pair shared by A and M, all levels transforming in one buffer, made
+!! with the hierarchy together with the work arrays, so that the cycles allocate nothing
+!! (doc/multigrid.md, "Performance at 2^20").
 !! Size: ~690 lines; the solvers and the two spectral analyses share the private level
 !! type and cycle routines, so they stay in one module.
 module fc_mg2d
