@@ -35,7 +35,7 @@
 !! in-place FFT plan pair shared by A and M, all levels transforming in one buffer, made
 !! with the hierarchy together with the work arrays, so that the cycles allocate nothing
 !! (doc/multigrid.md, "Performance at 2^20").
-!! Size: ~690 lines; the solvers and the two spectral analyses share the private level
+!! Size: ~710 lines; the solvers and the two spectral analyses share the private level
 !! type and cycle routines, so they stay in one module.
 module fc_mg2d
     use fc_kinds

@@ -604,7 +604,8 @@ contains
 
     !> `&solver fft_wisdom` on a strip model problem (MP1, 1024×1): the first run measures
     !! the plans of every level's products and writes them to the file, a second run reads
-    !! it and measures nothing; cycles and force equal a run without wisdom (to rounding).
+    !! it and measures nothing; cycles and force equal a run without wisdom (to rounding); a
+    !! file that is not wisdom is an error naming the key and the value.
     subroutine test_strip_fft_wisdom_file(error)
         type(error_type), allocatable, intent(out) :: error
         integer :: code
@@ -637,6 +638,10 @@ contains
         again = read_all(dir//'/again.json')
         call check(error, code == 0 .and. w1 == w2, 'second run: read, nothing measured, the file unchanged')
         call check(error, json_num(again, 'fx') == json_num(first, 'fx'), 'second run: the same plans, the same force')
+        call execute_command_line("echo 'not wisdom' > '"//dir//"/bad.fftw'")
+        call run_again(dir, strip_named('bad')//"&solver fft_wisdom = '"//dir//"/bad.fftw' /"//nl, code, errors)
+        call check(error, code == 1 .and. index(errors, "&solver fft_wisdom = '"//dir//"/bad.fftw'") > 0 .and. &
+            index(errors, 'cannot read it as wisdom') > 0, 'strip, not wisdom: exit 1 naming key and value, got: '//errors)
         call fftw_forget_wisdom()
         call cleanup(dir)
     contains
