@@ -569,7 +569,7 @@ contains
     subroutine test_fft_wisdom_file(error)
         type(error_type), allocatable, intent(out) :: error
         integer :: code
-        character(len=:), allocatable :: errors, dir, plain, first, again, w1, w2
+        character(len=:), allocatable :: errors, dir, plain, first, w1
         real(dp) :: scale
         call run_text(cattaneo_case('plain'), code, errors, dir)
         call check(error, code == 0, 'without wisdom: exit code 0 expected, errors: '//errors)
@@ -584,16 +584,7 @@ contains
         scale = 0.4_dp*json_num(plain, 'fn')
         call check(error, abs(json_num(first, 'fx') - json_num(plain, 'fx')) <= 1e-10_dp*scale .and. &
             abs(json_num(first, 'fy') - json_num(plain, 'fy')) <= 1e-10_dp*scale, 'measured plans: forces equal to rounding')
-        call fftw_forget_wisdom()
-        call run_again(dir, cattaneo_case('again')//"&solver fft_wisdom = '"//dir//"/plans.fftw' /"//nl, code, errors)
-        w2 = read_all(dir//'/plans.fftw')
-        again = read_all(dir//'/again.json')
-        call check(error, code == 0 .and. w1 == w2, 'second run: read, nothing measured, the file unchanged')
-        call check(error, json_num(again, 'fx') == json_num(first, 'fx'), 'second run: the same plans, the same forces')
-        call execute_command_line("echo 'not wisdom' > '"//dir//"/bad.fftw'")
-        call run_again(dir, cattaneo_case('bad')//"&solver fft_wisdom = '"//dir//"/bad.fftw' /"//nl, code, errors)
-        call check(error, code == 1 .and. index(errors, "&solver fft_wisdom = '"//dir//"/bad.fftw'") > 0 .and. &
-            index(errors, 'cannot read it as wisdom') > 0, 'not wisdom: exit 1 naming key and value, got: '//errors)
+        call check_wisdom_rerun(dir, cattaneo_case('again'), cattaneo_case('bad'), 'plans.fftw', first, w1, error)
         call run_again(dir, cattaneo_case('nodir')//"&solver fft_wisdom = '"//dir//"/no/such/dir/p.fftw' /"//nl, &
             code, errors)
         call check(error, code == 1 .and. index(errors, 'cannot create the wisdom file') > 0, &
@@ -602,25 +593,24 @@ contains
         call cleanup(dir)
     end subroutine test_fft_wisdom_file
 
-    !> `&solver fft_wisdom` on a strip model problem (MP1, 1024×1): the first run measures
+    !> `&solver fft_wisdom` on a strip model problem (MP1, 1024×1, MG FFT+RSM V(1,1)): the first run measures
     !! the plans of every level's products and writes them to the file, a second run reads
     !! it and measures nothing; cycles and force equal a run without wisdom (to rounding); a
     !! file that is not wisdom is an error naming the key and the value.
     subroutine test_strip_fft_wisdom_file(error)
         type(error_type), allocatable, intent(out) :: error
         integer :: code
-        character(len=:), allocatable :: errors, dir, plain, first, again, w1, w2, text
+        character(len=:), allocatable :: errors, dir, plain, first, w1
         type(fc_strip_problem) :: prob
         type(fc_mg2d_settings) :: t
         integer :: stat
         character(len=256) :: msg
-        text = "&case name = 'NAME', problem = 'strip_mp1' /"//nl//"&geometry kind = 'strip2d' /"//nl// &
-            '&grid nx = 1024 /'//nl//"&solver strip = 'mg-fft-rsm', cycle = 'V(1,1)' /"//nl
-        call run_text(strip_named('plain'), code, errors, dir)
+        call run_text(strip_case('plain', '1', '1024', 'mg-fft-rsm'), code, errors, dir)
         call check(error, code == 0, 'strip without wisdom: exit code 0 expected, errors: '//errors)
         if (allocated(error)) return
         plain = read_all(dir//'/plain.json')
-        call run_again(dir, strip_named('first')//"&solver fft_wisdom = '"//dir//"/strip.fftw' /"//nl, code, errors)
+        call run_again(dir, strip_case('first', '1', '1024', 'mg-fft-rsm')//"&solver fft_wisdom = '"//dir// &
+            "/strip.fftw' /"//nl, code, errors)
         call check(error, code == 0 .and. exists(dir//'/strip.fftw'), 'first run: exit 0 and the file written, errors: '// &
             errors)
         if (allocated(error)) return
@@ -632,27 +622,32 @@ contains
         call check(error, json_num(first, 'iterations') == json_num(plain, 'iterations') .and. &
             abs(json_num(first, 'fx') - json_num(plain, 'fx')) <= 1e-10_dp*abs(json_num(plain, 'fx')), &
             'measured plans: same cycles, force equal to rounding')
-        call fftw_forget_wisdom()
-        call run_again(dir, strip_named('again')//"&solver fft_wisdom = '"//dir//"/strip.fftw' /"//nl, code, errors)
-        w2 = read_all(dir//'/strip.fftw')
-        again = read_all(dir//'/again.json')
-        call check(error, code == 0 .and. w1 == w2, 'second run: read, nothing measured, the file unchanged')
-        call check(error, json_num(again, 'fx') == json_num(first, 'fx'), 'second run: the same plans, the same force')
-        call execute_command_line("echo 'not wisdom' > '"//dir//"/bad.fftw'")
-        call run_again(dir, strip_named('bad')//"&solver fft_wisdom = '"//dir//"/bad.fftw' /"//nl, code, errors)
-        call check(error, code == 1 .and. index(errors, "&solver fft_wisdom = '"//dir//"/bad.fftw'") > 0 .and. &
-            index(errors, 'cannot read it as wisdom') > 0, 'strip, not wisdom: exit 1 naming key and value, got: '//errors)
+        call check_wisdom_rerun(dir, strip_case('again', '1', '1024', 'mg-fft-rsm'), &
+            strip_case('bad', '1', '1024', 'mg-fft-rsm'), 'strip.fftw', first, w1, error)
         call fftw_forget_wisdom()
         call cleanup(dir)
-    contains
-        function strip_named(name) result(s)
-            character(len=*), intent(in) :: name
-            character(len=:), allocatable :: s
-            integer :: p
-            p = index(text, 'NAME')
-            s = text(1:p - 1)//name//text(p + 4:)
-        end function strip_named
     end subroutine test_strip_fft_wisdom_file
+
+    !> Second run with the wisdom file `path` (in `dir`) of a case whose first run wrote
+    !! `first` and the file `w1`: after FFTW forgets its wisdom, the run reads the file,
+    !! measures nothing (the file is unchanged) and gives the same fx; then a file that is
+    !! not wisdom is an error (exit 1) naming the key and the value.
+    subroutine check_wisdom_rerun(dir, again_case, bad_case, path, first, w1, error)
+        character(len=*), intent(in) :: dir, again_case, bad_case, path, first, w1
+        type(error_type), allocatable, intent(inout) :: error
+        integer :: code
+        character(len=:), allocatable :: errors, again, w2
+        call fftw_forget_wisdom()
+        call run_again(dir, again_case//"&solver fft_wisdom = '"//dir//'/'//path//"' /"//nl, code, errors)
+        w2 = read_all(dir//'/'//path)
+        again = read_all(dir//'/again.json')
+        call check(error, code == 0 .and. w1 == w2, 'second run: read, nothing measured, the file unchanged')
+        call check(error, json_num(again, 'fx') == json_num(first, 'fx'), 'second run: the same plans, the same forces')
+        call execute_command_line("echo 'not wisdom' > '"//dir//"/bad.fftw'")
+        call run_again(dir, bad_case//"&solver fft_wisdom = '"//dir//"/bad.fftw' /"//nl, code, errors)
+        call check(error, code == 1 .and. index(errors, "&solver fft_wisdom = '"//dir//"/bad.fftw'") > 0 .and. &
+            index(errors, 'cannot read it as wisdom') > 0, 'not wisdom: exit 1 naming key and value, got: '//errors)
+    end subroutine check_wisdom_rerun
 
     !> The normal stage fails: JSON and CSV written, status not_converged, tangential not run.
     subroutine test_tangential_normal_not_converged(error)
