@@ -51,7 +51,8 @@ contains
     !> Measure (FFTW_MEASURE) the plans of the strip solver's products on levels of n cells
     !! for every n in `sizes` (in-place real transforms of 2n points, planned with the
     !! thread count fc_mg2d_ops uses for that size), so that the levels built afterwards get
-    !! them.  Cost: about 5 s for n = 2^20 on the 2-core test machine, once.
+    !! them.  Cost: about 30 s for the levels of n = 2^20 on the 2-core test machine (the
+    !! finest level's 2^21-point pair alone about 5 s), once.
     subroutine prime_strip_plans(sizes)
         integer, intent(in) :: sizes(:)
         logical :: all_made

@@ -5,8 +5,9 @@
 !! many times per solve.  [[strip_fft]] holds, per level, one in-place real-to-complex /
 !! complex-to-real plan pair on the 2n-circulant, made once and shared by both matrices,
 !! whose symbols are real (even circulants) and stored as n+1 real numbers; the levels of a
-!! hierarchy run their transforms in one shared FFTW-aligned buffer ([[strip_workspace]]).  In-place plans run about 1.5× faster than out-of-place ones under
-!! FFTW_ESTIMATE at 2^20–2^21 points (doc/multigrid.md, "Performance").
+!! hierarchy run their transforms in one shared FFTW-aligned buffer ([[strip_workspace]]).
+!! In-place plans run about 1.5× faster than out-of-place ones under FFTW_ESTIMATE at
+!! 2^20–2^21 points (doc/multigrid.md, "Performance").
 !!
 !! The coefficients of A^xx (and A^zz, A^yy) on an n×1 grid are double differences of
 !! antiderivatives that are odd in both u and v; with the element corners placed
