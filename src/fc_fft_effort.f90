@@ -10,6 +10,10 @@
 !! afterwards get the measured plans without any change to how they are built.  Planning
 !! overwrites the buffers, which are scratch arrays here.  [[use_fft_wisdom]] keeps the
 !! wisdom in a file, so that only the first process on a grid pays for the measurement.
+!! The file is written to a temporary name beside it and renamed over it (C's `rename`,
+!! atomic on POSIX file systems): processes sharing one file, such as the ranks of an MPI
+!! batch, read either the old file or the new one, never one half written (before, two
+!! ranks on a shared file failed cases as "not wisdom" in 4 of 5 batches, doc/parallel.md).
 !!
 !! The strip solver's products (fc_mg2d_ops: one in-place real transform of 2n points per
 !! level) are measured the same way by [[prime_strip_plans]], and [[use_fft_wisdom]] keeps
@@ -21,8 +25,21 @@ module fc_fft_effort
     use fc_kinds, only: dp, FC_ERR_FFT_WISDOM
     use fc_fftw
     use fc_threads, only: fftw_threads_for_size
+    use, intrinsic :: iso_c_binding, only: c_char
     implicit none
     private
+
+    interface
+        !> C's rename(3): atomic replacement of `to` on POSIX file systems; 0 on success.
+        integer(c_int) function c_rename(from, to) bind(C, name='rename')
+            import :: c_int, c_char
+            character(kind=c_char), intent(in) :: from(*), to(*)
+        end function c_rename
+        !> POSIX getpid(2): makes the temporary name of a process's write unique.
+        integer(c_int) function c_getpid() bind(C, name='getpid')
+            import :: c_int
+        end function c_getpid
+    end interface
 
     public :: prime_fft_plans, fft_plans_in_wisdom, use_fft_wisdom
     public :: prime_strip_plans, strip_plans_in_wisdom
@@ -81,13 +98,18 @@ contains
         integer, intent(in), optional :: strip_sizes(:)  !! level sizes of a strip hierarchy
         logical :: exists, had, have
         integer :: u, ios
+        character(len=:), allocatable :: tmp
+        character(len=12) :: pid
         stat = 0; errmsg = ''
         had = known()
         new_plans = .not. had
+        write (pid, '(i0)') c_getpid()
+        tmp = trim(path)//'.tmp'//trim(pid)
         inquire (file=path, exist=exists)
         if (.not. exists) then
-            ! can the file be written?  Asked before the measurement, which takes seconds
-            open (newunit=u, file=path, status='new', action='write', iostat=ios)
+            ! can the file be written?  Asked before the measurement, which takes seconds, and
+            ! of the temporary name: another process may create `path` meanwhile
+            open (newunit=u, file=tmp, status='replace', action='write', iostat=ios)
             if (ios /= 0) then
                 stat = FC_ERR_FFT_WISDOM
                 errmsg = 'cannot create the wisdom file (does its directory exist?)'
@@ -109,9 +131,16 @@ contains
                 call prime_fft_plans(nx, ny, periodic)
             end if
         end if
-        if (.not. wisdom_file(path, read=.false.)) then
+        if (.not. wisdom_file(tmp, read=.false.)) then
             stat = FC_ERR_FFT_WISDOM
             errmsg = 'cannot write the wisdom file (does its directory exist?)'
+        else if (c_rename(tmp//c_null_char, trim(path)//c_null_char) /= 0) then
+            stat = FC_ERR_FFT_WISDOM
+            errmsg = 'cannot replace the wisdom file by the new one'
+        end if
+        if (stat /= 0) then        ! no temporary file left behind
+            open (newunit=u, file=tmp, status='old', iostat=ios)
+            if (ios == 0) close (u, status='delete')
         end if
     contains
         logical function known()

@@ -22,6 +22,7 @@ contains
         call run('batch_equals_serial_driver', test_equal)
         call run('batch_bad_command_line', test_bad_args)
         call run('batch_guided_chunks', test_guided)
+        call run('batch_shared_wisdom_file', test_shared_wisdom)
     contains
         subroutine run(name, test)
             character(len=*), intent(in) :: name
@@ -155,6 +156,69 @@ contains
             if (all(ranks == 0) .or. all(ranks /= 0)) msg = 'all cases solved by one kind of rank: no distribution'
         end if
     end subroutine test_equal
+
+    !> Ranks sharing one `&solver fft_wisdom` file: every case (24 on a 30×25 grid, each of
+    !! which rereads the file and rewrites it, three batches from no file) reads a complete
+    !! file.  Before the file was written to a temporary name and renamed over the old one,
+    !! a rank read another's half-written file in 4 of 5 such batches, and those cases
+    !! failed as "not wisdom"; no temporary file is left behind.
+    subroutine test_shared_wisdom(msg)
+        character(len=:), allocatable, intent(out) :: msg
+        integer :: rank, ierr, code, u, ur, k, rep, ios
+        logical :: failed
+        character(len=64) :: args(3)
+        character(len=*), parameter :: wdir = dir//'-wisdom'
+        character(len=256) :: line
+        character(len=40) :: head
+        call mpi_comm_rank(MPI_COMM_WORLD, rank, ierr)
+        do rep = 1, 3
+            if (rank == 0) then
+                call execute_command_line('rm -rf '//wdir//' && mkdir -p '//wdir)
+                open (newunit=u, file=wdir//'/cases.nml', status='replace', action='write')
+                do k = 1, 24
+                    write (u, '(a,i0,a)') "&case name = 'w", k, "', problem = 'normal+tangential' /"
+                    if (k > 1) cycle
+                    write (u, '(a)') "&material g1 = 200.0, g2 = 200.0, nu1 = 0.42, nu2 = 0.42 /"
+                    write (u, '(a)') "&grid nx = 30, ny = 25, xmin = -1.2857, xmax = 1.2857, ymin = -1.2857, ymax = 1.2857 /"
+                    write (u, '(a)') "&geometry kind = 'quadratic', rx = 50.0, ry = 50.0 /"
+                    write (u, '(a)') "&normal fn = 9.1954 /"
+                    write (u, '(a)') "&tangential mu = 0.4, eta = 0.0015, phi = 0.0012 /"
+                    write (u, '(a)') "&solver fft_wisdom = '"//wdir//"/shared.fftw' /"
+                    write (u, '(a)') "&output table = .false. /"
+                end do
+                close (u)
+            end if
+            call mpi_barrier(MPI_COMM_WORLD, ierr)
+            args(1) = wdir//'/cases.nml'; args(2) = '--out'; args(3) = wdir//'/out'
+            if (rank == 0) then
+                open (newunit=u, file=wdir//'/err.txt', status='replace')
+                open (newunit=ur, file=wdir//'/report.txt', status='replace')
+                call run_mpi_batch(args, MPI_COMM_WORLD, code, report_unit=ur, err_unit=u)
+                close (u); close (ur)
+            else
+                call run_mpi_batch(args, MPI_COMM_WORLD, code)
+            end if
+            failed = .false.
+            if (rank == 0 .and. code /= 0) then
+                open (newunit=u, file=wdir//'/err.txt', status='old')
+                read (u, '(a)', iostat=ios) line
+                close (u)
+                write (head, '(a,i0,a)') 'batch ', rep, ': exit status not 0: '
+                msg = trim(head)//' '//trim(line); failed = .true.
+            else if (rank == 0) then
+                call execute_command_line('ls '//wdir//" | grep -c 'fftw[.]tmp' > "//wdir//'/count.txt || true')
+                open (newunit=u, file=wdir//'/count.txt', status='old')
+                read (u, *, iostat=ios) k
+                close (u)
+                if (ios /= 0 .or. k /= 0) then
+                    msg = 'a temporary wisdom file was left behind'; failed = .true.
+                end if
+            end if
+            ! every rank leaves the loop together (the next batch starts with collectives)
+            call mpi_bcast(failed, 1, MPI_LOGICAL, 0, MPI_COMM_WORLD, ierr)
+            if (failed) exit
+        end do
+    end subroutine test_shared_wisdom
 
     !> Guided self-scheduling: the chunks cover every case once, in order, never grow, the
     !! first is ⌈n / 2P⌉ cases and the last ones single cases; their number stays small
