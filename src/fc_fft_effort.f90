@@ -116,7 +116,7 @@ contains
                 return
             end if
             close (u, status='delete')
-        else if (.not. wisdom_file(path, read=.true.)) then
+        else if (.not. read_wisdom(path)) then
             stat = FC_ERR_FFT_WISDOM
             errmsg = 'the file exists but FFTW cannot read it as wisdom (delete it to measure again)'
             return
@@ -131,13 +131,14 @@ contains
                 call prime_fft_plans(nx, ny, periodic)
             end if
         end if
-        if (.not. wisdom_file(tmp, read=.false.)) then
+        select case (write_wisdom(tmp, path))
+        case (1)
             stat = FC_ERR_FFT_WISDOM
             errmsg = 'cannot write the wisdom file (does its directory exist?)'
-        else if (c_rename(tmp//c_null_char, trim(path)//c_null_char) /= 0) then
+        case (2)
             stat = FC_ERR_FFT_WISDOM
             errmsg = 'cannot replace the wisdom file by the new one'
-        end if
+        end select
         if (stat /= 0) then        ! no temporary file left behind
             open (newunit=u, file=tmp, status='old', iostat=ios)
             if (ios == 0) close (u, status='delete')
@@ -152,21 +153,33 @@ contains
         end function known
     end subroutine use_fft_wisdom
 
-    !> Read FFTW's wisdom from `path` (merged with what the process has) or write it there;
-    !! .false. when FFTW reports a failure.
-    logical function wisdom_file(path, read) result(ok)
+    !> Read FFTW's wisdom from `path`, merged with what the process has; .false. when FFTW
+    !! reports a failure.
+    logical function read_wisdom(path) result(ok)
         character(len=*), intent(in) :: path
-        logical, intent(in) :: read
         integer(c_int) :: done
         !$omp critical (fc_fftw_planner)
-        if (read) then
-            done = fftw_import_wisdom_from_filename(trim(path)//c_null_char)
-        else
-            done = fftw_export_wisdom_to_filename(trim(path)//c_null_char)
-        end if
+        done = fftw_import_wisdom_from_filename(trim(path)//c_null_char)
         !$omp end critical (fc_fftw_planner)
         ok = done /= 0
-    end function wisdom_file
+    end function read_wisdom
+
+    !> Write the process's wisdom to `tmp`, then rename it over `path`, both inside the
+    !! planner's critical section (threads of one process share the temporary name).
+    !! 0: done; 1: `tmp` could not be written; 2: the rename failed (`tmp` is left for the
+    !! caller to remove).
+    integer function write_wisdom(tmp, path) result(code)
+        character(len=*), intent(in) :: tmp, path
+        !$omp critical (fc_fftw_planner)
+        if (fftw_export_wisdom_to_filename(tmp//c_null_char) == 0) then
+            code = 1
+        else if (c_rename(tmp//c_null_char, trim(path)//c_null_char) /= 0) then
+            code = 2
+        else
+            code = 0
+        end if
+        !$omp end critical (fc_fftw_planner)
+    end function write_wisdom
 
     !> Plan (with `flags`) and destroy the transforms of the products on an nx×ny grid;
     !! .true. when every plan was made (with FFTW_WISDOM_ONLY: all were in the wisdom).
