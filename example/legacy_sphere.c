@@ -33,9 +33,11 @@ int main(void)
                              "unload", "unload", "unload", "unload"};
     const double g = 200.0, nu = 0.42, r = 50.0, mu = 0.4, tol = 1e-8, xmin = -l, xmax = l, zero = 0.0;
     const int solver = 1, maxit = 1000, inner_k = 3, precondition = 1, mode = FCL_CONTINUE;
-    int h, ierr, k, ncon, nadh, nslip;
+    int h, ierr, k, ncon, nadh, nslip, major, minor, patch;
     double fn, fx, fy, mz, xi, eta, phi, shift = 0.0;
 
+    fc_get_version(&major, &minor, &patch, &ierr);
+    printf("fastcontact library %d.%d.%d\n", major, minor, patch);
     fc_init(&h, &ierr);
     fc_set_material(&h, &g, &g, &nu, &nu, &ierr);                 check(h, ierr, "fc_set_material");
     fc_set_grid(&h, &nx, &ny, &xmin, &xmax, &xmin, &xmax, &ierr); check(h, ierr, "fc_set_grid");

@@ -23,6 +23,7 @@ enum { FCL_EXTERIOR = 0, FCL_ADHESION = 1, FCL_SLIP = 2 };
 void fc_init(int *handle, int *ierr);
 void fc_finalize(int *handle, int *ierr);
 void fc_get_nhandles(int *nhandles, int *ierr);
+void fc_get_version(int *major, int *minor, int *patch, int *ierr);
 
 void fc_set_material(const int *h, const double *g1, const double *g2, const double *nu1, const double *nu2,
                      int *ierr);

@@ -34,11 +34,13 @@ module fastcontact
     use fc_mg2d
     use fc_contact
     use fc_errors
+    use fc_version, only: fc_version_string, fc_version_major, fc_version_minor, fc_version_patch, fc_build_info
     use fc_scene, only: fc_case, case_setup
     use fc_auto, only: fc_auto_outcome, fc_level, solve_case_auto
     implicit none
     private
 
+    public :: fc_version_string, fc_version_major, fc_version_minor, fc_version_patch, fc_build_info
     public :: dp, pi, msg_len, FC_CONVERGED, FC_NOT_CONVERGED, FC_DIVERGED, FC_ERROR, status_name
     public :: FC_OK, FC_ERR_VALUE, FC_ERR_NOT_READY, FC_ERR_SHAPE, FC_ERR_UNSUPPORTED, FC_ERR_IO, FC_ERR_NO_CONTACT
     public :: FC_ERR_FRICTION_BOUND, FC_ERR_GRID, FC_ERR_ALLOC, FC_ERR_INTERNAL, error_name

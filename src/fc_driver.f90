@@ -41,6 +41,7 @@ module fc_driver
     use fc_output, only: fc_case_summary, write_case_json, write_case_csv, write_case_npy, write_case_report
     use fc_auto, only: fc_auto_outcome, solve_case_auto
     use fc_threads, only: set_thread_count
+    use fc_version, only: fc_build_info
     implicit none
     private
 
@@ -57,7 +58,7 @@ contains
         character(len=:), allocatable :: text
         character(len=*), parameter :: nl = new_line('a')
         text = 'usage: fastcontact CASES.nml [--out DIR]'//nl// &
-            '       fastcontact --help'//nl//nl// &
+            '       fastcontact --help | --version'//nl//nl// &
             'Solves every case of the namelist file CASES.nml in order: groups &case, &material,'//nl// &
             '&grid, &geometry, &normal, &tangential, &solver, &output; a later case repeats only'//nl// &
             'what changes.  &case problem = normal, normal+tangential, tangential, rolling (steady'//nl// &
@@ -104,6 +105,9 @@ contains
             select case (trim(args(i)))
             case ('-h', '--help')
                 write (rep, '(a)') driver_usage()
+                return
+            case ('-V', '--version')
+                write (rep, '(a)') fc_build_info()
                 return
             case ('--out', '-o')
                 if (i == size(args)) then

@@ -40,6 +40,7 @@ module fc_legacy
     use fc_contact
     use fc_strings, only: fmt_int, fmt_g6
     use fc_errors
+    use fc_version, only: fc_version_major, fc_version_minor, fc_version_patch
     use fc_legacy_registry
     use fc_limits
     use fc_icfile, only: fc_ic_set
@@ -55,7 +56,7 @@ module fc_legacy
     public :: fc_set_rolling, fc_set_rolling_forces, fc_set_rolling_options
     public :: fc_get_forces, fc_get_approach, fc_get_pmax, fc_get_shifts, fc_get_contact_stats, fc_get_edge_contact
     public :: fc_get_tractions, fc_get_slip, fc_get_gap, fc_get_status_array, fc_get_iterations
-    public :: fc_get_rebuilds, fc_get_grid_size, fc_get_error_message, fc_get_nhandles
+    public :: fc_get_rebuilds, fc_get_grid_size, fc_get_error_message, fc_get_nhandles, fc_get_version
     public :: fc_set_influence_file
     public :: fc_set_periodic, fc_set_threads, fc_set_fft_effort, fc_set_fft_wisdom
     public :: shift_along_x
@@ -98,6 +99,16 @@ contains
         nhandles = live_handles()
         ierr = FCL_OK
     end subroutine fc_get_nhandles
+
+    !> Version of the library the host code is linked against (semantic versioning, as
+    !! `fastcontact --version` prints and every JSON summary records): a host code that
+    !! depends on a routine or behaviour of a given version checks it here at run time.
+    subroutine fc_get_version(major, minor, patch, ierr) bind(C, name='fc_get_version')
+        integer(c_int), intent(out) :: major, minor, patch
+        integer(c_int), intent(out) :: ierr      !! error code (always 0)
+        major = fc_version_major; minor = fc_version_minor; patch = fc_version_patch
+        ierr = FCL_OK
+    end subroutine fc_get_version
 
     ! =====================================================================================
     ! input

@@ -28,6 +28,12 @@ contains
         call fc_get_nhandles(nhandles, ierr)
     end subroutine fc_get_nhandles_f77
 
+    subroutine fc_get_version_f77(major, minor, patch, ierr) bind(C, name='fc_get_version_')
+        integer(c_int), intent(out) :: major, minor, patch
+        integer(c_int), intent(out) :: ierr
+        call fc_get_version(major, minor, patch, ierr)
+    end subroutine fc_get_version_f77
+
     subroutine fc_set_material_f77(handle, g1, g2, nu1, nu2, ierr) bind(C, name='fc_set_material_')
         integer(c_int), intent(in) :: handle
         real(c_double), intent(in) :: g1, g2

@@ -12,6 +12,7 @@ module fc_output
     use fc_geometry, only: fc_grid
     use fc_influence, only: fc_material
     use fc_hertz, only: fc_hertz_solution, fc_cattaneo_solution
+    use fc_version, only: fc_version_string, fc_build_info
     use fc_case_result, only: fc_auto_outcome
     use fc_table_io, only: write_element_table_csv, write_element_table_npy
     implicit none
@@ -93,6 +94,7 @@ contains
         end if
         write (u, '(a)') '{'
         call kv_str('name', s%name)
+        call kv_str('version', fc_version_string)
         call kv_str('title', s%title)
         call kv_str('problem', s%problem)
         call kv_str('geometry', s%geometry)
@@ -455,6 +457,7 @@ contains
         write (unit, '(a)') rule
         write (unit, '(a)') ' case '//trim(s%name)//'   '//trim(s%title)
         write (unit, '(a)') rule
+        write (unit, '(a,a)') ' program      ', fc_build_info()
         write (unit, '(a,a)') ' problem      ', trim(s%problem)//', geometry '//trim(s%geometry)
         write (unit, '(a,4(1x,es12.5))') ' material     G1, G2, nu1, nu2 =', s%outcome%material%g1, s%outcome%material%g2, &
             s%outcome%material%nu1, s%outcome%material%nu2

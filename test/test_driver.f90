@@ -8,6 +8,7 @@ module test_driver
     use fc_kinds, only: dp
     use fc_testing, only: error_type, unittest_type, new_unittest, check, read_all => file_lines
     use fc_driver, only: run_driver
+    use fc_version, only: fc_version_string, fc_version_major, fc_version_minor, fc_version_patch
     use fc_fftw, only: fftw_forget_wisdom
     use fc_fft_effort, only: strip_plans_in_wisdom
     use fc_mg2d, only: fc_strip_problem, fc_mg2d_settings, strip_model_problem, strip_level_sizes
@@ -66,6 +67,8 @@ contains
             new_unittest('strip2d_needs_ny_1', test_strip2d_ny), &
             new_unittest('missing_table_file', test_missing_table), &
             new_unittest('bad_command_line', test_bad_command_line), &
+            new_unittest('version_option_and_json', test_version_option), &
+            new_unittest('version_matches_manifest', test_version_manifest), &
             new_unittest('fmg_hertz_matches_bccg', test_fmg_hertz), &
             new_unittest('fmg_each_cycle', test_fmg_cycles), &
             new_unittest('fmg_bad_cycle', test_fmg_bad_cycle), &
@@ -786,6 +789,66 @@ contains
         call check(error, code == 0, '--help must exit 0')
         close (u)
     end subroutine test_bad_command_line
+
+    !> `--version` prints one line with the package version and exits 0 without solving;
+    !! every JSON summary and report records the same version.
+    subroutine test_version_option(error)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: code, u, ios
+        character(len=256) :: line
+        character(len=:), allocatable :: errors, dir, json
+        open (newunit=u, status='scratch')
+        call run_driver([character(len=64) :: '--version'], code, report_unit=u, error_unit=u)
+        call check(error, code == 0, '--version must exit 0')
+        rewind (u)
+        read (u, '(a)', iostat=ios) line
+        call check(error, ios == 0 .and. index(line, 'fastcontact '//fc_version_string//' (') == 1, &
+            '--version printed: '//trim(line))
+        read (u, '(a)', iostat=ios) line
+        call check(error, is_iostat_end(ios), '--version must print one line, then: '//trim(line))
+        close (u)
+        if (allocated(error)) return
+        call run_text(base_case('versioned'), code, errors, dir)
+        call check(error, code == 0, 'exit code 0 expected, errors: '//errors)
+        if (allocated(error)) return
+        json = read_all(dir//'/versioned.json')
+        call check(error, index(json, '"version": "'//fc_version_string//'"') > 0, 'no version in the JSON: '//json)
+    end subroutine test_version_option
+
+    !> The version the code reports is fpm.toml's (and the MPI package's), and its three
+    !! numbers are those of the string.
+    subroutine test_version_manifest(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=32) :: numbers
+        call check(error, manifest_version('fpm.toml') == fc_version_string, &
+            'fpm.toml version "'//manifest_version('fpm.toml')//'" differs from fc_version_string '//fc_version_string)
+        call check(error, manifest_version('mpi/fpm.toml') == fc_version_string, &
+            'mpi/fpm.toml version "'//manifest_version('mpi/fpm.toml')//'" differs from '//fc_version_string)
+        write (numbers, '(i0,".",i0,".",i0)') fc_version_major, fc_version_minor, fc_version_patch
+        call check(error, trim(numbers) == fc_version_string, 'major.minor.patch '//trim(numbers)// &
+            ' differs from '//fc_version_string)
+    end subroutine test_version_manifest
+
+    !> The top-level `version = "..."` of a manifest ('' when there is none).
+    function manifest_version(path) result(v)
+        character(len=*), intent(in) :: path
+        character(len=:), allocatable :: v
+        character(len=512) :: line
+        integer :: u, ios, q1, q2
+        v = ''
+        open (newunit=u, file=path, status='old', action='read', iostat=ios)
+        if (ios /= 0) return
+        do
+            read (u, '(a)', iostat=ios) line
+            if (ios /= 0) exit
+            if (line(1:1) == '[') exit      ! tables start: the package keys are above
+            if (index(adjustl(line), 'version') /= 1) cycle
+            q1 = index(line, '"'); q2 = index(line, '"', back=.true.)
+            if (q2 > q1 + 1) v = line(q1 + 1:q2 - 1)
+            exit
+        end do
+        close (u)
+    end function manifest_version
 
     ! ---------------------------------------------------------------- multigrid ----
 

@@ -15,6 +15,7 @@ module test_legacy
     use fc_driver, only: run_driver
     use fc_testing
     use fc_fftw, only: fftw_forget_wisdom
+    use fc_version, only: fc_version_string
     implicit none
     private
     public :: collect_legacy
@@ -32,6 +33,7 @@ contains
         type(unittest_type), allocatable, intent(out) :: tests(:)
         tests = [ &
             new_unittest('hertz_equals_modern_api', test_hertz), &
+            new_unittest('get_version', test_get_version), &
             new_unittest('cattaneo_equals_modern_api', test_cattaneo), &
             new_unittest('forces_equal_modern_api', test_forces_modern), &
             new_unittest('dissimilar_equals_modern_api', test_dissimilar), &
@@ -95,6 +97,19 @@ contains
         k = index(buf, c_null_char)
         msg = buf(1:max(0, k - 1))
     end function last_message
+
+    !> fc_get_version returns the three numbers of the version the driver and JSON report.
+    subroutine test_get_version(error)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: major, minor, patch, ierr
+        character(len=32) :: v
+        major = -1; minor = -1; patch = -1; ierr = -1
+        call fc_get_version(major, minor, patch, ierr)
+        write (v, '(i0,".",i0,".",i0)') major, minor, patch
+        call check(error, ierr == FCL_OK, 'fc_get_version: ierr /= FCL_OK')
+        call check(error, trim(v) == fc_version_string, 'fc_get_version gave '//trim(v)//', the library is '// &
+            fc_version_string)
+    end subroutine test_get_version
 
     !> Hertz Test I (32², approach 0.1091): flat API = solve_normal to 1e−10, and the
     !! self-check values F = 82049.40, 332 contact cells, pmax = 1628.29; then force mode.

@@ -332,9 +332,10 @@ contains
         end do
     end function case_file_argument
 
+    !> --help or --version: the driver has printed its text and nothing is solved.
     logical function asks_help(args)
         character(len=*), intent(in) :: args(:)
-        asks_help = any(args == '-h') .or. any(args == '--help')
+        asks_help = any(args == '-h') .or. any(args == '--help') .or. any(args == '-V') .or. any(args == '--version')
     end function asks_help
 
 end module fcm_batch
