@@ -15,7 +15,7 @@
 !! batch, read either the old file or the new one, never one half written (before, two
 !! ranks on a shared file failed cases as "not wisdom" in 4 of 5 batches, doc/parallel.md).
 !!
-!! The strip solver's products (fc_mg2d_ops: one in-place real transform of 2n points per
+!! The strip solver's products (fc_mg2d_ops: one in-place complex transform of n points per
 !! level) are measured the same way by [[prime_strip_plans]], and [[use_fft_wisdom]] keeps
 !! them when it is given the levels' sizes.
 !!
@@ -221,26 +221,24 @@ contains
     end function product_plans
 
     !> Plan (with `flags`) and destroy the strip levels' product transforms: as
-    !! fc_mg2d_ops's `strip_fft`, an FFTW-aligned buffer of 2n + 2 reals, r2c and c2r of 2n
-    !! points in place; .true. when every plan was made.
+    !! fc_mg2d_ops's `strip_fft`, an FFTW-aligned buffer of 2n reals, forward and backward
+    !! complex transforms of n points in place; .true. when every plan was made.
     logical function strip_plans(sizes, flags) result(all_made)
         integer, intent(in) :: sizes(:)
         integer(c_int), intent(in) :: flags
-        real(dp), pointer, contiguous :: buf(:)
         complex(dp), pointer, contiguous :: cbuf(:)
         type(c_ptr) :: raw, pf, pb
-        integer :: l, m, saved
+        integer :: l, n, saved
         all_made = .true.
         do l = 1, size(sizes)
-            m = 2*sizes(l)
-            raw = fftw_alloc_real(int(m + 2, c_size_t))
-            call c_f_pointer(raw, buf, [m + 2])
-            call c_f_pointer(raw, cbuf, [m/2 + 1])
+            n = sizes(l)
+            raw = fftw_alloc_real(int(2*n, c_size_t))
+            call c_f_pointer(raw, cbuf, [n])
             saved = 1
             !$omp critical (fc_fftw_planner)
-            call fftw_threads_for_size(m, saved)
-            pf = fftw_plan_dft_r2c_1d(int(m, c_int), buf, cbuf, flags)
-            pb = fftw_plan_dft_c2r_1d(int(m, c_int), cbuf, buf, flags)
+            call fftw_threads_for_size(2*n, saved)
+            pf = fftw_plan_dft_1d(int(n, c_int), cbuf, cbuf, FFTW_FORWARD, flags)
+            pb = fftw_plan_dft_1d(int(n, c_int), cbuf, cbuf, FFTW_BACKWARD, flags)
             call fftw_threads_for_size(-1, saved)
             all_made = all_made .and. c_associated(pf) .and. c_associated(pb)
             if (c_associated(pf)) call fftw_destroy_plan(pf)

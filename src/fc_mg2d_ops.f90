@@ -2,12 +2,16 @@
 !! an n×1 grid, the strip's influence coefficients and the Toeplitz inverse M ≈ A⁻¹.
 !!
 !! A strip level needs products with two symmetric Toeplitz matrices (A and M) of one size,
-!! many times per solve.  [[strip_fft]] holds, per level, one in-place real-to-complex /
-!! complex-to-real plan pair on the 2n-circulant, made once and shared by both matrices,
-!! whose symbols are real (even circulants) and stored as n+1 real numbers; the levels of a
-!! hierarchy run their transforms in one shared FFTW-aligned buffer ([[strip_workspace]]).
-!! In-place plans run about 1.5× faster than out-of-place ones under FFTW_ESTIMATE at
-!! 2^20–2^21 points (doc/multigrid.md, "Performance").
+!! many times per solve.  [[strip_fft]] holds, per level, one in-place complex plan pair of
+!! n points that transforms the 2n-point real sequences of the 2n-circulant (even and odd
+!! entries as real and imaginary parts, the half spectrum recovered with n/2 twiddles of
+!! our own), made once and shared by both matrices, whose symbols are real (even
+!! circulants) and stored as n+1 real numbers; the levels of a hierarchy run their
+!! transforms in one shared FFTW-aligned buffer ([[strip_workspace]]).  Why complex plans
+!! of n points rather than FFTW's real plans of 2n: a product takes the same time either
+!! way, but FFTW_ESTIMATE plans the real pair of 2n points 8–40 times slower (2^21 points:
+!! 39 ms against 2.7 ms; 114 ms against 14 ms for the 20 levels of a 2^20 hierarchy),
+!! which was a tenth of a 2^20 solve (doc/multigrid.md, "Planning the products").
 !!
 !! The coefficients of A^xx (and A^zz, A^yy) on an n×1 grid are double differences of
 !! antiderivatives that are odd in both u and v; with the element corners placed
@@ -23,15 +27,18 @@ module fc_mg2d_ops
     private
 
     !> Buffer and in-place FFT plans for products with n×n symmetric Toeplitz matrices
-    !! (circulant of size 2n).  The buffer is allocated by FFTW for SIMD alignment, hence
-    !! a pointer; plans and buffer are released by the final binding.
+    !! (circulant of size 2n): the 2n-point real sequence x is transformed as the n-point
+    !! complex sequence z_k = x_2k + i·x_2k+1 (0-based), whose spectrum gives x's half
+    !! spectrum X_0…X_n through the twiddles `tw`.  The buffer is allocated by FFTW for SIMD
+    !! alignment, hence a pointer; plans and buffer are released by the final binding.
     type, public :: strip_fft
         integer :: n = 0                          !! matrix size
         integer :: m = 0                          !! circulant size 2n
-        real(dp), pointer, contiguous :: buf(:) => null()   !! 2n + 2 reals (n + 1 complex)
-        complex(dp), pointer, contiguous :: cbuf(:) => null()  !! the same storage as complex
+        real(dp), pointer, contiguous :: buf(:) => null()   !! 2n reals: the real sequence
+        complex(dp), pointer, contiguous :: cbuf(:) => null()  !! the same storage as n complex
+        complex(dp), allocatable :: tw(:)         !! tw(k) = exp(−2πik/(2n)), k = 0…n/2
         type(c_ptr) :: raw = c_null_ptr           !! FFTW allocation behind buf
-        type(c_ptr) :: pf = c_null_ptr, pb = c_null_ptr      !! r2c and c2r, in place
+        type(c_ptr) :: pf = c_null_ptr, pb = c_null_ptr      !! forward and backward, n points, in place
     contains
         procedure :: init => strip_fft_init
         procedure :: symbol => strip_fft_symbol
@@ -58,8 +65,8 @@ module fc_mg2d_ops
 
 contains
 
-    !> Plans and buffer for n×n products; the plans are made before anything is stored.
-    !! With `ws` the products run in the workspace's buffer (at least 2n + 2 reals, see
+    !> Plans, twiddles and buffer for n×n products; the plans are made before anything is
+    !! stored.  With `ws` the products run in the workspace's buffer (at least 2n reals, see
     !! [[strip_workspace_need]]), which must outlive these plans' use; else in a buffer of
     !! their own.
     subroutine strip_fft_init(self, n, ws)
@@ -72,22 +79,49 @@ contains
         self%n = n; self%m = 2*n
         if (present(ws)) then
             if (.not. associated(ws%buf)) error stop 'strip_fft_init: workspace not reserved'
-            if (size(ws%buf) < self%m + 2) error stop 'strip_fft_init: workspace smaller than 2n + 2'
-            call c_f_pointer(ws%raw, self%buf, [self%m + 2])
-            call c_f_pointer(ws%raw, self%cbuf, [n + 1])
+            if (size(ws%buf) < self%m) error stop 'strip_fft_init: workspace smaller than 2n'
+            call c_f_pointer(ws%raw, self%buf, [self%m])
+            call c_f_pointer(ws%raw, self%cbuf, [n])
         else
-            self%raw = fftw_alloc_real(int(self%m + 2, c_size_t))
-            call c_f_pointer(self%raw, self%buf, [self%m + 2])
-            call c_f_pointer(self%raw, self%cbuf, [n + 1])
+            self%raw = fftw_alloc_real(int(self%m, c_size_t))
+            call c_f_pointer(self%raw, self%buf, [self%m])
+            call c_f_pointer(self%raw, self%cbuf, [n])
         end if
         !$omp critical (fc_fftw_planner)
         call fftw_threads_for_size(self%m, saved)
-        self%pf = fftw_plan_dft_r2c_1d(int(self%m, c_int), self%buf, self%cbuf, FFTW_ESTIMATE)
-        self%pb = fftw_plan_dft_c2r_1d(int(self%m, c_int), self%cbuf, self%buf, FFTW_ESTIMATE)
+        self%pf = fftw_plan_dft_1d(int(n, c_int), self%cbuf, self%cbuf, FFTW_FORWARD, FFTW_ESTIMATE)
+        self%pb = fftw_plan_dft_1d(int(n, c_int), self%cbuf, self%cbuf, FFTW_BACKWARD, FFTW_ESTIMATE)
         call fftw_threads_for_size(-1, saved)
         !$omp end critical (fc_fftw_planner)
+        allocate (self%tw(0:n/2))
+        call half_twiddles(self%m, self%tw)
         self%buf = 0
     end subroutine strip_fft_init
+
+    !> tw(k) = exp(−2πik/m), k = 0…m/4 (m = 2n): directly up to m/8, above by the symmetry
+    !! exp(−2πi(m/4 − k)/m) = −i·conj(tw(k)) when m/4 is an integer.
+    subroutine half_twiddles(m, tw)
+        integer, intent(in) :: m
+        complex(dp), intent(out) :: tw(0:)
+        integer :: k, h, q
+        real(dp) :: a
+        h = ubound(tw, 1)                  ! n/2
+        q = h
+        if (mod(m, 4) == 0) q = h/2        ! m/4 = n/2 is an integer: the rest by symmetry
+        !$omp parallel do default(shared) private(a) schedule(static) if(h > omp_min_elements)
+        do k = 0, q
+            a = -2*pi*real(k, dp)/real(m, dp)
+            tw(k) = cmplx(cos(a), sin(a), dp)
+        end do
+        !$omp end parallel do
+        if (q < h) then
+            !$omp parallel do default(shared) schedule(static) if(h > omp_min_elements)
+            do k = q + 1, h
+                tw(k) = cmplx(-aimag(tw(h - k)), -real(tw(h - k), dp), dp)
+            end do
+            !$omp end parallel do
+        end if
+    end subroutine half_twiddles
 
     !> Symbol sym(0:n) of the symmetric Toeplitz matrix with coefficients c(0:n−1)
     !! (c(−d) = c(d)) on the 2n-circulant, scaled by 1/(2n) for [[strip_fft_product]].
@@ -95,30 +129,47 @@ contains
         class(strip_fft), intent(inout) :: self
         real(dp), intent(in) :: c(0:)
         real(dp), intent(out) :: sym(0:)
-        integer :: n, d
+        integer :: n, d, k
+        complex(dp) :: z0, e, o
+        logical :: par
         n = self%n
-        !$omp parallel do default(shared) schedule(static) if(n > omp_min_elements)
+        par = n > omp_min_elements
+        !$omp parallel do default(shared) schedule(static) if(par)
         do d = 0, n - 1
             self%buf(d + 1) = c(d)
             if (d > 0) self%buf(self%m - d + 1) = c(d)
         end do
         !$omp end parallel do
         self%buf(n + 1) = 0
-        call fftw_execute_dft_r2c(self%pf, self%buf, self%cbuf)
-        !$omp parallel do default(shared) schedule(static) if(n > omp_min_elements)
-        do d = 0, n
-            sym(d) = self%buf(2*d + 1)/self%m
+        call fftw_execute_dft(self%pf, self%cbuf, self%cbuf)
+        z0 = self%cbuf(1)
+        sym(0) = (real(z0, dp) + aimag(z0))/self%m
+        sym(n) = (real(z0, dp) - aimag(z0))/self%m
+        ! X_k = E_k + w^k·O_k and X_{n−k} = conj(E_k − w^k·O_k), E_k = (Z_k + conj Z_{n−k})/2,
+        ! O_k = (Z_k − conj Z_{n−k})/(2i); the symbol is real (even circulant)
+        !$omp parallel do default(shared) private(e, o) schedule(static) if(par)
+        do k = 1, n/2
+            e = (self%cbuf(k + 1) + conjg(self%cbuf(n - k + 1)))/2
+            o = (self%cbuf(k + 1) - conjg(self%cbuf(n - k + 1)))*cmplx(0.0_dp, -0.5_dp, dp)
+            sym(k) = real(e + self%tw(k)*o, dp)/self%m
+            sym(n - k) = real(e - self%tw(k)*o, dp)/self%m
         end do
         !$omp end parallel do
     end subroutine strip_fft_symbol
 
-    !> y = T x for the symmetric Toeplitz matrix of symbol `sym` (from [[strip_fft_symbol]]).
+    !> y = T x for the symmetric Toeplitz matrix of symbol `sym` (from [[strip_fft_symbol]]):
+    !! the first n entries of the 2n-circulant product with [x, 0].  The spectrum is taken
+    !! apart into x's half spectrum, multiplied by the symbol and put together for the
+    !! backward transform in one pass over the pairs (k, n − k).
     subroutine strip_fft_product(self, sym, x, y)
         class(strip_fft), intent(inout) :: self
         real(dp), intent(in) :: sym(0:)
         real(dp), intent(in) :: x(:)
         real(dp), intent(out) :: y(:)
-        integer :: n, k
+        integer :: n, k, j
+        real(dp) :: y0, yn
+        complex(dp) :: e, o, t, yk, yj
+        complex(dp), parameter :: half_i = (0.0_dp, -0.5_dp), iu = (0.0_dp, 1.0_dp)
         logical :: par
         n = self%n
         par = n > omp_min_elements     ! element loops threaded on large levels (elementwise: same results)
@@ -127,15 +178,25 @@ contains
             self%buf(k) = x(k); self%buf(n + k) = 0
         end do
         !$omp end parallel do
-        self%buf(2*n + 1:) = 0
-        call fftw_execute_dft_r2c(self%pf, self%buf, self%cbuf)
-        !$omp parallel do default(shared) schedule(static) if(par)
-        do k = 0, n
-            self%buf(2*k + 1) = self%buf(2*k + 1)*sym(k)
-            self%buf(2*k + 2) = self%buf(2*k + 2)*sym(k)
+        call fftw_execute_dft(self%pf, self%cbuf, self%cbuf)
+        ! Y = sym·X on the half spectrum, then Z'_k = (Y_k + Y_{k+n}) + i·(Y_k − Y_{k+n})·conj(w^k)
+        ! with Y_{k+n} = conj(Y_{n−k}): the backward transform of Z' is y_2k + i·y_2k+1
+        y0 = sym(0)*(real(self%cbuf(1), dp) + aimag(self%cbuf(1)))
+        yn = sym(n)*(real(self%cbuf(1), dp) - aimag(self%cbuf(1)))
+        self%cbuf(1) = cmplx(y0 + yn, y0 - yn, dp)
+        !$omp parallel do default(shared) private(j, e, o, t, yk, yj) schedule(static) if(par)
+        do k = 1, n/2
+            j = n - k
+            t = self%tw(k)
+            e = (self%cbuf(k + 1) + conjg(self%cbuf(j + 1)))/2
+            o = (self%cbuf(k + 1) - conjg(self%cbuf(j + 1)))*half_i
+            yk = sym(k)*(e + t*o)
+            yj = sym(j)*conjg(e - t*o)
+            self%cbuf(k + 1) = (yk + conjg(yj)) + iu*(yk - conjg(yj))*conjg(t)
+            if (j /= k) self%cbuf(j + 1) = (yj + conjg(yk)) - iu*(yj - conjg(yk))*t
         end do
         !$omp end parallel do
-        call fftw_execute_dft_c2r(self%pb, self%cbuf, self%buf)
+        call fftw_execute_dft(self%pb, self%cbuf, self%cbuf)
         !$omp parallel do default(shared) schedule(static) if(par)
         do k = 1, n
             y(k) = self%buf(k)
@@ -150,6 +211,7 @@ contains
         if (c_associated(self%pb)) call fftw_destroy_plan(self%pb)
         !$omp end critical (fc_fftw_planner)
         if (c_associated(self%raw)) call fftw_free(self%raw)
+        if (allocated(self%tw)) deallocate (self%tw)
         self%pf = c_null_ptr; self%pb = c_null_ptr; self%raw = c_null_ptr
         self%buf => null(); self%cbuf => null()
         self%n = 0; self%m = 0
@@ -160,14 +222,14 @@ contains
         call self%destroy()
     end subroutine strip_fft_final
 
-    !> Reals a workspace needs for the products (2n + 2) and the Toeplitz inverses
+    !> Reals a workspace needs for the products (2n) and the Toeplitz inverses
     !! ([[strip_toeplitz_inverse_even]]) of every level size in `sizes`.
     pure integer function strip_workspace_need(sizes) result(need)
         integer, intent(in) :: sizes(:)
         integer :: l
         need = 0
         do l = 1, size(sizes)
-            need = max(need, 2*sizes(l) + 2, inverse_buffer_reals(sizes(l)))
+            need = max(need, 2*sizes(l), inverse_buffer_reals(sizes(l)))
         end do
     end function strip_workspace_need
 

@@ -42,14 +42,18 @@ contains
     !> The strip operators of the fast path: coefficients by symmetry equal ic_kernel's to
     !! 1e−13 of the largest (same antiderivatives, other rounding) for A^xx, A^zz and A^yy on
     !! MP1 and MP2 grids; the in-place FFT product equals the direct O(n²) Toeplitz sum to
-    !! 1e−13 relative (FFT rounding at n = 64 … 256), also for a non-power-of-two n = 96.
+    !! 1e−13 relative (FFT rounding at n = 64 … 256), also for non-powers of two (96, odd
+    !! 97) and the smallest sizes (1, 2, 3, 5, 8).
     subroutine test_strip_ops(error)
         type(error_type), allocatable, intent(out) :: error
         type(fc_strip_problem) :: prob
         type(strip_fft) :: f
         real(dp), allocatable :: kern(:, :), a(:), sym(:), x(:), y(:), yd(:)
-        integer :: mp, n, b, i, j, stat
+        integer :: mp, n, b, i, j, k, stat
         integer, parameter :: blocks(3) = [IC_XX, IC_ZZ, IC_YY]
+        ! the half-spectrum pairs (k, n − k) of the product: n even (a middle pair), n odd,
+        ! and the smallest sizes
+        integer, parameter :: sizes(9) = [1, 2, 3, 5, 8, 64, 96, 97, 256]
         character(len=256) :: msg
         do mp = 1, 2
             do b = 1, 3
@@ -65,8 +69,8 @@ contains
                 deallocate (a)
             end do
         end do
-        do n = 64, 256, 32
-            if (n /= 64 .and. n /= 96 .and. n /= 256) cycle
+        do k = 1, size(sizes)
+            n = sizes(k)
             allocate (a(0:n - 1), sym(0:n), x(n), y(n), yd(n))
             do i = 0, n - 1
                 a(i) = 1/(1 + 0.3_dp*i) + merge(2.0_dp, 0.0_dp, i == 0)
