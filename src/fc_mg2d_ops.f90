@@ -167,9 +167,7 @@ contains
         real(dp), intent(in) :: x(:)
         real(dp), intent(out) :: y(:)
         integer :: n, k, j
-        real(dp) :: y0, yn
-        complex(dp) :: e, o, t, yk, yj
-        complex(dp), parameter :: half_i = (0.0_dp, -0.5_dp), iu = (0.0_dp, 1.0_dp)
+        real(dp) :: y0, yn, er, ei, or, oi, tr, ti, cr, ci, sp, sd, ur, ui, vr, vi, pa, pb
         logical :: par
         n = self%n
         par = n > omp_min_elements     ! element loops threaded on large levels (elementwise: same results)
@@ -180,22 +178,32 @@ contains
         !$omp end parallel do
         call fftw_execute_dft(self%pf, self%cbuf, self%cbuf)
         ! Y = sym·X on the half spectrum, then Z'_k = (Y_k + Y_{k+n}) + i·(Y_k − Y_{k+n})·conj(w^k)
-        ! with Y_{k+n} = conj(Y_{n−k}): the backward transform of Z' is y_2k + i·y_2k+1
-        y0 = sym(0)*(real(self%cbuf(1), dp) + aimag(self%cbuf(1)))
-        yn = sym(n)*(real(self%cbuf(1), dp) - aimag(self%cbuf(1)))
-        self%cbuf(1) = cmplx(y0 + yn, y0 - yn, dp)
-        !$omp parallel do default(shared) private(j, e, o, t, yk, yj) schedule(static) if(par)
-        do k = 1, n/2
+        ! with Y_{k+n} = conj(Y_{n−k}): the backward transform of Z' is y_2k + i·y_2k+1.
+        ! For a pair k < j = n − k, with E = (Z_k + conj Z_j)/2, O = (Z_k − conj Z_j)/(2i),
+        ! T = w^k·O, U = (s_k + s_j)·E + (s_k − s_j)·T, V = (s_k − s_j)·E + (s_k + s_j)·T:
+        ! Z'_k = U + i·V·conj(w^k), Z'_j = conj(U) + i·conj(V)·w^k (written out in reals)
+        y0 = sym(0)*(self%buf(1) + self%buf(2))
+        yn = sym(n)*(self%buf(1) - self%buf(2))
+        self%buf(1) = y0 + yn; self%buf(2) = y0 - yn
+        !$omp parallel do default(shared) private(j, er, ei, or, oi, tr, ti, cr, ci, sp, sd, ur, ui, vr, vi, pa, pb) &
+        !$omp schedule(static) if(par)
+        do k = 1, (n - 1)/2
             j = n - k
-            t = self%tw(k)
-            e = (self%cbuf(k + 1) + conjg(self%cbuf(j + 1)))/2
-            o = (self%cbuf(k + 1) - conjg(self%cbuf(j + 1)))*half_i
-            yk = sym(k)*(e + t*o)
-            yj = sym(j)*conjg(e - t*o)
-            self%cbuf(k + 1) = (yk + conjg(yj)) + iu*(yk - conjg(yj))*conjg(t)
-            if (j /= k) self%cbuf(j + 1) = (yj + conjg(yk)) - iu*(yj - conjg(yk))*t
+            er = 0.5_dp*(self%buf(2*k + 1) + self%buf(2*j + 1)); ei = 0.5_dp*(self%buf(2*k + 2) - self%buf(2*j + 2))
+            or = 0.5_dp*(self%buf(2*k + 2) + self%buf(2*j + 2)); oi = 0.5_dp*(self%buf(2*j + 1) - self%buf(2*k + 1))
+            tr = real(self%tw(k), dp); ti = aimag(self%tw(k))
+            cr = tr*or - ti*oi; ci = tr*oi + ti*or
+            sp = sym(k) + sym(j); sd = sym(k) - sym(j)
+            ur = sp*er + sd*cr; ui = sp*ei + sd*ci
+            vr = sd*er + sp*cr; vi = sd*ei + sp*ci
+            pa = vi*tr - vr*ti; pb = vr*tr + vi*ti
+            self%buf(2*k + 1) = ur - pa; self%buf(2*k + 2) = ui + pb
+            self%buf(2*j + 1) = ur + pa; self%buf(2*j + 2) = pb - ui
         end do
         !$omp end parallel do
+        if (mod(n, 2) == 0 .and. n > 1) then        ! the middle, k = j = n/2: Z' = 2·s·Z
+            self%buf(n + 1) = 2*sym(n/2)*self%buf(n + 1); self%buf(n + 2) = 2*sym(n/2)*self%buf(n + 2)
+        end if
         call fftw_execute_dft(self%pb, self%cbuf, self%cbuf)
         !$omp parallel do default(shared) schedule(static) if(par)
         do k = 1, n
