@@ -23,6 +23,7 @@ module fc_mg2d_ops
     use fc_influence, only: fc_material, ic_kernel, IC_ZZ, IC_XX, IC_YY
     use fc_fftw
     use fc_threads, only: fftw_threads_for_size, omp_min_elements
+    use fc_fft_effort, only: strip_product_split
     implicit none
     private
 
@@ -37,8 +38,12 @@ module fc_mg2d_ops
         real(dp), pointer, contiguous :: buf(:) => null()   !! 2n reals: the real sequence
         complex(dp), pointer, contiguous :: cbuf(:) => null()  !! the same storage as n complex
         complex(dp), allocatable :: tw(:)         !! tw(k) = exp(−2πik/(2n)), k = 0…n/2
+        !> the n-point transforms as two of n/2 points (one radix-2 step of our own; large
+        !! levels, fc_fft_effort's `strip_product_split`)
+        logical :: split = .false.
         type(c_ptr) :: raw = c_null_ptr           !! FFTW allocation behind buf
-        type(c_ptr) :: pf = c_null_ptr, pb = c_null_ptr      !! forward and backward, n points, in place
+        !> forward and backward, in place: n points, or (split) two of n/2 points
+        type(c_ptr) :: pf = c_null_ptr, pb = c_null_ptr
     contains
         procedure :: init => strip_fft_init
         procedure :: symbol => strip_fft_symbol
@@ -69,10 +74,13 @@ contains
     !! stored.  With `ws` the products run in the workspace's buffer (at least 2n reals, see
     !! [[strip_workspace_need]]), which must outlive these plans' use; else in a buffer of
     !! their own.
-    subroutine strip_fft_init(self, n, ws)
+    subroutine strip_fft_init(self, n, ws, split)
         class(strip_fft), intent(inout) :: self
         integer, intent(in) :: n
         type(strip_workspace), intent(in), optional, target :: ws
+        !> the split layout (n divisible by 4) whatever n; default fc_fft_effort's
+        !! `strip_product_split` (tests run the split layout on small n)
+        logical, intent(in), optional :: split
         integer :: saved
         saved = 1
         call self%destroy()
@@ -87,10 +95,19 @@ contains
             call c_f_pointer(self%raw, self%buf, [self%m])
             call c_f_pointer(self%raw, self%cbuf, [n])
         end if
+        self%split = strip_product_split(n)
+        if (present(split)) self%split = split .and. mod(n, 4) == 0
         !$omp critical (fc_fftw_planner)
         call fftw_threads_for_size(self%m, saved)
-        self%pf = fftw_plan_dft_1d(int(n, c_int), self%cbuf, self%cbuf, FFTW_FORWARD, FFTW_ESTIMATE)
-        self%pb = fftw_plan_dft_1d(int(n, c_int), self%cbuf, self%cbuf, FFTW_BACKWARD, FFTW_ESTIMATE)
+        if (self%split) then
+            self%pf = fftw_plan_many_dft(1_c_int, [int(n/2, c_int)], 2_c_int, self%cbuf, [int(n/2, c_int)], 1_c_int, &
+                int(n/2, c_int), self%cbuf, [int(n/2, c_int)], 1_c_int, int(n/2, c_int), FFTW_FORWARD, FFTW_ESTIMATE)
+            self%pb = fftw_plan_many_dft(1_c_int, [int(n/2, c_int)], 2_c_int, self%cbuf, [int(n/2, c_int)], 1_c_int, &
+                int(n/2, c_int), self%cbuf, [int(n/2, c_int)], 1_c_int, int(n/2, c_int), FFTW_BACKWARD, FFTW_ESTIMATE)
+        else
+            self%pf = fftw_plan_dft_1d(int(n, c_int), self%cbuf, self%cbuf, FFTW_FORWARD, FFTW_ESTIMATE)
+            self%pb = fftw_plan_dft_1d(int(n, c_int), self%cbuf, self%cbuf, FFTW_BACKWARD, FFTW_ESTIMATE)
+        end if
         call fftw_threads_for_size(-1, saved)
         !$omp end critical (fc_fftw_planner)
         allocate (self%tw(0:n/2))
@@ -130,7 +147,7 @@ contains
         real(dp), intent(in) :: c(0:)
         real(dp), intent(out) :: sym(0:)
         integer :: n, d, k
-        complex(dp) :: z0, e, o
+        complex(dp) :: z0, zk, zj, e, o, lo, hi
         logical :: par
         n = self%n
         par = n > omp_min_elements
@@ -141,16 +158,28 @@ contains
         end do
         !$omp end parallel do
         self%buf(n + 1) = 0
+        if (self%split) then
+            ! radix-2 decimation in frequency: Z_2m from z_j + z_{j+n/2}, Z_2m+1 from
+            ! (z_j − z_{j+n/2})·w^2j, each an n/2-point transform
+            !$omp parallel do default(shared) private(lo, hi) schedule(static) if(par)
+            do d = 0, n/2 - 1
+                lo = self%cbuf(d + 1); hi = self%cbuf(d + n/2 + 1)
+                self%cbuf(d + 1) = lo + hi
+                self%cbuf(d + n/2 + 1) = (lo - hi)*omega(self%tw, n, d)
+            end do
+            !$omp end parallel do
+        end if
         call fftw_execute_dft(self%pf, self%cbuf, self%cbuf)
         z0 = self%cbuf(1)
         sym(0) = (real(z0, dp) + aimag(z0))/self%m
         sym(n) = (real(z0, dp) - aimag(z0))/self%m
         ! X_k = E_k + w^k·O_k and X_{n−k} = conj(E_k − w^k·O_k), E_k = (Z_k + conj Z_{n−k})/2,
         ! O_k = (Z_k − conj Z_{n−k})/(2i); the symbol is real (even circulant)
-        !$omp parallel do default(shared) private(e, o) schedule(static) if(par)
+        !$omp parallel do default(shared) private(zk, zj, e, o) schedule(static) if(par)
         do k = 1, n/2
-            e = (self%cbuf(k + 1) + conjg(self%cbuf(n - k + 1)))/2
-            o = (self%cbuf(k + 1) - conjg(self%cbuf(n - k + 1)))*cmplx(0.0_dp, -0.5_dp, dp)
+            zk = self%cbuf(spectrum_index(self%split, n, k)); zj = self%cbuf(spectrum_index(self%split, n, n - k))
+            e = (zk + conjg(zj))/2
+            o = (zk - conjg(zj))*cmplx(0.0_dp, -0.5_dp, dp)
             sym(k) = real(e + self%tw(k)*o, dp)/self%m
             sym(n - k) = real(e - self%tw(k)*o, dp)/self%m
         end do
@@ -166,11 +195,73 @@ contains
         real(dp), intent(in) :: sym(0:)
         real(dp), intent(in) :: x(:)
         real(dp), intent(out) :: y(:)
-        integer :: n, k, j
-        real(dp) :: y0, yn, er, ei, or, oi, tr, ti, cr, ci, sp, sd, ur, ui, vr, vi, pa, pb
+        integer :: n, k, j, h, q
+        real(dp) :: y0, yn, wr, wi, ar, ai, br, bi
         logical :: par
         n = self%n
         par = n > omp_min_elements     ! element loops threaded on large levels (elementwise: same results)
+        if (self%split) then
+            ! [x, 0] as z_j = x_2j + i·x_2j+1, j < n/2, and zeros: the radix-2 step gives
+            ! A = z and B = z·w^2j, whose n/2-point transforms are Z_2m and Z_2m+1
+            h = n/2; q = n/4
+            ! w^2j = tw(2j) for j ≤ n/4, −i·tw(2j − n/2) above ([[omega]]): two loops
+            !$omp parallel do default(shared) private(wr, wi, ar, ai) schedule(static) if(par)
+            do j = 0, q
+                wr = real(self%tw(2*j), dp); wi = aimag(self%tw(2*j))
+                ar = x(2*j + 1); ai = x(2*j + 2)
+                self%buf(2*j + 1) = ar; self%buf(2*j + 2) = ai
+                self%buf(n + 2*j + 1) = ar*wr - ai*wi; self%buf(n + 2*j + 2) = ar*wi + ai*wr
+            end do
+            !$omp end parallel do
+            !$omp parallel do default(shared) private(wr, wi, ar, ai) schedule(static) if(par)
+            do j = q + 1, h - 1
+                wr = aimag(self%tw(2*j - h)); wi = -real(self%tw(2*j - h), dp)
+                ar = x(2*j + 1); ai = x(2*j + 2)
+                self%buf(2*j + 1) = ar; self%buf(2*j + 2) = ai
+                self%buf(n + 2*j + 1) = ar*wr - ai*wi; self%buf(n + 2*j + 2) = ar*wi + ai*wr
+            end do
+            !$omp end parallel do
+            call fftw_execute_dft(self%pf, self%cbuf, self%cbuf)
+            ! Z_0 = A_0 (with Z_n), the middle Z_{n/2} = A_{n/4}; pairs (k, n − k) of even k in
+            ! A (A_m, A_{n/2−m}), of odd k in B (B_m, B_{n/2−1−m})
+            y0 = sym(0)*(self%buf(1) + self%buf(2))
+            yn = sym(n)*(self%buf(1) - self%buf(2))
+            self%buf(1) = y0 + yn; self%buf(2) = y0 - yn
+            self%buf(2*q + 1) = 2*sym(h)*self%buf(2*q + 1); self%buf(2*q + 2) = 2*sym(h)*self%buf(2*q + 2)
+            !$omp parallel do default(shared) private(j) schedule(static) if(par)
+            do k = 1, q - 1
+                j = h - k
+                call pair_update(self%buf(2*k + 1), self%buf(2*k + 2), self%buf(2*j + 1), self%buf(2*j + 2), &
+                    self%tw(2*k), sym(2*k), sym(n - 2*k))
+            end do
+            !$omp end parallel do
+            !$omp parallel do default(shared) private(j) schedule(static) if(par)
+            do k = 0, q - 1
+                j = h - 1 - k
+                call pair_update(self%buf(n + 2*k + 1), self%buf(n + 2*k + 2), self%buf(n + 2*j + 1), &
+                    self%buf(n + 2*j + 2), self%tw(2*k + 1), sym(2*k + 1), sym(n - 2*k - 1))
+            end do
+            !$omp end parallel do
+            call fftw_execute_dft(self%pb, self%cbuf, self%cbuf)
+            ! z'_j = a'_j + conj(w^2j)·b'_j = y_2j + i·y_2j+1 for j < n/2
+            !$omp parallel do default(shared) private(wr, wi, br, bi) schedule(static) if(par)
+            do j = 0, q
+                wr = real(self%tw(2*j), dp); wi = aimag(self%tw(2*j))
+                br = self%buf(n + 2*j + 1); bi = self%buf(n + 2*j + 2)
+                y(2*j + 1) = self%buf(2*j + 1) + (br*wr + bi*wi)
+                y(2*j + 2) = self%buf(2*j + 2) + (bi*wr - br*wi)
+            end do
+            !$omp end parallel do
+            !$omp parallel do default(shared) private(wr, wi, br, bi) schedule(static) if(par)
+            do j = q + 1, h - 1
+                wr = aimag(self%tw(2*j - h)); wi = -real(self%tw(2*j - h), dp)
+                br = self%buf(n + 2*j + 1); bi = self%buf(n + 2*j + 2)
+                y(2*j + 1) = self%buf(2*j + 1) + (br*wr + bi*wi)
+                y(2*j + 2) = self%buf(2*j + 2) + (bi*wr - br*wi)
+            end do
+            !$omp end parallel do
+            return
+        end if
         !$omp parallel do default(shared) schedule(static) if(par)
         do k = 1, n
             self%buf(k) = x(k); self%buf(n + k) = 0
@@ -185,20 +276,11 @@ contains
         y0 = sym(0)*(self%buf(1) + self%buf(2))
         yn = sym(n)*(self%buf(1) - self%buf(2))
         self%buf(1) = y0 + yn; self%buf(2) = y0 - yn
-        !$omp parallel do default(shared) private(j, er, ei, or, oi, tr, ti, cr, ci, sp, sd, ur, ui, vr, vi, pa, pb) &
-        !$omp schedule(static) if(par)
+        !$omp parallel do default(shared) private(j) schedule(static) if(par)
         do k = 1, (n - 1)/2
             j = n - k
-            er = 0.5_dp*(self%buf(2*k + 1) + self%buf(2*j + 1)); ei = 0.5_dp*(self%buf(2*k + 2) - self%buf(2*j + 2))
-            or = 0.5_dp*(self%buf(2*k + 2) + self%buf(2*j + 2)); oi = 0.5_dp*(self%buf(2*j + 1) - self%buf(2*k + 1))
-            tr = real(self%tw(k), dp); ti = aimag(self%tw(k))
-            cr = tr*or - ti*oi; ci = tr*oi + ti*or
-            sp = sym(k) + sym(j); sd = sym(k) - sym(j)
-            ur = sp*er + sd*cr; ui = sp*ei + sd*ci
-            vr = sd*er + sp*cr; vi = sd*ei + sp*ci
-            pa = vi*tr - vr*ti; pb = vr*tr + vi*ti
-            self%buf(2*k + 1) = ur - pa; self%buf(2*k + 2) = ui + pb
-            self%buf(2*j + 1) = ur + pa; self%buf(2*j + 2) = pb - ui
+            call pair_update(self%buf(2*k + 1), self%buf(2*k + 2), self%buf(2*j + 1), self%buf(2*j + 2), &
+                self%tw(k), sym(k), sym(j))
         end do
         !$omp end parallel do
         if (mod(n, 2) == 0 .and. n > 1) then        ! the middle, k = j = n/2: Z' = 2·s·Z
@@ -212,6 +294,54 @@ contains
         !$omp end parallel do
     end subroutine strip_fft_product
 
+    !> One pair (k, j = n − k) of the product's half-spectrum pass, in place: (ar, ai) = Z_k,
+    !! (br, bi) = Z_j on entry, Z'_k and Z'_j on exit; t = w^k, sk, sj the symbol at k and j.
+    !! With E = (Z_k + conj Z_j)/2, O = (Z_k − conj Z_j)/(2i), T = t·O,
+    !! U = (sk + sj)·E + (sk − sj)·T, V = (sk − sj)·E + (sk + sj)·T:
+    !! Z'_k = U + i·V·conj(t), Z'_j = conj(U) + i·conj(V)·t (written out in reals).
+    pure subroutine pair_update(ar, ai, br, bi, t, sk, sj)
+        real(dp), intent(inout) :: ar, ai, br, bi
+        complex(dp), intent(in) :: t
+        real(dp), intent(in) :: sk, sj
+        real(dp) :: er, ei, or, oi, tr, ti, cr, ci, sp, sd, ur, ui, vr, vi, pa, pb
+        er = 0.5_dp*(ar + br); ei = 0.5_dp*(ai - bi)
+        or = 0.5_dp*(ai + bi); oi = 0.5_dp*(br - ar)
+        tr = real(t, dp); ti = aimag(t)
+        cr = tr*or - ti*oi; ci = tr*oi + ti*or
+        sp = sk + sj; sd = sk - sj
+        ur = sp*er + sd*cr; ui = sp*ei + sd*ci
+        vr = sd*er + sp*cr; vi = sd*ei + sp*ci
+        pa = vi*tr - vr*ti; pb = vr*tr + vi*ti
+        ar = ur - pa; ai = ui + pb
+        br = ur + pa; bi = pb - ui
+    end subroutine pair_update
+
+    !> w^2j = exp(−2πij/n) for 0 ≤ j < n/2 from tw(0:n/2) (tw(k) = exp(−2πik/(2n))):
+    !! tw(2j) up to j = n/4, above −i·tw(2j − n/2).
+    pure complex(dp) function omega(tw, n, j)
+        complex(dp), intent(in) :: tw(0:)
+        integer, intent(in) :: n, j
+        if (2*j <= n/2) then
+            omega = tw(2*j)
+        else
+            omega = cmplx(aimag(tw(2*j - n/2)), -real(tw(2*j - n/2), dp), dp)
+        end if
+    end function omega
+
+    !> Position in cbuf of the spectrum's Z_k, 0 ≤ k < n: k + 1, or in the split layout
+    !! Z_2m at m + 1 and Z_2m+1 at n/2 + m + 1.
+    pure integer function spectrum_index(split, n, k) result(p)
+        logical, intent(in) :: split
+        integer, intent(in) :: n, k
+        if (.not. split) then
+            p = k + 1
+        else if (mod(k, 2) == 0) then
+            p = k/2 + 1
+        else
+            p = n/2 + (k - 1)/2 + 1
+        end if
+    end function spectrum_index
+
     subroutine strip_fft_destroy(self)
         class(strip_fft), intent(inout) :: self
         !$omp critical (fc_fftw_planner)
@@ -220,7 +350,7 @@ contains
         !$omp end critical (fc_fftw_planner)
         if (c_associated(self%raw)) call fftw_free(self%raw)
         if (allocated(self%tw)) deallocate (self%tw)
-        self%pf = c_null_ptr; self%pb = c_null_ptr; self%raw = c_null_ptr
+        self%pf = c_null_ptr; self%pb = c_null_ptr; self%raw = c_null_ptr; self%split = .false.
         self%buf => null(); self%cbuf => null()
         self%n = 0; self%m = 0
     end subroutine strip_fft_destroy

@@ -43,17 +43,17 @@ contains
     !! 1e−13 of the largest (same antiderivatives, other rounding) for A^xx, A^zz and A^yy on
     !! MP1 and MP2 grids; the in-place FFT product equals the direct O(n²) Toeplitz sum to
     !! 1e−13 relative (FFT rounding at n = 64 … 256), also for non-powers of two (96, odd
-    !! 97) and the smallest sizes (1, 2, 3, 5, 8).
+    !! 97) and the smallest sizes (1, 2, 3, 4, 5, 8), in both transform layouts.
     subroutine test_strip_ops(error)
         type(error_type), allocatable, intent(out) :: error
         type(fc_strip_problem) :: prob
         type(strip_fft) :: f
         real(dp), allocatable :: kern(:, :), a(:), sym(:), x(:), y(:), yd(:)
-        integer :: mp, n, b, i, j, k, stat
+        integer :: mp, n, b, i, j, k, stat, split
         integer, parameter :: blocks(3) = [IC_XX, IC_ZZ, IC_YY]
         ! the half-spectrum pairs (k, n − k) of the product: n even (a middle pair), n odd,
         ! and the smallest sizes
-        integer, parameter :: sizes(9) = [1, 2, 3, 5, 8, 64, 96, 97, 256]
+        integer, parameter :: sizes(10) = [1, 2, 3, 4, 5, 8, 64, 96, 97, 256]
         character(len=256) :: msg
         do mp = 1, 2
             do b = 1, 3
@@ -78,17 +78,22 @@ contains
             do i = 1, n
                 x(i) = sin(0.37_dp*i) + 0.1_dp*i/n
             end do
-            call f%init(n)
-            call f%symbol(a, sym)
-            call f%product(sym, x, y)
             do i = 1, n
                 yd(i) = 0
                 do j = 1, n
                     yd(i) = yd(i) + a(abs(i - j))*x(j)
                 end do
             end do
-            call check(error, maxval(abs(y - yd))/maxval(abs(yd)) < 1e-13_dp, trim(label('FFT product = direct', 0, n, 0, 0)))
-            call f%destroy()
+            ! the n-point layout, and the split one (two n/2-point transforms, used from
+            ! 2^18 cells) on the sizes divisible by 4
+            do split = 0, merge(1, 0, mod(n, 4) == 0)
+                call f%init(n, split=split == 1)
+                call f%symbol(a, sym)
+                call f%product(sym, x, y)
+                call check(error, maxval(abs(y - yd))/maxval(abs(yd)) < 1e-13_dp, &
+                    trim(label('FFT product = direct'//trim(merge(', split', '       ', split == 1)), 0, n, 0, 0)))
+                call f%destroy()
+            end do
             deallocate (a, sym, x, y, yd)
         end do
     end subroutine test_strip_ops
