@@ -42,7 +42,7 @@ module fc_fft_effort
     end interface
 
     public :: prime_fft_plans, fft_plans_in_wisdom, use_fft_wisdom
-    public :: prime_strip_plans, strip_plans_in_wisdom, strip_product_split
+    public :: prime_strip_plans, strip_plans_in_wisdom, strip_product_radix
 
 contains
 
@@ -220,28 +220,32 @@ contains
         !$omp end critical (fc_fftw_planner)
     end function product_plans
 
-    !> Whether the strip products of an n-cell level (fc_mg2d_ops's `strip_fft`) run their
-    !! n-point complex transforms as two of n/2 points after a radix-2 step of their own: for
-    !! n divisible by 4 from 2^18 cells, where the half-size transforms run faster than
-    !! FFTW_ESTIMATE's n-point plan (one thread, per product with its copies: 2^20 cells
-    !! 19–23 against 29–31 ms, 2^19 4.9 against 8.1–8.4 ms, 2^18 2.0 against 2.2–2.4 ms;
-    !! 2^17 0.95 against 0.91 ms, 2^16 0.79 against 0.42 ms: doc/multigrid.md).  Here, so
-    !! that the measured plans of [[prime_strip_plans]] are those the products make.
-    pure logical function strip_product_split(n) result(split)
+    !> How the strip products of an n-cell level (fc_mg2d_ops's `strip_fft`) run their
+    !! n-point complex transforms: 1, as one n-point transform; 2 or 4, as that many
+    !! transforms of n/2 or n/4 points after a radix-2 or radix-4 step of their own, which
+    !! also skips the zero-padded half.  Chosen where the smaller transforms run faster than
+    !! FFTW_ESTIMATE's n-point plan (one thread, one product with its copies, C program
+    !! against the same FFTW, doc/multigrid.md): 2^20 cells 29–31 (1), 19–22 (2), 12.9 ms (4);
+    !! 2^19 8.1–8.4, 4.9–5.4, 4.8–4.9 ms; 2^18 2.2–2.4, 1.9–2.0, 2.1 ms; 2^17 0.91, 0.95 ms;
+    !! 2^16 0.42, 0.79 ms.  Here, so that the measured plans of [[prime_strip_plans]] are
+    !! those the products make.
+    pure integer function strip_product_radix(n) result(radix)
         integer, intent(in) :: n
-        split = n >= 262144 .and. mod(n, 4) == 0
-    end function strip_product_split
+        radix = 1
+        if (n >= 262144 .and. mod(n, 4) == 0) radix = 2
+        if (n >= 1048576 .and. mod(n, 8) == 0) radix = 4
+    end function strip_product_radix
 
     !> Plan (with `flags`) and destroy the strip levels' product transforms: as
     !! fc_mg2d_ops's `strip_fft`, an FFTW-aligned buffer of 2n reals, forward and backward
-    !! complex transforms of n points in place, or of two times n/2 points where
-    !! [[strip_product_split]]; .true. when every plan was made.
+    !! complex transforms of n points in place, or r times n/r points where
+    !! [[strip_product_radix]] is r > 1; .true. when every plan was made.
     logical function strip_plans(sizes, flags) result(all_made)
         integer, intent(in) :: sizes(:)
         integer(c_int), intent(in) :: flags
         complex(dp), pointer, contiguous :: cbuf(:)
         type(c_ptr) :: raw, pf, pb
-        integer :: l, n, saved
+        integer :: l, n, r, saved
         all_made = .true.
         do l = 1, size(sizes)
             n = sizes(l)
@@ -250,11 +254,12 @@ contains
             saved = 1
             !$omp critical (fc_fftw_planner)
             call fftw_threads_for_size(2*n, saved)
-            if (strip_product_split(n)) then
-                pf = fftw_plan_many_dft(1_c_int, [int(n/2, c_int)], 2_c_int, cbuf, [int(n/2, c_int)], 1_c_int, &
-                    int(n/2, c_int), cbuf, [int(n/2, c_int)], 1_c_int, int(n/2, c_int), FFTW_FORWARD, flags)
-                pb = fftw_plan_many_dft(1_c_int, [int(n/2, c_int)], 2_c_int, cbuf, [int(n/2, c_int)], 1_c_int, &
-                    int(n/2, c_int), cbuf, [int(n/2, c_int)], 1_c_int, int(n/2, c_int), FFTW_BACKWARD, flags)
+            r = strip_product_radix(n)
+            if (r > 1) then
+                pf = fftw_plan_many_dft(1_c_int, [int(n/r, c_int)], int(r, c_int), cbuf, [int(n/r, c_int)], 1_c_int, &
+                    int(n/r, c_int), cbuf, [int(n/r, c_int)], 1_c_int, int(n/r, c_int), FFTW_FORWARD, flags)
+                pb = fftw_plan_many_dft(1_c_int, [int(n/r, c_int)], int(r, c_int), cbuf, [int(n/r, c_int)], 1_c_int, &
+                    int(n/r, c_int), cbuf, [int(n/r, c_int)], 1_c_int, int(n/r, c_int), FFTW_BACKWARD, flags)
             else
                 pf = fftw_plan_dft_1d(int(n, c_int), cbuf, cbuf, FFTW_FORWARD, flags)
                 pb = fftw_plan_dft_1d(int(n, c_int), cbuf, cbuf, FFTW_BACKWARD, flags)

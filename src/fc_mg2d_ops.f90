@@ -23,7 +23,7 @@ module fc_mg2d_ops
     use fc_influence, only: fc_material, ic_kernel, IC_ZZ, IC_XX, IC_YY
     use fc_fftw
     use fc_threads, only: fftw_threads_for_size, omp_min_elements
-    use fc_fft_effort, only: strip_product_split
+    use fc_fft_effort, only: strip_product_radix
     implicit none
     private
 
@@ -38,11 +38,12 @@ module fc_mg2d_ops
         real(dp), pointer, contiguous :: buf(:) => null()   !! 2n reals: the real sequence
         complex(dp), pointer, contiguous :: cbuf(:) => null()  !! the same storage as n complex
         complex(dp), allocatable :: tw(:)         !! tw(k) = exp(−2πik/(2n)), k = 0…n/2
-        !> the n-point transforms as two of n/2 points (one radix-2 step of our own; large
-        !! levels, fc_fft_effort's `strip_product_split`)
-        logical :: split = .false.
+        !> the n-point transforms as `radix` transforms of n/radix points after a radix-2 or
+        !! radix-4 step of our own (1: FFTW's n-point plan; large levels, fc_fft_effort's
+        !! `strip_product_radix`)
+        integer :: radix = 1
         type(c_ptr) :: raw = c_null_ptr           !! FFTW allocation behind buf
-        !> forward and backward, in place: n points, or (split) two of n/2 points
+        !> forward and backward, in place: `radix` transforms of n/radix points
         type(c_ptr) :: pf = c_null_ptr, pb = c_null_ptr
     contains
         procedure :: init => strip_fft_init
@@ -74,13 +75,13 @@ contains
     !! stored.  With `ws` the products run in the workspace's buffer (at least 2n reals, see
     !! [[strip_workspace_need]]), which must outlive these plans' use; else in a buffer of
     !! their own.
-    subroutine strip_fft_init(self, n, ws, split)
+    subroutine strip_fft_init(self, n, ws, radix)
         class(strip_fft), intent(inout) :: self
         integer, intent(in) :: n
         type(strip_workspace), intent(in), optional, target :: ws
-        !> the split layout (n divisible by 4) whatever n; default fc_fft_effort's
-        !! `strip_product_split` (tests run the split layout on small n)
-        logical, intent(in), optional :: split
+        !> 1, 2 or 4 whatever n (n divisible by 2·radix, else 1); default fc_fft_effort's
+        !! `strip_product_radix` (tests run every layout on small n)
+        integer, intent(in), optional :: radix
         integer :: saved
         saved = 1
         call self%destroy()
@@ -95,15 +96,20 @@ contains
             call c_f_pointer(self%raw, self%buf, [self%m])
             call c_f_pointer(self%raw, self%cbuf, [n])
         end if
-        self%split = strip_product_split(n)
-        if (present(split)) self%split = split .and. mod(n, 4) == 0
+        self%radix = strip_product_radix(n)
+        if (present(radix)) then
+            self%radix = 1
+            if ((radix == 2 .or. radix == 4) .and. mod(n, 2*radix) == 0) self%radix = radix
+        end if
         !$omp critical (fc_fftw_planner)
         call fftw_threads_for_size(self%m, saved)
-        if (self%split) then
-            self%pf = fftw_plan_many_dft(1_c_int, [int(n/2, c_int)], 2_c_int, self%cbuf, [int(n/2, c_int)], 1_c_int, &
-                int(n/2, c_int), self%cbuf, [int(n/2, c_int)], 1_c_int, int(n/2, c_int), FFTW_FORWARD, FFTW_ESTIMATE)
-            self%pb = fftw_plan_many_dft(1_c_int, [int(n/2, c_int)], 2_c_int, self%cbuf, [int(n/2, c_int)], 1_c_int, &
-                int(n/2, c_int), self%cbuf, [int(n/2, c_int)], 1_c_int, int(n/2, c_int), FFTW_BACKWARD, FFTW_ESTIMATE)
+        if (self%radix > 1) then
+            associate (r => int(self%radix, c_int), l => int(n/self%radix, c_int))
+                self%pf = fftw_plan_many_dft(1_c_int, [l], r, self%cbuf, [l], 1_c_int, l, self%cbuf, [l], 1_c_int, l, &
+                    FFTW_FORWARD, FFTW_ESTIMATE)
+                self%pb = fftw_plan_many_dft(1_c_int, [l], r, self%cbuf, [l], 1_c_int, l, self%cbuf, [l], 1_c_int, l, &
+                    FFTW_BACKWARD, FFTW_ESTIMATE)
+            end associate
         else
             self%pf = fftw_plan_dft_1d(int(n, c_int), self%cbuf, self%cbuf, FFTW_FORWARD, FFTW_ESTIMATE)
             self%pb = fftw_plan_dft_1d(int(n, c_int), self%cbuf, self%cbuf, FFTW_BACKWARD, FFTW_ESTIMATE)
@@ -147,7 +153,9 @@ contains
         real(dp), intent(in) :: c(0:)
         real(dp), intent(out) :: sym(0:)
         integer :: n, d, k
-        complex(dp) :: z0, zk, zj, e, o, lo, hi
+        complex(dp) :: z0, z1, z2, z3, zk, zj, e, o, lo, hi
+        complex(dp), parameter :: iu = (0.0_dp, 1.0_dp)
+        integer :: q
         logical :: par
         n = self%n
         par = n > omp_min_elements
@@ -158,17 +166,30 @@ contains
         end do
         !$omp end parallel do
         self%buf(n + 1) = 0
-        if (self%split) then
+        select case (self%radix)
+        case (2)
             ! radix-2 decimation in frequency: Z_2m from z_j + z_{j+n/2}, Z_2m+1 from
             ! (z_j − z_{j+n/2})·w^2j, each an n/2-point transform
             !$omp parallel do default(shared) private(lo, hi) schedule(static) if(par)
             do d = 0, n/2 - 1
                 lo = self%cbuf(d + 1); hi = self%cbuf(d + n/2 + 1)
                 self%cbuf(d + 1) = lo + hi
-                self%cbuf(d + n/2 + 1) = (lo - hi)*omega(self%tw, n, d)
+                self%cbuf(d + n/2 + 1) = (lo - hi)*wpow(self%tw, n, 2*d)
             end do
             !$omp end parallel do
-        end if
+        case (4)
+            ! radix 4: Z_4m+r from (Σ_s (−i)^rs·z_{j+sq})·w^2rj, q = n/4, each a q-point transform
+            q = n/4
+            !$omp parallel do default(shared) private(z0, z1, z2, z3) schedule(static) if(par)
+            do d = 0, q - 1
+                z0 = self%cbuf(d + 1); z1 = self%cbuf(d + q + 1); z2 = self%cbuf(d + 2*q + 1); z3 = self%cbuf(d + 3*q + 1)
+                self%cbuf(d + 1) = z0 + z1 + z2 + z3
+                self%cbuf(d + q + 1) = (z0 - iu*z1 - z2 + iu*z3)*wpow(self%tw, n, 2*d)
+                self%cbuf(d + 2*q + 1) = (z0 - z1 + z2 - z3)*wpow(self%tw, n, 4*d)
+                self%cbuf(d + 3*q + 1) = (z0 + iu*z1 - z2 - iu*z3)*wpow(self%tw, n, 6*d)
+            end do
+            !$omp end parallel do
+        end select
         call fftw_execute_dft(self%pf, self%cbuf, self%cbuf)
         z0 = self%cbuf(1)
         sym(0) = (real(z0, dp) + aimag(z0))/self%m
@@ -177,7 +198,7 @@ contains
         ! O_k = (Z_k − conj Z_{n−k})/(2i); the symbol is real (even circulant)
         !$omp parallel do default(shared) private(zk, zj, e, o) schedule(static) if(par)
         do k = 1, n/2
-            zk = self%cbuf(spectrum_index(self%split, n, k)); zj = self%cbuf(spectrum_index(self%split, n, n - k))
+            zk = self%cbuf(spectrum_index(self%radix, n, k)); zj = self%cbuf(spectrum_index(self%radix, n, n - k))
             e = (zk + conjg(zj))/2
             o = (zk - conjg(zj))*cmplx(0.0_dp, -0.5_dp, dp)
             sym(k) = real(e + self%tw(k)*o, dp)/self%m
@@ -200,11 +221,15 @@ contains
         logical :: par
         n = self%n
         par = n > omp_min_elements     ! element loops threaded on large levels (elementwise: same results)
-        if (self%split) then
+        if (self%radix == 4) then
+            call product_radix4(self, sym, x, y)
+            return
+        end if
+        if (self%radix == 2) then
             ! [x, 0] as z_j = x_2j + i·x_2j+1, j < n/2, and zeros: the radix-2 step gives
             ! A = z and B = z·w^2j, whose n/2-point transforms are Z_2m and Z_2m+1
             h = n/2; q = n/4
-            ! w^2j = tw(2j) for j ≤ n/4, −i·tw(2j − n/2) above ([[omega]]): two loops
+            ! w^2j = tw(2j) for j ≤ n/4, −i·tw(2j − n/2) above ([[wpow]]): two loops
             !$omp parallel do default(shared) private(wr, wi, ar, ai) schedule(static) if(par)
             do j = 0, q
                 wr = real(self%tw(2*j), dp); wi = aimag(self%tw(2*j))
@@ -294,6 +319,77 @@ contains
         !$omp end parallel do
     end subroutine strip_fft_product
 
+    !> [[strip_fft_product]] after a radix-4 step: [x, 0] as z_j = x_2j + i·x_2j+1 (j < n/2,
+    !! zeros above), u = z_j and v = z_{j+q} (q = n/4, j < q); A_r = (u + (−i)^r·v)·w^2rj,
+    !! whose q-point transforms are Z_{4m+r}.  The pairs (k, n − k): k = 4m in A_0
+    !! (A_0(m), A_0(q−m); Z_0 and the middle Z_{n/2} = A_0(q/2) alone), k = 4m + 2 in A_2
+    !! (A_2(m), A_2(q−1−m)), k = 4m + 1 in A_1 with n − k in A_3 (A_1(m), A_3(q−1−m)).
+    !! Backward: b_r = conj(w^2rj)·a_r, z'_j = b_0 + b_1 + b_2 + b_3 and
+    !! z'_{j+q} = b_0 + i·b_1 − b_2 − i·b_3, the output y_2j + i·y_2j+1 for j < n/2.
+    subroutine product_radix4(self, sym, x, y)
+        type(strip_fft), intent(inout) :: self
+        real(dp), intent(in) :: sym(0:)
+        real(dp), intent(in) :: x(:)
+        real(dp), intent(out) :: y(:)
+        integer :: n, q, j, k, l
+        real(dp) :: y0, yn, ur, ui, vr, vi
+        complex(dp) :: s1, s2, s3, b0, b1, b2, b3
+        logical :: par
+        n = self%n; q = n/4
+        par = n > omp_min_elements
+        !$omp parallel do default(shared) private(ur, ui, vr, vi, s1, s2, s3) schedule(static) if(par)
+        do j = 0, q - 1
+            ur = x(2*j + 1); ui = x(2*j + 2); vr = x(2*(j + q) + 1); vi = x(2*(j + q) + 2)
+            self%buf(2*j + 1) = ur + vr; self%buf(2*j + 2) = ui + vi
+            s1 = cmplx(ur + vi, ui - vr, dp)*wpow(self%tw, n, 2*j)
+            s2 = cmplx(ur - vr, ui - vi, dp)*wpow(self%tw, n, 4*j)
+            s3 = cmplx(ur - vi, ui + vr, dp)*wpow(self%tw, n, 6*j)
+            self%buf(2*(q + j) + 1) = real(s1, dp); self%buf(2*(q + j) + 2) = aimag(s1)
+            self%buf(2*(2*q + j) + 1) = real(s2, dp); self%buf(2*(2*q + j) + 2) = aimag(s2)
+            self%buf(2*(3*q + j) + 1) = real(s3, dp); self%buf(2*(3*q + j) + 2) = aimag(s3)
+        end do
+        !$omp end parallel do
+        call fftw_execute_dft(self%pf, self%cbuf, self%cbuf)
+        y0 = sym(0)*(self%buf(1) + self%buf(2))
+        yn = sym(n)*(self%buf(1) - self%buf(2))
+        self%buf(1) = y0 + yn; self%buf(2) = y0 - yn
+        self%buf(q + 1) = 2*sym(n/2)*self%buf(q + 1); self%buf(q + 2) = 2*sym(n/2)*self%buf(q + 2)  ! A_0(q/2)
+        !$omp parallel do default(shared) private(l) schedule(static) if(par)
+        do k = 1, q/2 - 1                                   ! A_0: k = 4m
+            l = q - k
+            call pair_update(self%buf(2*k + 1), self%buf(2*k + 2), self%buf(2*l + 1), self%buf(2*l + 2), &
+                self%tw(4*k), sym(4*k), sym(n - 4*k))
+        end do
+        !$omp end parallel do
+        !$omp parallel do default(shared) private(l) schedule(static) if(par)
+        do k = 0, q/2 - 1                                   ! A_2: k = 4m + 2
+            l = q - 1 - k
+            call pair_update(self%buf(2*(2*q + k) + 1), self%buf(2*(2*q + k) + 2), self%buf(2*(2*q + l) + 1), &
+                self%buf(2*(2*q + l) + 2), self%tw(4*k + 2), sym(4*k + 2), sym(n - 4*k - 2))
+        end do
+        !$omp end parallel do
+        !$omp parallel do default(shared) private(l) schedule(static) if(par)
+        do k = 0, q - 1                                     ! A_1 with A_3: k = 4m + 1
+            l = q - 1 - k
+            call pair_update(self%buf(2*(q + k) + 1), self%buf(2*(q + k) + 2), self%buf(2*(3*q + l) + 1), &
+                self%buf(2*(3*q + l) + 2), wpow(self%tw, n, 4*k + 1), sym(4*k + 1), sym(n - 4*k - 1))
+        end do
+        !$omp end parallel do
+        call fftw_execute_dft(self%pb, self%cbuf, self%cbuf)
+        !$omp parallel do default(shared) private(b0, b1, b2, b3) schedule(static) if(par)
+        do j = 0, q - 1
+            b0 = self%cbuf(j + 1)
+            b1 = self%cbuf(q + j + 1)*conjg(wpow(self%tw, n, 2*j))
+            b2 = self%cbuf(2*q + j + 1)*conjg(wpow(self%tw, n, 4*j))
+            b3 = self%cbuf(3*q + j + 1)*conjg(wpow(self%tw, n, 6*j))
+            y(2*j + 1) = real(b0, dp) + real(b1, dp) + real(b2, dp) + real(b3, dp)
+            y(2*j + 2) = aimag(b0) + aimag(b1) + aimag(b2) + aimag(b3)
+            y(2*(j + q) + 1) = real(b0, dp) - aimag(b1) - real(b2, dp) + aimag(b3)
+            y(2*(j + q) + 2) = aimag(b0) + real(b1, dp) - aimag(b2) - real(b3, dp)
+        end do
+        !$omp end parallel do
+    end subroutine product_radix4
+
     !> One pair (k, j = n − k) of the product's half-spectrum pass, in place: (ar, ai) = Z_k,
     !! (br, bi) = Z_j on entry, Z'_k and Z'_j on exit; t = w^k, sk, sj the symbol at k and j.
     !! With E = (Z_k + conj Z_j)/2, O = (Z_k − conj Z_j)/(2i), T = t·O,
@@ -316,30 +412,29 @@ contains
         br = ur + pa; bi = pb - ui
     end subroutine pair_update
 
-    !> w^2j = exp(−2πij/n) for 0 ≤ j < n/2 from tw(0:n/2) (tw(k) = exp(−2πik/(2n))):
-    !! tw(2j) up to j = n/4, above −i·tw(2j − n/2).
-    pure complex(dp) function omega(tw, n, j)
+    !> w^k = exp(−2πik/(2n)) for 0 ≤ k < 2n from tw(0:n/2) = w^0…w^{n/2}, by
+    !! w^{n/2} = −i, w^n = −1, w^{3n/2} = i.
+    pure complex(dp) function wpow(tw, n, k)
         complex(dp), intent(in) :: tw(0:)
-        integer, intent(in) :: n, j
-        if (2*j <= n/2) then
-            omega = tw(2*j)
-        else
-            omega = cmplx(aimag(tw(2*j - n/2)), -real(tw(2*j - n/2), dp), dp)
-        end if
-    end function omega
-
-    !> Position in cbuf of the spectrum's Z_k, 0 ≤ k < n: k + 1, or in the split layout
-    !! Z_2m at m + 1 and Z_2m+1 at n/2 + m + 1.
-    pure integer function spectrum_index(split, n, k) result(p)
-        logical, intent(in) :: split
         integer, intent(in) :: n, k
-        if (.not. split) then
-            p = k + 1
-        else if (mod(k, 2) == 0) then
-            p = k/2 + 1
+        integer :: h
+        h = n/2
+        if (k <= h) then
+            wpow = tw(k)
+        else if (k <= n) then
+            wpow = cmplx(aimag(tw(k - h)), -real(tw(k - h), dp), dp)      ! −i·tw
+        else if (k <= 3*h) then
+            wpow = -tw(k - n)
         else
-            p = n/2 + (k - 1)/2 + 1
+            wpow = cmplx(-aimag(tw(k - 3*h)), real(tw(k - 3*h), dp), dp)  ! i·tw
         end if
+    end function wpow
+
+    !> Position in cbuf of the spectrum's Z_k, 0 ≤ k < n: k + 1, or after a radix-r step
+    !! Z_{rm+s} at s·n/r + m + 1.
+    pure integer function spectrum_index(radix, n, k) result(p)
+        integer, intent(in) :: radix, n, k
+        p = mod(k, radix)*(n/radix) + k/radix + 1
     end function spectrum_index
 
     subroutine strip_fft_destroy(self)
@@ -350,7 +445,7 @@ contains
         !$omp end critical (fc_fftw_planner)
         if (c_associated(self%raw)) call fftw_free(self%raw)
         if (allocated(self%tw)) deallocate (self%tw)
-        self%pf = c_null_ptr; self%pb = c_null_ptr; self%raw = c_null_ptr; self%split = .false.
+        self%pf = c_null_ptr; self%pb = c_null_ptr; self%raw = c_null_ptr; self%radix = 1
         self%buf => null(); self%cbuf => null()
         self%n = 0; self%m = 0
     end subroutine strip_fft_destroy

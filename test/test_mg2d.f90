@@ -43,17 +43,18 @@ contains
     !! 1e−13 of the largest (same antiderivatives, other rounding) for A^xx, A^zz and A^yy on
     !! MP1 and MP2 grids; the in-place FFT product equals the direct O(n²) Toeplitz sum to
     !! 1e−13 relative (FFT rounding at n = 64 … 256), also for non-powers of two (96, odd
-    !! 97) and the smallest sizes (1, 2, 3, 4, 5, 8), in both transform layouts.
+    !! 97) and the smallest sizes (1, 2, 3, 4, 5, 8, 16), in each transform layout.
     subroutine test_strip_ops(error)
         type(error_type), allocatable, intent(out) :: error
         type(fc_strip_problem) :: prob
         type(strip_fft) :: f
         real(dp), allocatable :: kern(:, :), a(:), sym(:), x(:), y(:), yd(:)
-        integer :: mp, n, b, i, j, k, stat, split
+        integer :: mp, n, b, i, j, k, stat, radix
+        character(len=32) :: what
         integer, parameter :: blocks(3) = [IC_XX, IC_ZZ, IC_YY]
         ! the half-spectrum pairs (k, n − k) of the product: n even (a middle pair), n odd,
         ! and the smallest sizes
-        integer, parameter :: sizes(10) = [1, 2, 3, 4, 5, 8, 64, 96, 97, 256]
+        integer, parameter :: sizes(11) = [1, 2, 3, 4, 5, 8, 16, 64, 96, 97, 256]
         character(len=256) :: msg
         do mp = 1, 2
             do b = 1, 3
@@ -84,14 +85,16 @@ contains
                     yd(i) = yd(i) + a(abs(i - j))*x(j)
                 end do
             end do
-            ! the n-point layout, and the split one (two n/2-point transforms, used from
-            ! 2^18 cells) on the sizes divisible by 4
-            do split = 0, merge(1, 0, mod(n, 4) == 0)
-                call f%init(n, split=split == 1)
+            ! the n-point layout and the radix-2 and radix-4 ones (n/2- and n/4-point
+            ! transforms, used from 2^18 and 2^20 cells) on the sizes divisible by 4 and 8
+            do radix = 1, 4
+                if (radix == 3 .or. mod(n, 2*radix) /= 0) cycle
+                call f%init(n, radix=radix)
+                write (what, '(a,i0,a,i0)') 'n = ', n, ', radix ', radix
+                call check(error, f%radix == radix, 'layout not taken: '//trim(what))
                 call f%symbol(a, sym)
                 call f%product(sym, x, y)
-                call check(error, maxval(abs(y - yd))/maxval(abs(yd)) < 1e-13_dp, &
-                    trim(label('FFT product = direct'//trim(merge(', split', '       ', split == 1)), 0, n, 0, 0)))
+                call check(error, maxval(abs(y - yd))/maxval(abs(yd)) < 1e-13_dp, 'FFT product = direct, '//trim(what))
                 call f%destroy()
             end do
             deallocate (a, sym, x, y, yd)
