@@ -331,19 +331,22 @@ contains
         real(dp), intent(in) :: sym(0:)
         real(dp), intent(in) :: x(:)
         real(dp), intent(out) :: y(:)
-        integer :: n, q, j, k, l
+        integer :: n, q, j, k, l, kh
         real(dp) :: y0, yn, ur, ui, vr, vi
-        complex(dp) :: s1, s2, s3, b0, b1, b2, b3
+        complex(dp) :: s1, s2, s3, b0, b1, b2, b3, w2, w4, t
         logical :: par
         n = self%n; q = n/4
         par = n > omp_min_elements
-        !$omp parallel do default(shared) private(ur, ui, vr, vi, s1, s2, s3) schedule(static) if(par)
+        ! w^2j = tw(2j) (2j < n/2); w^4j and w^6j as its square and cube (a few roundings
+        ! of 1e−16, no branches in the loop)
+        !$omp parallel do default(shared) private(ur, ui, vr, vi, s1, s2, s3, w2, w4) schedule(static) if(par)
         do j = 0, q - 1
             ur = x(2*j + 1); ui = x(2*j + 2); vr = x(2*(j + q) + 1); vi = x(2*(j + q) + 2)
             self%buf(2*j + 1) = ur + vr; self%buf(2*j + 2) = ui + vi
-            s1 = cmplx(ur + vi, ui - vr, dp)*wpow(self%tw, n, 2*j)
-            s2 = cmplx(ur - vr, ui - vi, dp)*wpow(self%tw, n, 4*j)
-            s3 = cmplx(ur - vi, ui + vr, dp)*wpow(self%tw, n, 6*j)
+            w2 = self%tw(2*j); w4 = w2*w2
+            s1 = cmplx(ur + vi, ui - vr, dp)*w2
+            s2 = cmplx(ur - vr, ui - vi, dp)*w4
+            s3 = cmplx(ur - vi, ui + vr, dp)*(w4*w2)
             self%buf(2*(q + j) + 1) = real(s1, dp); self%buf(2*(q + j) + 2) = aimag(s1)
             self%buf(2*(2*q + j) + 1) = real(s2, dp); self%buf(2*(2*q + j) + 2) = aimag(s2)
             self%buf(2*(3*q + j) + 1) = real(s3, dp); self%buf(2*(3*q + j) + 2) = aimag(s3)
@@ -368,20 +371,31 @@ contains
                 self%buf(2*(2*q + l) + 2), self%tw(4*k + 2), sym(4*k + 2), sym(n - 4*k - 2))
         end do
         !$omp end parallel do
+        ! A_1 with A_3: k = 4m + 1, w^k = tw(k) up to n/2, −i·tw(k − n/2) above: two loops
+        kh = (n/2 - 1)/4
         !$omp parallel do default(shared) private(l) schedule(static) if(par)
-        do k = 0, q - 1                                     ! A_1 with A_3: k = 4m + 1
+        do k = 0, kh
             l = q - 1 - k
             call pair_update(self%buf(2*(q + k) + 1), self%buf(2*(q + k) + 2), self%buf(2*(3*q + l) + 1), &
-                self%buf(2*(3*q + l) + 2), wpow(self%tw, n, 4*k + 1), sym(4*k + 1), sym(n - 4*k - 1))
+                self%buf(2*(3*q + l) + 2), self%tw(4*k + 1), sym(4*k + 1), sym(n - 4*k - 1))
+        end do
+        !$omp end parallel do
+        !$omp parallel do default(shared) private(l, t) schedule(static) if(par)
+        do k = kh + 1, q - 1
+            l = q - 1 - k
+            t = self%tw(4*k + 1 - n/2)
+            call pair_update(self%buf(2*(q + k) + 1), self%buf(2*(q + k) + 2), self%buf(2*(3*q + l) + 1), &
+                self%buf(2*(3*q + l) + 2), cmplx(aimag(t), -real(t, dp), dp), sym(4*k + 1), sym(n - 4*k - 1))
         end do
         !$omp end parallel do
         call fftw_execute_dft(self%pb, self%cbuf, self%cbuf)
-        !$omp parallel do default(shared) private(b0, b1, b2, b3) schedule(static) if(par)
+        !$omp parallel do default(shared) private(b0, b1, b2, b3, w2, w4) schedule(static) if(par)
         do j = 0, q - 1
+            w2 = conjg(self%tw(2*j)); w4 = w2*w2
             b0 = self%cbuf(j + 1)
-            b1 = self%cbuf(q + j + 1)*conjg(wpow(self%tw, n, 2*j))
-            b2 = self%cbuf(2*q + j + 1)*conjg(wpow(self%tw, n, 4*j))
-            b3 = self%cbuf(3*q + j + 1)*conjg(wpow(self%tw, n, 6*j))
+            b1 = self%cbuf(q + j + 1)*w2
+            b2 = self%cbuf(2*q + j + 1)*w4
+            b3 = self%cbuf(3*q + j + 1)*(w4*w2)
             y(2*j + 1) = real(b0, dp) + real(b1, dp) + real(b2, dp) + real(b3, dp)
             y(2*j + 2) = aimag(b0) + aimag(b1) + aimag(b2) + aimag(b3)
             y(2*(j + q) + 1) = real(b0, dp) - aimag(b1) - real(b2, dp) + aimag(b3)
