@@ -20,6 +20,7 @@ module test_parallel
     use fc_rolling, only: fc_rolling_settings, fc_rolling_loading, solve_rolling
     use fc_driver, only: run_driver
     use fc_mg2d, only: fc_strip_problem, fc_mg2d_settings, fc_mg2d_result, strip_model_problem, solve_strip_mg
+    use fc_mg2d_ops, only: strip_fft
     use fc_contact, only: fc_contact_operators, fc_contact_loading, fc_contact_settings, fc_contact_result, solve_contact, &
         FC_PROBLEM_TANGENTIAL
     use, intrinsic :: iso_c_binding, only: c_int, c_double, c_null_char
@@ -325,7 +326,8 @@ contains
     !! points, threaded plans), the levels' element loops and the set-up loops run on 2
     !! threads above 32768 cells.  Same cycle count and the same tractions to 1e−12 of their
     !! maximum as one thread (measured: equal; the loops are elementwise, the threaded
-    !! transforms may round differently).
+    !! transforms may round differently); the same for the products in the radix-2 and
+    !! radix-4 layouts of the large levels, run on 2^16 cells.
     subroutine test_threads_strip(error)
         type(error_type), allocatable, intent(out) :: error
         type(fc_strip_problem) :: prob
@@ -350,6 +352,32 @@ contains
         call check(error, maxval(abs(r(1)%p - r(2)%p)), 0.0_dp, 'tractions 1 vs 2 threads', abs=1e-12_dp*maxval(abs(r(1)%p)))
         write (*, '(a,es10.2)') '    threads_same_result_strip_mg: max |dp|/max |p| = ', &
             maxval(abs(r(1)%p - r(2)%p))/maxval(abs(r(1)%p))
+        ! the radix-2 and radix-4 products (used from 2^18 and 2^20 cells) on 2^16 cells,
+        ! where their loops run on both threads: the same products as on one thread
+        block
+            integer, parameter :: n = 2**16
+            type(strip_fft) :: f
+            real(dp) :: a(0:n - 1), sym(0:n), x(n), y(n, 2)
+            integer :: i, radix
+            do i = 0, n - 1
+                a(i) = 1/(1 + 0.3_dp*i) + merge(2.0_dp, 0.0_dp, i == 0)
+            end do
+            do i = 1, n
+                x(i) = sin(0.37_dp*i) + 0.1_dp*i/n
+            end do
+            do radix = 2, 4, 2
+                do nt = 1, 2
+                    call set_thread_count(nt)
+                    call f%init(n, radix=radix)
+                    call f%symbol(a, sym)
+                    call f%product(sym, x, y(:, nt))
+                    call f%destroy()
+                end do
+                call set_thread_count(nt0)
+                call check(error, maxval(abs(y(:, 1) - y(:, 2))), 0.0_dp, 'radix-2/4 product 1 vs 2 threads', &
+                    abs=1e-12_dp*maxval(abs(y(:, 1))))
+            end do
+        end block
     end subroutine test_threads_strip
 
     !> Requested thread counts are bounded where users give them: fc_set_threads refuses
