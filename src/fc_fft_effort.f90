@@ -15,7 +15,7 @@
 !! batch, read either the old file or the new one, never one half written (before, two
 !! ranks on a shared file failed cases as "not wisdom" in 4 of 5 batches, doc/parallel.md).
 !!
-!! The strip solver's products (fc_mg2d_ops: one in-place complex transform of n points per
+!! The strip solver's products (fc_mg2d_fft: in-place complex transforms of n points per
 !! level) are measured the same way by [[prime_strip_plans]], and [[use_fft_wisdom]] keeps
 !! them when it is given the levels' sizes.
 !!
@@ -220,7 +220,7 @@ contains
         !$omp end critical (fc_fftw_planner)
     end function product_plans
 
-    !> How the strip products of an n-cell level (fc_mg2d_ops's `strip_fft`) run their
+    !> How the strip products of an n-cell level (fc_mg2d_fft's `strip_fft`) run their
     !! n-point complex transforms: 1, as one n-point transform; 2 or 4, as that many
     !! transforms of n/2 or n/4 points after a radix-2 or radix-4 step of their own, which
     !! also skips the zero-padded half.  Chosen where the smaller transforms run faster than
@@ -237,7 +237,7 @@ contains
     end function strip_product_radix
 
     !> Plan (with `flags`) and destroy the strip levels' product transforms: as
-    !! fc_mg2d_ops's `strip_fft`, an FFTW-aligned buffer of 2n reals, forward and backward
+    !! fc_mg2d_fft's `strip_fft`, an FFTW-aligned buffer of 2n reals, forward and backward
     !! complex transforms of n points in place, or r times n/r points where
     !! [[strip_product_radix]] is r > 1; .true. when every plan was made.
     logical function strip_plans(sizes, flags) result(all_made)
