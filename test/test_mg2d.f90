@@ -9,7 +9,7 @@ module test_mg2d
     use fc_testing
     implicit none
     private
-    public :: collect_mg2d
+    public :: collect_mg2d, toeplitz_test_data
 
     integer, parameter :: nus(2, 3) = reshape([1, 1, 1, 0, 0, 1], [2, 3])
 
@@ -38,6 +38,20 @@ contains
         integer, intent(in) :: mp, n, nu1, nu2
         write (label, '(a,a,i0,1x,i0,a,i0,a,i0,a)') what, ' MP', mp, n, ' V(', nu1, ',', nu2, ')'
     end function label
+
+    !> Coefficients a(0:n−1) of a symmetric, diagonally dominant Toeplitz matrix and a vector
+    !! x(1:n) for the product tests (here and in the parallel suite).
+    pure subroutine toeplitz_test_data(a, x)
+        real(dp), intent(out) :: a(0:), x(:)
+        integer :: i, n
+        n = size(x)
+        do i = 0, size(a) - 1
+            a(i) = 1/(1 + 0.3_dp*i) + merge(2.0_dp, 0.0_dp, i == 0)
+        end do
+        do i = 1, n
+            x(i) = sin(0.37_dp*i) + 0.1_dp*i/n
+        end do
+    end subroutine toeplitz_test_data
 
     !> The strip operators of the fast path: coefficients by symmetry equal ic_kernel's to
     !! 1e−13 of the largest (same antiderivatives, other rounding) for A^xx, A^zz and A^yy on
@@ -73,12 +87,7 @@ contains
         do k = 1, size(sizes)
             n = sizes(k)
             allocate (a(0:n - 1), sym(0:n), x(n), y(n), yd(n))
-            do i = 0, n - 1
-                a(i) = 1/(1 + 0.3_dp*i) + merge(2.0_dp, 0.0_dp, i == 0)
-            end do
-            do i = 1, n
-                x(i) = sin(0.37_dp*i) + 0.1_dp*i/n
-            end do
+            call toeplitz_test_data(a, x)
             do i = 1, n
                 yd(i) = 0
                 do j = 1, n

@@ -21,6 +21,7 @@ module test_parallel
     use fc_driver, only: run_driver
     use fc_mg2d, only: fc_strip_problem, fc_mg2d_settings, fc_mg2d_result, strip_model_problem, solve_strip_mg
     use fc_mg2d_ops, only: strip_fft
+    use test_mg2d, only: toeplitz_test_data
     use fc_contact, only: fc_contact_operators, fc_contact_loading, fc_contact_settings, fc_contact_result, solve_contact, &
         FC_PROBLEM_TANGENTIAL
     use, intrinsic :: iso_c_binding, only: c_int, c_double, c_null_char
@@ -358,13 +359,8 @@ contains
             integer, parameter :: n = 2**16
             type(strip_fft) :: f
             real(dp) :: a(0:n - 1), sym(0:n), x(n), y(n, 2)
-            integer :: i, radix
-            do i = 0, n - 1
-                a(i) = 1/(1 + 0.3_dp*i) + merge(2.0_dp, 0.0_dp, i == 0)
-            end do
-            do i = 1, n
-                x(i) = sin(0.37_dp*i) + 0.1_dp*i/n
-            end do
+            integer :: radix
+            call toeplitz_test_data(a, x)
             do radix = 2, 4, 2
                 do nt = 1, 2
                     call set_thread_count(nt)
