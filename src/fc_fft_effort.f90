@@ -42,7 +42,7 @@ module fc_fft_effort
     end interface
 
     public :: prime_fft_plans, fft_plans_in_wisdom, use_fft_wisdom
-    public :: prime_strip_plans, strip_plans_in_wisdom, strip_product_radix
+    public :: prime_strip_plans, strip_plans_in_wisdom, strip_product_radix, strip_product_plans
 
 contains
 
@@ -236,6 +236,26 @@ contains
         if (n >= 1048576 .and. mod(n, 8) == 0) radix = 4
     end function strip_product_radix
 
+    !> The forward and backward in-place plans (with `flags`) of a strip product on n cells
+    !! in the layout `radix` on `cbuf` (n complex): one n-point transform (radix 1), or
+    !! `radix` transforms of n/radix points.  Call inside the critical section
+    !! `fc_fftw_planner`, with the planner's thread count set.
+    subroutine strip_product_plans(n, radix, cbuf, flags, pf, pb)
+        integer, intent(in) :: n, radix
+        complex(dp), intent(inout), contiguous :: cbuf(:)   !! passed to FFTW as is (no copy)
+        integer(c_int), intent(in) :: flags
+        type(c_ptr), intent(out) :: pf, pb
+        integer(c_int) :: l, r
+        if (radix > 1) then
+            r = int(radix, c_int); l = int(n/radix, c_int)
+            pf = fftw_plan_many_dft(1_c_int, [l], r, cbuf, [l], 1_c_int, l, cbuf, [l], 1_c_int, l, FFTW_FORWARD, flags)
+            pb = fftw_plan_many_dft(1_c_int, [l], r, cbuf, [l], 1_c_int, l, cbuf, [l], 1_c_int, l, FFTW_BACKWARD, flags)
+        else
+            pf = fftw_plan_dft_1d(int(n, c_int), cbuf, cbuf, FFTW_FORWARD, flags)
+            pb = fftw_plan_dft_1d(int(n, c_int), cbuf, cbuf, FFTW_BACKWARD, flags)
+        end if
+    end subroutine strip_product_plans
+
     !> Plan (with `flags`) and destroy the strip levels' product transforms: as
     !! fc_mg2d_fft's `strip_fft`, an FFTW-aligned buffer of 2n reals, forward and backward
     !! complex transforms of n points in place, or r times n/r points where
@@ -245,7 +265,7 @@ contains
         integer(c_int), intent(in) :: flags
         complex(dp), pointer, contiguous :: cbuf(:)
         type(c_ptr) :: raw, pf, pb
-        integer :: l, n, r, saved
+        integer :: l, n, saved
         all_made = .true.
         do l = 1, size(sizes)
             n = sizes(l)
@@ -255,16 +275,7 @@ contains
             saved = 1
             !$omp critical (fc_fftw_planner)
             call fftw_threads_for_size(2*n, saved)
-            r = strip_product_radix(n)
-            if (r > 1) then
-                pf = fftw_plan_many_dft(1_c_int, [int(n/r, c_int)], int(r, c_int), cbuf, [int(n/r, c_int)], 1_c_int, &
-                    int(n/r, c_int), cbuf, [int(n/r, c_int)], 1_c_int, int(n/r, c_int), FFTW_FORWARD, flags)
-                pb = fftw_plan_many_dft(1_c_int, [int(n/r, c_int)], int(r, c_int), cbuf, [int(n/r, c_int)], 1_c_int, &
-                    int(n/r, c_int), cbuf, [int(n/r, c_int)], 1_c_int, int(n/r, c_int), FFTW_BACKWARD, flags)
-            else
-                pf = fftw_plan_dft_1d(int(n, c_int), cbuf, cbuf, FFTW_FORWARD, flags)
-                pb = fftw_plan_dft_1d(int(n, c_int), cbuf, cbuf, FFTW_BACKWARD, flags)
-            end if
+            call strip_product_plans(n, strip_product_radix(n), cbuf, flags, pf, pb)
             call fftw_threads_for_size(-1, saved)
             all_made = all_made .and. c_associated(pf) .and. c_associated(pb)
             if (c_associated(pf)) call fftw_destroy_plan(pf)

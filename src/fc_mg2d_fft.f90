@@ -19,7 +19,7 @@ module fc_mg2d_fft
     use fc_kinds, only: dp, pi
     use fc_fftw
     use fc_threads, only: fftw_threads_for_size, omp_min_elements
-    use fc_fft_effort, only: strip_product_radix
+    use fc_fft_effort, only: strip_product_radix, strip_product_plans
     implicit none
     private
 
@@ -97,17 +97,7 @@ contains
         end if
         !$omp critical (fc_fftw_planner)
         call fftw_threads_for_size(self%m, saved)
-        if (self%radix > 1) then
-            associate (r => int(self%radix, c_int), l => int(n/self%radix, c_int))
-                self%pf = fftw_plan_many_dft(1_c_int, [l], r, self%cbuf, [l], 1_c_int, l, self%cbuf, [l], 1_c_int, l, &
-                    FFTW_FORWARD, FFTW_ESTIMATE)
-                self%pb = fftw_plan_many_dft(1_c_int, [l], r, self%cbuf, [l], 1_c_int, l, self%cbuf, [l], 1_c_int, l, &
-                    FFTW_BACKWARD, FFTW_ESTIMATE)
-            end associate
-        else
-            self%pf = fftw_plan_dft_1d(int(n, c_int), self%cbuf, self%cbuf, FFTW_FORWARD, FFTW_ESTIMATE)
-            self%pb = fftw_plan_dft_1d(int(n, c_int), self%cbuf, self%cbuf, FFTW_BACKWARD, FFTW_ESTIMATE)
-        end if
+        call strip_product_plans(n, self%radix, self%cbuf, FFTW_ESTIMATE, self%pf, self%pb)
         call fftw_threads_for_size(-1, saved)
         !$omp end critical (fc_fftw_planner)
         allocate (self%tw(0:n/2))
