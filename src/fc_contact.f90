@@ -45,7 +45,7 @@ module fc_contact
     use fc_contact_types, only: FC_PROBLEM_NORMAL, FC_PROBLEM_TANGENTIAL, FC_PROBLEM_ROLLING, fc_normal_loading, &
         fc_contact_settings, fc_contact_result, fc_contact_loading, fc_contact_operators, fc_contact_state, &
         FC_FROM_REST, FC_TRANSIENT_SHIFT, FC_TRANSIENT_ROLLING
-    use fc_influence, only: fc_ic_set, ic_set_kernel, ic_kernels_uncoupled
+    use fc_influence, only: fc_ic_set, ic_set_kernel, ic_kernels_uncoupled, fc_bttb
     use fc_periodic, only: build_periodic_normal_operator, check_periodic_grid, periodic_images_default
     use fc_threads, only: fc_thread_count
     use fc_strings, only: fmt_int, fmt_real
@@ -96,7 +96,7 @@ contains
             ! parallel region waits 1–10 ms for its thread on this machine).
             !$omp parallel sections num_threads(2)
             !$omp section
-            call build_tangential()
+            call build_tangential(.false.)
             !$omp section
             call build_normal()
             !$omp end parallel sections
@@ -108,7 +108,7 @@ contains
             shared_kernels = build_n .and. build_t .and. .not. ops%periodic .and. .not. allocated(ops%ic%a)
             if (shared_kernels) call ic_kernels_uncoupled(material, grid, grid%nx, grid%ny, kzz, kxx, kxy, kyy)
             if (build_n) call build_normal()
-            if (build_t) call build_tangential()
+            if (build_t) call build_tangential(normal)
         end if
         if (normal) ops%normal%grid = grid
         if (tangential) ops%tangential%grid = grid
@@ -130,19 +130,32 @@ contains
             ops%setup_seconds_normal = ops%normal%setup_seconds
             if (circ_n) call prepare_precond_circulant(ops%normal)
         end subroutine build_normal
-        subroutine build_tangential()
-            if (allocated(ops%ic%a)) then
-                call build_tangential_operator(ops%tangential, material, grid, ops%ic)
-            else if (shared_kernels) then
-                call build_tangential_operator(ops%tangential, material, grid, kxx_in=kxx, kxy_in=kxy, kyy_in=kyy)
+        !> With `share_plans`, the tangential blocks share the normal operator's FFT plans and
+        !! buffers when they are for the same sizes (built one after the other: their
+        !! products never run at the same time), else they get their own.
+        subroutine build_tangential(share_plans)
+            logical, intent(in) :: share_plans
+            if (share_plans .and. ops%normal%a_zz%built()) then
+                call build_tangential_on(ops%normal%a_zz)
             else
-                call build_tangential_operator(ops%tangential, material, grid)
+                call build_tangential_on()
             end if
             ops%builds_tangential = ops%builds_tangential + 1
             ops%setup_seconds_tangential = ops%tangential%setup_seconds
             if (circ_t .and. ops%tangential%prec%built()) &
                 call prepare_block_inverse_circulant(ops%tangential)
         end subroutine build_tangential
+        subroutine build_tangential_on(plans_from)
+            type(fc_bttb), intent(in), optional :: plans_from
+            if (allocated(ops%ic%a)) then
+                call build_tangential_operator(ops%tangential, material, grid, ops%ic, plans_from=plans_from)
+            else if (shared_kernels) then
+                call build_tangential_operator(ops%tangential, material, grid, kxx_in=kxx, kxy_in=kxy, kyy_in=kyy, &
+                    plans_from=plans_from)
+            else
+                call build_tangential_operator(ops%tangential, material, grid, plans_from=plans_from)
+            end if
+        end subroutine build_tangential_on
     end subroutine ensure_operators
 
     !> Use the combined coefficients `ic` (content 'combined', validated) for every block

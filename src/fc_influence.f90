@@ -61,8 +61,9 @@ module fc_influence
     public :: ic_kernel_extended, ic_kernels_uncoupled
     public :: ic_set_allocate, ic_block_index, ic_set_kernel, same_cell_size
     ! the fast operators built from the coefficients (fc_toeplitz)
-    public :: fc_bttb, build_bttb_from_kernel, inverse_toeplitz_from_kernel, fft_symbol_of_kernel, copy_bttb
-    public :: spectrum_pair_product, block_product, SYMBOL_GENERAL, SYMBOL_EVEN, SYMBOL_ODD
+    public :: fc_bttb, build_bttb_from_kernel, build_bttb_taking_kernel, inverse_toeplitz_from_kernel, fft_symbol_of_kernel
+    public :: copy_bttb
+    public :: spectrum_pair_product, block_symbol_product_in_place, block_product, SYMBOL_GENERAL, SYMBOL_EVEN, SYMBOL_ODD
     public :: strang_circulant, strang_circulant_of_symbol
 
 contains

@@ -130,10 +130,11 @@ contains
         else
             call ic_kernel_extended(IC_ZZ, material, grid, grid%nx, grid%ny, kext)
         end if
-        call build_bttb_from_kernel(nop%a_zz, kext(-(grid%nx - 1):grid%nx - 1, -(grid%ny - 1):grid%ny - 1), &
-            grid%nx, grid%ny)
-        ! M shares A's FFT plans and buffers (one set per grid)
-        call inverse_toeplitz_from_kernel(kext, grid%nx, grid%ny, nop%precond, plans_from=nop%a_zz, keep_kernel=.false.)
+        ! A takes the coefficients (no copy); M reads them there and shares A's FFT plans and
+        ! buffers (one set per grid)
+        call build_bttb_taking_kernel(nop%a_zz, kext, grid%nx, grid%ny)
+        call inverse_toeplitz_from_kernel(nop%a_zz%kernel, grid%nx, grid%ny, nop%precond, plans_from=nop%a_zz, &
+            keep_kernel=.false.)
         call system_clock(t1)
         nop%setup_seconds = real(t1 - t0, dp)/rate
     end subroutine build_normal_operator

@@ -9,7 +9,6 @@ module fc_tangcg_operator
     use fc_influence
     use, intrinsic :: iso_c_binding, only: c_loc, c_associated
     use fc_tangprec, only: fc_block_inverse, build_block_inverse
-    use fc_threads, only: omp_min_elements
     implicit none
     private
 
@@ -45,7 +44,7 @@ module fc_tangcg_operator
 contains
 
     !> Build the tangential blocks (and coupling blocks if K ≠ 0) for `grid`.
-    subroutine build_tangential_operator(top, material, grid, ic, kxx_in, kxy_in, kyy_in)
+    subroutine build_tangential_operator(top, material, grid, ic, kxx_in, kxy_in, kyy_in, plans_from)
         type(fc_tangential_operator), intent(inout) :: top
         type(fc_material), intent(in) :: material
         type(fc_grid), intent(in) :: grid
@@ -53,6 +52,9 @@ contains
         !> the half-space A^xx, A^xy, A^yy for offsets −nx…nx, −ny…ny computed by the caller
         !! ([[ic_kernels_uncoupled]]); taken (deallocated).  All three or none.
         real(dp), allocatable, intent(inout), optional :: kxx_in(:, :), kxy_in(:, :), kyy_in(:, :)
+        !> an operator of the same grid whose FFT plans and buffers the blocks share (the
+        !! normal one: one set per grid); not one whose products may run at the same time
+        type(fc_bttb), intent(in), optional :: plans_from
         integer(i8) :: t0, t1, rate   ! 64-bit: a µs clock (default integers tick in ms)
         call system_clock(t0, rate)
         call top%destroy()
@@ -69,10 +71,13 @@ contains
             else
                 call ic_kernels_uncoupled(material, grid, grid%nx, grid%ny, kxx=kxx, kxy=kxy, kyy=kyy)
             end if
-            call build_from(top%a_xx, kxx)
-            call build_from(top%a_xy, kxy, top%a_xx)
-            call build_from(top%a_yy, kyy, top%a_xx)
-            call build_block_inverse(top%prec, kxx, kxy, kyy, grid%nx, grid%ny)
+            ! the blocks take the coefficients (no copies); the preconditioner reads them
+            ! there and transforms on the blocks' plans
+            call build_bttb_taking_kernel(top%a_xx, kxx, grid%nx, grid%ny, plans_from)
+            call build_bttb_taking_kernel(top%a_xy, kxy, grid%nx, grid%ny, top%a_xx)
+            call build_bttb_taking_kernel(top%a_yy, kyy, grid%nx, grid%ny, top%a_xx)
+            call build_block_inverse(top%prec, top%a_xx%kernel, top%a_xy%kernel, top%a_yy%kernel, grid%nx, grid%ny, &
+                plans_from=top%a_xx)
         end block
         if (material%k /= 0) then
             call build_block(top%a_xz, IC_XZ, top%a_xx)
@@ -110,13 +115,6 @@ contains
             character(len=msg_len) :: msg
             call ic_set_kernel(ic, block, grid, k, stat, msg)
         end subroutine ic_block
-        subroutine build_from(op, k, plans_from)
-            type(fc_bttb), intent(inout) :: op
-            real(dp), intent(in) :: k(-grid%nx:, -grid%ny:)
-            type(fc_bttb), intent(in), optional :: plans_from
-            call build_bttb_from_kernel(op, k(-(grid%nx - 1):grid%nx - 1, -(grid%ny - 1):grid%ny - 1), grid%nx, grid%ny, &
-                plans_from)
-        end subroutine build_from
     end subroutine build_tangential_operator
 
     subroutine tangential_destroy(self)
@@ -182,29 +180,18 @@ contains
         real(dp), intent(in) :: dx(:, :), dy(:, :)
         real(dp), intent(out) :: zx(:, :), zy(:, :)
         logical, intent(in) :: circulant
-        integer :: j
-        logical :: par
         if (circulant) then
             call prepare_block_inverse_circulant(top)
             call block_product(top%c_xx, top%c_xy, top%c_yy, top%cspec_x, top%cspec_y, top%cwork, top%cwork2, &
                                dx, dy, zx, zy)
             return
         end if
-        par = size(top%work) > omp_min_elements
         call top%a_xx%forward(dx, top%spec_x)
         call top%a_xx%forward(dy, top%spec_y)
-        !$omp parallel do default(shared) schedule(static) if(par)
-        do j = 1, size(top%work, 2)
-            top%work(:, j) = top%spec_x(:, j)*top%prec%mxx(:, j) + top%spec_y(:, j)*top%prec%mxy(:, j)
-        end do
-        !$omp end parallel do
-        call top%a_xx%backward(top%work, zx)
-        !$omp parallel do default(shared) schedule(static) if(par)
-        do j = 1, size(top%work, 2)
-            top%work(:, j) = top%spec_x(:, j)*top%prec%mxy(:, j) + top%spec_y(:, j)*top%prec%myy(:, j)
-        end do
-        !$omp end parallel do
-        call top%a_xx%backward(top%work, zy)
+        call block_symbol_product_in_place(top%spec_x, top%spec_y, top%prec%mxx, top%prec%mxy, top%prec%myy, &
+            conjugate=.false.)
+        call top%a_xx%backward(top%spec_x, zx)
+        call top%a_xx%backward(top%spec_y, zy)
     end subroutine apply_block_inverse
 
     !> Make the Strang circulants of the block inverse's blocks (from their symbols on the

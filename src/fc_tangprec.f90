@@ -15,6 +15,7 @@ module fc_tangprec
     use fc_kinds, only: dp
     use fc_fftw
     use fc_threads, only: omp_min_elements
+    use fc_toeplitz, only: fc_bttb, even_circulant_symbol
     implicit none
     private
 
@@ -39,48 +40,42 @@ contains
 
     !> Build the preconditioner from the blocks' coefficients for offsets −n…n (see module
     !! header): k_xx, k_xy, k_yy(−nx:nx, −ny:ny) as [[ic_kernel_extended]] returns them.
-    subroutine build_block_inverse(prec, kxx, kxy, kyy, nx, ny)
+    !! With `plans_from` (an operator of the grid) the three symbols are transformed on its
+    !! plans and buffers when they are made for the 2nx×2ny circulant.
+    subroutine build_block_inverse(prec, kxx, kxy, kyy, nx, ny, plans_from)
         type(fc_block_inverse), intent(inout) :: prec
         integer, intent(in) :: nx, ny
         real(dp), intent(in) :: kxx(-nx:, -ny:), kxy(-nx:, -ny:), kyy(-nx:, -ny:)
-        real(dp), allocatable :: rbuf(:, :)
-        complex(dp), allocatable :: sxx(:, :), sxy(:, :), syy(:, :)
+        type(fc_bttb), intent(in), optional :: plans_from
         real(dp) :: a, b, c, det, tr, disc, l1, l2, lmax, floor_, scale
         integer :: mx, my, i, k
-        type(c_ptr) :: plan
         mx = 2*nx; if (nx == 1) mx = 1
         my = 2*ny; if (ny == 1) my = 1
-        allocate (rbuf(mx, my), sxx(mx/2 + 1, my), sxy(mx/2 + 1, my), syy(mx/2 + 1, my))
-        !$omp critical (fc_fftw_planner)
-        plan = fftw_plan_dft_r2c_2d(int(my, c_int), int(mx, c_int), rbuf, sxx, FFTW_ESTIMATE)
-        !$omp end critical (fc_fftw_planner)
-        call fill(kxx, .false.); call fftw_execute_dft_r2c(plan, rbuf, sxx)
-        call fill(kxy, .true.); call fftw_execute_dft_r2c(plan, rbuf, sxy)
-        call fill(kyy, .false.); call fftw_execute_dft_r2c(plan, rbuf, syy)
-        !$omp critical (fc_fftw_planner)
-        call fftw_destroy_plan(plan)
-        !$omp end critical (fc_fftw_planner)
+        prec%nx = nx; prec%ny = ny
+        if (allocated(prec%mxx)) deallocate (prec%mxx, prec%mxy, prec%myy)
+        allocate (prec%mxx(mx/2 + 1, my), prec%mxy(mx/2 + 1, my), prec%myy(mx/2 + 1, my))
+        ! the blocks' symbols (real: even circulants), inverted in place below
+        call even_circulant_symbol(kxx, nx, ny, .false., prec%mxx, plans_from)
+        call even_circulant_symbol(kxy, nx, ny, .true., prec%mxy, plans_from)
+        call even_circulant_symbol(kyy, nx, ny, .false., prec%myy, plans_from)
         ! largest eigenvalue over all frequencies, for the floor
         lmax = 0
         !$omp parallel do default(shared) private(i, a, b, c) reduction(max:lmax) schedule(static) &
-        !$omp if(size(sxx) > omp_min_elements)
+        !$omp if(size(prec%mxx) > omp_min_elements)
         do k = 1, my
             do i = 1, mx/2 + 1
-                a = real(sxx(i, k), dp); b = real(sxy(i, k), dp); c = real(syy(i, k), dp)
+                a = prec%mxx(i, k); b = prec%mxy(i, k); c = prec%myy(i, k)
                 lmax = max(lmax, 0.5_dp*(a + c) + sqrt(0.25_dp*(a - c)**2 + b**2))
             end do
         end do
         !$omp end parallel do
         floor_ = 1.0e-8_dp*lmax
         scale = 1/real(mx*my, dp)
-        prec%nx = nx; prec%ny = ny
-        if (allocated(prec%mxx)) deallocate (prec%mxx, prec%mxy, prec%myy)
-        allocate (prec%mxx(mx/2 + 1, my), prec%mxy(mx/2 + 1, my), prec%myy(mx/2 + 1, my))
         !$omp parallel do default(shared) private(i, a, b, c, tr, det, disc, l1, l2) schedule(static) &
-        !$omp if(size(sxx) > omp_min_elements)
+        !$omp if(size(prec%mxx) > omp_min_elements)
         do k = 1, my
             do i = 1, mx/2 + 1
-                a = real(sxx(i, k), dp); b = real(sxy(i, k), dp); c = real(syy(i, k), dp)
+                a = prec%mxx(i, k); b = prec%mxy(i, k); c = prec%myy(i, k)
                 tr = a + c; det = a*c - b*b
                 disc = sqrt(0.25_dp*(a - c)**2 + b**2)
                 l1 = 0.5_dp*tr + disc; l2 = 0.5_dp*tr - disc
@@ -133,25 +128,6 @@ contains
             deallocate (sym)
             allocate (sym, source=real(cm, dp)/real(nxm*nym, dp))
         end subroutine resize_symbol
-
-        !> rbuf ← circulant of kernel k(−n…n) on the doubled grid; the wrap-around slot
-        !! (offset ±n) holds k(n) for an even kernel, 0 for an odd one.
-        subroutine fill(kern, odd)
-            real(dp), intent(in) :: kern(-nx:, -ny:)
-            logical, intent(in) :: odd
-            integer :: ii, jj, di, dj
-            do jj = 0, my - 1
-                dj = jj; if (jj > my/2) dj = jj - my
-                do ii = 0, mx - 1
-                    di = ii; if (ii > mx/2) di = ii - mx
-                    if (odd .and. ((mx > 1 .and. ii == mx/2) .or. (my > 1 .and. jj == my/2))) then
-                        rbuf(ii + 1, jj + 1) = 0
-                    else
-                        rbuf(ii + 1, jj + 1) = kern(di, dj)
-                    end if
-                end do
-            end do
-        end subroutine fill
     end subroutine build_block_inverse
 
     !> Inverse of the symmetric 2×2 matrix [a b; b c] with its eigenvalues replaced by

@@ -73,8 +73,9 @@ module fc_toeplitz
         integer :: nx = 0, ny = 0          !! grid size
         integer :: mx = 0, my = 0          !! circulant (embedding) size
         logical :: periodic = .false.      !! periodic convolution on the grid itself
-        !> coefficients A(dix, diy), dix ∈ [−(nx−1), nx−1] [mm/(N/mm²)]; not kept by the
-        !! preconditioners the solvers build with keep_kernel = .false.
+        !> coefficients A(dix, diy), dix ∈ [−(nx−1), nx−1] at least [mm/(N/mm²)] (an operator
+        !! built by [[build_bttb_taking_kernel]] keeps the caller's array, which may reach
+        !! ±nx); not kept by the preconditioners the solvers build with keep_kernel = .false.
         real(dp), allocatable :: kernel(:, :)
         integer :: parity = SYMBOL_GENERAL       !! SYMBOL_EVEN, SYMBOL_ODD or SYMBOL_GENERAL
         real(dp), allocatable :: rsymbol(:, :)   !! even: symbol; odd: its imaginary part (scaled by 1/(mx·my))
@@ -97,9 +98,10 @@ module fc_toeplitz
         final :: bttb_final
     end type fc_bttb
 
-    public :: build_bttb_from_kernel, build_bttb_periodic, inverse_toeplitz_from_kernel, fft_symbol_of_kernel
+    public :: build_bttb_from_kernel, build_bttb_taking_kernel, build_bttb_periodic, inverse_toeplitz_from_kernel
+    public :: fft_symbol_of_kernel, even_circulant_symbol
     public :: strang_circulant, strang_circulant_of_symbol
-    public :: copy_bttb, spectrum_pair_product, block_product
+    public :: copy_bttb, spectrum_pair_product, block_symbol_product_in_place, block_product
 
 contains
 
@@ -120,6 +122,23 @@ contains
         call load_kernel(op, kernel)
         call finish_symbol(op)
     end subroutine build_bttb_from_kernel
+
+    !> As [[build_bttb_from_kernel]], taking the caller's coefficients instead of copying
+    !! them: `kernel` (offsets −(nx−1)…nx−1 at least, with its own bounds, e.g. the
+    !! −nx…nx of [[ic_kernels_uncoupled]] that the preconditioners need too) becomes the
+    !! operator's `kernel` and is deallocated on return.
+    subroutine build_bttb_taking_kernel(op, kernel, nx, ny, plans_from)
+        type(fc_bttb), intent(inout) :: op
+        integer, intent(in) :: nx, ny
+        real(dp), allocatable, intent(inout) :: kernel(:, :)
+        type(fc_bttb), intent(in), optional :: plans_from
+        if (any(lbound(kernel) > [-(nx - 1), -(ny - 1)]) .or. any(ubound(kernel) < [nx - 1, ny - 1])) &
+            error stop 'build_bttb_taking_kernel: the coefficients do not cover the offsets of the grid'
+        call setup_plans(op, nx, ny, circulant_size(nx), circulant_size(ny), plans_from)
+        call place_kernel(op, kernel)
+        call move_alloc(kernel, op%kernel)
+        call finish_symbol(op)
+    end subroutine build_bttb_taking_kernel
 
     !> Build a periodic operator on the grid itself from the wrapped coefficients
     !! kernel(0:nx−1, 0:ny−1) (offsets taken modulo the grid).  With `grid` = [gx, gy] smaller
@@ -439,8 +458,16 @@ contains
     subroutine load_kernel(op, kernel)
         type(fc_bttb), intent(inout) :: op
         real(dp), intent(in) :: kernel(-(op%nx - 1):, -(op%ny - 1):)
-        integer :: j, jw
         allocate (op%kernel(-(op%nx - 1):op%nx - 1, -(op%ny - 1):op%ny - 1), source=kernel)
+        call place_kernel(op, op%kernel)
+    end subroutine load_kernel
+
+    !> Place the coefficients for offsets −(n−1)…n−1 of `kernel` (indexed by offset; its
+    !! bounds may be wider) in the circulant, the plan set's real buffer.
+    subroutine place_kernel(op, kernel)
+        type(fc_bttb), intent(inout) :: op
+        real(dp), allocatable, intent(in) :: kernel(:, :)   ! allocatable: keeps the bounds
+        integer :: j, jw
         op%fft%rbuf = 0
         associate (nx => op%nx, mx => op%mx, rbuf => op%fft%rbuf)
             do j = -(op%ny - 1), op%ny - 1
@@ -449,7 +476,7 @@ contains
                 rbuf(mx - nx + 2:mx, jw) = kernel(-(nx - 1):-1, j)
             end do
         end associate
-    end subroutine load_kernel
+    end subroutine place_kernel
 
     !> Transform the circulant in the real buffer into the scaled symbol, stored as real
     !! numbers when the circulant is even or odd.
@@ -530,6 +557,59 @@ contains
             allocate (symbol, source=op%csymbol*scale)
         end select
     end subroutine fft_symbol_of_kernel
+
+    !> Symbol (unscaled transform) of the 2nx×2ny circulant (nx = 1: 1 in x; likewise in y)
+    !! of the coefficients kext(−nx:nx, −ny:ny) of a kernel even in x and y, or odd in both
+    !! (`odd_odd`): the circulant is even and its symbol real.  The wrap-around slot
+    !! (offset ±n) holds the coefficient at offset n (even) or 0 (odd in both), which keeps
+    !! the circulant symmetric: the construction of TangCG's block preconditioner
+    !! (fc_tangprec).  The transforms run on the plans and buffers of `plans_from` when they
+    !! are made for that circulant (the usual case, fc_fftw's circulant_size = 2n), else on
+    !! a set of their own.
+    subroutine even_circulant_symbol(kext, nx, ny, odd_odd, symbol, plans_from)
+        integer, intent(in) :: nx, ny
+        real(dp), intent(in) :: kext(-nx:, -ny:)
+        logical, intent(in) :: odd_odd
+        real(dp), intent(out) :: symbol(:, :)   !! (mx/2 + 1, my)
+        type(fc_bttb), intent(in), optional :: plans_from
+        type(fc_fft_plans), pointer :: w
+        logical :: own
+        integer :: mx, my, i, j, di, dj
+        mx = 2*nx; if (nx == 1) mx = 1
+        my = 2*ny; if (ny == 1) my = 1
+        own = .true.
+        if (present(plans_from)) then
+            if (associated(plans_from%fft)) own = .not. (plans_from%fft%mx == mx .and. plans_from%fft%my == my &
+                .and. plans_from%fft%nx == nx .and. plans_from%fft%ny == ny)
+        end if
+        if (own) then
+            allocate (w)
+            !$omp critical (fc_fftw_planner)
+            call plans_create(w, nx, ny, mx, my)
+            !$omp end critical (fc_fftw_planner)
+        else
+            w => plans_from%fft
+        end if
+        do j = 0, my - 1
+            dj = j; if (j > my/2) dj = j - my
+            do i = 0, mx - 1
+                di = i; if (i > mx/2) di = i - mx
+                if (odd_odd .and. ((mx > 1 .and. i == mx/2) .or. (my > 1 .and. j == my/2))) then
+                    w%rbuf(i + 1, j + 1) = 0
+                else
+                    w%rbuf(i + 1, j + 1) = kext(di, dj)
+                end if
+            end do
+        end do
+        call full_forward(w)
+        symbol = real(w%cbuf, dp)
+        if (own) then
+            !$omp critical (fc_fftw_planner)
+            call plans_free(w)
+            !$omp end critical (fc_fftw_planner)
+            deallocate (w)
+        end if
+    end subroutine even_circulant_symbol
 
     ! ---- copies and lifetime ----------------------------------------------------------------
 
@@ -817,6 +897,41 @@ contains
         end if
     end subroutine spectrum_pair_product
 
+    !> (sx, sy) ← [sxx sxy; sxy syy]·(sx, sy) frequency by frequency for a symmetric 2×2
+    !! block of real symbols; with `conjugate`, the conjugates (for [[bttb_backward]]'s
+    !! `conjugated`).  The two [[spectrum_pair_product]]s of a block product in one pass
+    !! and without a third spectrum (the same operations, the same numbers).
+    subroutine block_symbol_product_in_place(sx, sy, sxx, sxy, syy, conjugate)
+        complex(dp), intent(inout) :: sx(:, :), sy(:, :)
+        real(dp), intent(in) :: sxx(:, :), sxy(:, :), syy(:, :)
+        logical, intent(in) :: conjugate
+        complex(dp) :: a, b
+        integer :: i, j
+        logical :: par
+        par = size(sx) > omp_min_elements
+        if (conjugate) then
+            !$omp parallel do default(shared) private(i, a, b) schedule(static) if(par)
+            do j = 1, size(sx, 2)
+                do i = 1, size(sx, 1)
+                    a = conjg(sx(i, j)); b = conjg(sy(i, j))
+                    sx(i, j) = a*sxx(i, j) + b*sxy(i, j)
+                    sy(i, j) = a*sxy(i, j) + b*syy(i, j)
+                end do
+            end do
+            !$omp end parallel do
+        else
+            !$omp parallel do default(shared) private(i, a, b) schedule(static) if(par)
+            do j = 1, size(sx, 2)
+                do i = 1, size(sx, 1)
+                    a = sx(i, j); b = sy(i, j)
+                    sx(i, j) = a*sxx(i, j) + b*sxy(i, j)
+                    sy(i, j) = a*sxy(i, j) + b*syy(i, j)
+                end do
+            end do
+            !$omp end parallel do
+        end if
+    end subroutine block_symbol_product_in_place
+
     !> (zx, zy) = [bxx bxy; bxy byy]·(dx, dy) for three blocks on bxx's plan set: two forward
     !! transforms into `sx`, `sy`, two symbol pairs into `w`, `w2`, two inverse transforms.
     !! With two or more OpenMP threads (outside a parallel region) and a grid of at least
@@ -824,7 +939,9 @@ contains
     !! thread with single-threaded plans (the plan set's lanes): two transforms in parallel
     !! scale better than one threaded transform after the other, and on grids below
     !! [[fftw_thread_min_elements]], whose transforms are not threaded at all, they are the
-    !! only parallelism of the product (doc/parallel.md §5.3).  `w2` is used only there.
+    !! only parallelism of the product (doc/parallel.md §5.3).  `w2` is used only there,
+    !! `w` only there or when a symbol is not real (else the symbols multiply the spectra
+    !! in place, [[block_symbol_product_in_place]]).
     subroutine block_product(bxx, bxy, byy, sx, sy, w, w2, dx, dy, zx, zy)
         type(fc_bttb), intent(inout) :: bxx
         type(fc_bttb), intent(in) :: bxy, byy
@@ -853,6 +970,12 @@ contains
             end if
             !$omp end parallel
             bxx%nproducts = bxx%nproducts + 2
+        else if (bxx%parity == SYMBOL_EVEN .and. bxy%parity == SYMBOL_EVEN .and. byy%parity == SYMBOL_EVEN) then
+            call bxx%forward(dx, sx)
+            call bxx%forward(dy, sy)
+            call block_symbol_product_in_place(sx, sy, bxx%rsymbol, bxy%rsymbol, byy%rsymbol, conjugate=.true.)
+            call bxx%backward(sx, zx, conjugated=.true.)
+            call bxx%backward(sy, zy, conjugated=.true.)
         else
             call bxx%forward(dx, sx)
             call bxx%forward(dy, sy)

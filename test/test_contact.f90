@@ -3,6 +3,7 @@
 !! transient shift steps, and the facade's solve and destroy.
 module test_contact
     use fastcontact
+    use fc_threads, only: set_thread_count, fc_thread_count, fc_openmp_enabled
     use fc_testing
     implicit none
     private
@@ -14,6 +15,7 @@ contains
         type(unittest_type), allocatable, intent(out) :: tests(:)
         tests = [ &
             new_unittest('operators_match_spacing_and_material', test_matches), &
+            new_unittest('normal_tangential_one_plan_set', test_one_plan_set), &
             new_unittest('facade_equals_operator_api_and_reuses', test_facade), &
             new_unittest('normal_stage_failed_no_tangential_stage', test_not_run), &
             new_unittest('transient_shift_zero_increment_keeps_state', test_transient), &
@@ -64,6 +66,52 @@ contains
         call ops%destroy()
         call check(error, .not. ops%normal%matches(grid, mat), 'destroyed operator matches nothing')
     end subroutine test_matches
+
+    !> Built one after the other (one thread), the normal and the tangential operators of a
+    !! grid share one FFT plan set and its buffers; their products, interleaved, equal
+    !! those of operators built on their own.  Built side by side (two threads), each has
+    !! its own set.
+    subroutine test_one_plan_set(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_material) :: mat
+        type(fc_grid) :: grid
+        type(fc_contact_operators) :: ops, ops2
+        type(fc_normal_operator) :: nop
+        type(fc_tangential_operator) :: top
+        real(dp), allocatable :: x(:, :), y(:, :), ux(:, :), uy(:, :), uz(:, :), vx(:, :), vy(:, :), vz(:, :)
+        integer :: n0
+        call hertz_scene(mat, grid, 24)
+        allocate (x(24, 24), y(24, 24), ux(24, 24), uy(24, 24), uz(24, 24), vx(24, 24), vy(24, 24), vz(24, 24))
+        call random_number(x); call random_number(y)
+        n0 = fc_thread_count()
+        call set_thread_count(1)
+        call ensure_operators(ops, grid, mat, normal=.true., tangential=.true.)
+        call check(error, ops%tangential%a_xx%shares_plans(ops%normal%a_zz), 'one plan set for both operators')
+        call check(error, ops%normal%a_zz%fft%refs == 5, 'used by A^zz, its preconditioner and three tangential blocks')
+        call build_normal_operator(nop, mat, grid)
+        call build_tangential_operator(top, mat, grid)
+        call ops%tangential%apply(x, y, ux, uy)
+        call ops%normal%a_zz%apply(x, uz)
+        call top%apply(x, y, vx, vy)
+        call nop%a_zz%apply(x, vz)
+        call check(error, maxval(abs(ux - vx)) + maxval(abs(uy - vy)) <= 1e-14_dp*maxval(abs(vx)), 'tangential product')
+        call check(error, maxval(abs(uz - vz)) <= 1e-14_dp*maxval(abs(vz)), 'normal product after it')
+        call ops%tangential%apply(x, y, ux, uy)
+        call check(error, maxval(abs(ux - vx)) + maxval(abs(uy - vy)) <= 1e-14_dp*maxval(abs(vx)), &
+            'tangential product after a normal one')
+        call ops%normal%destroy()
+        call ops%tangential%apply(x, y, ux, uy)
+        call check(error, maxval(abs(ux - vx)) + maxval(abs(uy - vy)) <= 1e-14_dp*maxval(abs(vx)), &
+            'tangential product with the normal operator gone')
+        if (fc_openmp_enabled()) then
+            call set_thread_count(2)
+            call ensure_operators(ops2, grid, mat, normal=.true., tangential=.true.)
+            call check(error, .not. ops2%tangential%a_xx%shares_plans(ops2%normal%a_zz), 'side by side: own sets')
+            call ops2%destroy()
+        end if
+        call set_thread_count(n0)
+        call ops%destroy(); call nop%destroy(); call top%destroy()
+    end subroutine test_one_plan_set
 
     !> The facade solves Hertz Test I like the operator-level API (same path: identical
     !! pressure), reuses its operators on a second solve (warm-started: same solution to the

@@ -25,6 +25,7 @@ contains
             new_unittest('lapack_eigenvalues', test_eigenvalues), &
             new_unittest('copy_survives_original', test_copy_survives_original), &
             new_unittest('blocks_share_one_plan_set', test_shared_plans), &
+            new_unittest('operator_takes_coefficients', test_taking_kernel), &
             new_unittest('real_symbols_even_odd', test_real_symbols), &
             new_unittest('kernel_exact_reflections', test_kernel_reflections), &
             new_unittest('strang_circulant_wraps_kernel', test_strang_circulant), &
@@ -141,6 +142,8 @@ contains
         call tcopy%apply(x, y, ux, uy)
         call tcopy%a_xx%apply_direct(x, yd); call tcopy%a_xy%apply_direct(y, t)
         call check(error, rel_diff(pack(ux, .true.), pack(yd + t, .true.)), 0.0_dp, 'copied tangential ux', abs=1e-12_dp)
+        call tcopy%a_xy%apply_direct(x, yd); call tcopy%a_yy%apply_direct(y, t)
+        call check(error, rel_diff(pack(uy, .true.), pack(yd + t, .true.)), 0.0_dp, 'copied tangential uy', abs=1e-12_dp)
         call coupling_displacements(tcopy, x, x, y, ux, uy, uz)
         call tcopy%a_xz%apply_direct(x, yd)
         call check(error, rel_diff(pack(ux, .true.), pack(yd, .true.)), 0.0_dp, 'copied coupling A^xz', abs=1e-12_dp)
@@ -174,6 +177,39 @@ contains
         call check(error, top%a_xy%fft%refs == 6, 'set survives its first owner')
         call nop%destroy(); call top%destroy()
     end subroutine test_shared_plans
+
+    !> An operator built by taking the caller's coefficients for offsets −n…n (no copy)
+    !! equals one built from a copy of the offsets −(n−1)…n−1: the same symbol bit for bit,
+    !! the same coefficients, products equal to the direct sums; the caller's array is gone.
+    subroutine test_taking_kernel(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_material) :: mat
+        type(fc_grid) :: grid
+        type(fc_bttb) :: copied, taken
+        real(dp), allocatable :: kext(:, :), x(:, :), yf(:, :), yd(:, :)
+        integer :: stat, b, nx, ny
+        character(len=200) :: msg, label
+        call dissimilar(mat)
+        nx = 9; ny = 7
+        call make_grid(grid, nx, ny, -1.0_dp, 1.0_dp, -1.0_dp, 0.5_dp, stat, msg)
+        allocate (x(nx, ny), yf(nx, ny), yd(nx, ny))
+        call random_number(x)
+        do b = IC_ZZ, IC_XZ
+            write (label, '(a,i0)') 'block ', b
+            call ic_kernel_extended(b, mat, grid, nx, ny, kext)
+            call build_bttb_from_kernel(copied, kext(-(nx - 1):nx - 1, -(ny - 1):ny - 1), nx, ny)
+            call build_bttb_taking_kernel(taken, kext, nx, ny, plans_from=copied)
+            call check(error, .not. allocated(kext), trim(label)//': the caller''s array is taken')
+            call check(error, all(lbound(taken%kernel) == [-nx, -ny]), trim(label)//': kept with its own bounds')
+            call check(error, all(taken%kernel(-(nx - 1):nx - 1, -(ny - 1):ny - 1) == copied%kernel), &
+                trim(label)//': the same coefficients')
+            call check(error, taken%parity == copied%parity .and. all(taken%rsymbol == copied%rsymbol), &
+                trim(label)//': the same symbol')
+            call taken%apply(x, yf); call taken%apply_direct(x, yd)
+            call check(error, maxval(abs(yf - yd)) <= 1e-12_dp*maxval(abs(yd)), trim(label)//': product = direct sums')
+            call taken%destroy(); call copied%destroy()
+        end do
+    end subroutine test_taking_kernel
 
     !> Even blocks store a real symbol, odd (coupling) blocks their imaginary part; the
     !! products still match the direct sums (checked for all blocks in suite influence).
@@ -384,25 +420,38 @@ contains
             'coefficients = the 34 x 38 circulant inverse''s (direct sums)')
     end subroutine test_inverse_doubled_grid
 
-    !> TangCG's block preconditioner on 17×19, applied on the products' 36×40 circulant, is
-    !! the block Toeplitz operator of the central coefficients of the inverse of the 34×38
-    !! block circulant (the definition in fc_tangprec): equal to that operator computed here
-    !! by direct Fourier sums, the 2×2 inversion per frequency and a direct product.
+    !> TangCG's block preconditioner is the block Toeplitz operator of the central
+    !! coefficients of the inverse of the 2nx×2ny block circulant (the definition in
+    !! fc_tangprec): equal to that operator computed here by direct Fourier sums, the 2×2
+    !! inversion per frequency and a direct product.  On 16×12 its symbols are made on the
+    !! blocks' own plans (products on the 32×24 circulant); on 17×19 the products run on a
+    !! 36×40 circulant, and the 34×38 symbols are made on plans of their own and moved there.
     subroutine test_block_inverse_doubled_grid(error)
         type(error_type), allocatable, intent(out) :: error
+        call block_inverse_case(error, 16, 12, shared=.true.)
+        if (allocated(error)) return
+        call block_inverse_case(error, 17, 19, shared=.false.)
+    end subroutine test_block_inverse_doubled_grid
+
+    subroutine block_inverse_case(error, nx, ny, shared)
+        type(error_type), allocatable, intent(inout) :: error
+        integer, intent(in) :: nx, ny
+        logical, intent(in) :: shared   !! whether the products' circulant is the doubled grid
         type(fc_material) :: mat
         type(fc_grid) :: grid
         type(fc_tangential_operator) :: top
         real(dp), allocatable :: kxx(:, :), kxy(:, :), kyy(:, :), c(:, :), a(:, :), b(:, :), d(:, :), det(:, :)
         real(dp), allocatable :: mxx(:, :), mxy(:, :), myy(:, :), dx(:, :), dy(:, :), zx(:, :), zy(:, :), rx(:, :), ry(:, :)
         real(dp) :: lmax, lmin
-        integer :: stat, nx, ny, i, j, k, l
-        character(len=200) :: msg
+        integer :: stat, i, j, k, l
+        character(len=200) :: msg, label
         mat%g1 = 200; mat%g2 = 200; mat%nu1 = 0.3_dp; mat%nu2 = 0.3_dp
         call combine_material(mat, stat, msg)
-        nx = 17; ny = 19
+        write (label, '(i0,a,i0)') nx, ' x ', ny
         call make_grid(grid, nx, ny, -1.0_dp, 1.0_dp, -1.0_dp, 0.5_dp, stat, msg)
         call build_tangential_operator(top, mat, grid)
+        call check(error, (top%a_xx%mx == 2*nx .and. top%a_xx%my == 2*ny) .eqv. shared, &
+            trim(label)//': products on the doubled grid or not, as intended')
         call ic_kernel_extended(IC_XX, mat, grid, nx, ny, kxx)
         call ic_kernel_extended(IC_XY, mat, grid, nx, ny, kxy)
         call ic_kernel_extended(IC_YY, mat, grid, nx, ny, kyy)
@@ -412,7 +461,7 @@ contains
         det = a*d - b*b
         lmax = maxval(0.5_dp*(a + d) + sqrt(0.25_dp*(a - d)**2 + b**2))
         lmin = minval(0.5_dp*(a + d) - sqrt(0.25_dp*(a - d)**2 + b**2))
-        call check(error, lmin > 1.0e-8_dp*lmax, 'no symbol eigenvalue floored (plain 2x2 inverses)')
+        call check(error, lmin > 1.0e-8_dp*lmax, trim(label)//': no symbol eigenvalue floored (plain 2x2 inverses)')
         if (allocated(error)) return
         mxx = central_coefficients(d/det, nx, ny)
         mxy = central_coefficients(-b/det, nx, ny)
@@ -437,8 +486,8 @@ contains
         end do
         call apply_block_inverse(top, dx, dy, zx, zy, circulant=.false.)
         call check(error, maxval(abs(zx - rx)) + maxval(abs(zy - ry)) <= 1e-12_dp*(maxval(abs(rx)) + maxval(abs(ry))), &
-            'M (dx, dy) = the 34 x 38 block circulant inverse''s Toeplitz part (direct sums)')
-    end subroutine test_block_inverse_doubled_grid
+            trim(label)//': M (dx, dy) = the doubled block circulant inverse''s Toeplitz part (direct sums)')
+    end subroutine block_inverse_case
 
     !> c(0:2nx−1, 0:2ny−1) ← the circulant of k(−n…n) on the doubled grid: the slot of offset
     !! ±n holds k(n) (even kernels) or 0 (`odd`, odd in x and in y).
