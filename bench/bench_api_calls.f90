@@ -45,7 +45,7 @@ program bench_api_calls
             iarg = iarg + 1; call get_command_argument(iarg, arg)
             read (arg, *, iostat=ios) ncalls
             if (ios /= 0 .or. ncalls < 10 .or. ncalls > 1000000) then
-                write (*, '(a)') 'fastcontact-bench-api-calls: --calls needs an integer in [10, 1000000]'; error stop 2
+                write (*, '(a)') 'fastcontact-bench-api-calls: --calls needs an integer in [10, 1000000]'; stop 2
             end if
         case ('--out')
             iarg = iarg + 1; call get_command_argument(iarg, out_file)
@@ -56,15 +56,15 @@ program bench_api_calls
             iarg = iarg + 1; call get_command_argument(iarg, arg)
             read (arg, *, iostat=ios) only_grid
             if (ios /= 0 .or. only_grid < 1 .or. only_grid > 2) then
-                write (*, '(a)') 'fastcontact-bench-api-calls: --single G E needs G = 1 or 2'; error stop 2
+                write (*, '(a)') 'fastcontact-bench-api-calls: --single G E needs G = 1 or 2'; stop 2
             end if
             iarg = iarg + 1; call get_command_argument(iarg, arg)
             read (arg, *, iostat=ios) only_effort
             if (ios /= 0 .or. only_effort < 0 .or. only_effort > 1) then
-                write (*, '(a)') 'fastcontact-bench-api-calls: --single G E needs E = 0 or 1'; error stop 2
+                write (*, '(a)') 'fastcontact-bench-api-calls: --single G E needs E = 0 or 1'; stop 2
             end if
         case default
-            write (*, '(a)') 'usage: fastcontact-bench-api-calls [--calls N] [--overhead-only] [--out FILE]'; error stop 2
+            write (*, '(a)') 'usage: fastcontact-bench-api-calls [--calls N] [--overhead-only] [--out FILE]'; stop 2
         end select
         iarg = iarg + 1
     end do
@@ -72,7 +72,7 @@ program bench_api_calls
 
     open (newunit=unit, file=trim(out_file), status='replace', action='write', iostat=ios)
     if (ios /= 0) then
-        write (*, '(a)') 'fastcontact-bench-api-calls: cannot write '//trim(out_file); error stop 2
+        write (*, '(a)') 'fastcontact-bench-api-calls: cannot write '//trim(out_file); stop 2
     end if
     write (unit, '(a)') 'part,grid,effort,calls,first_call_s,per_call_ms,normal_it_per_call,tangential_it_per_call,'// &
         'break_even_calls,call_us,solve_us,overhead_us,overhead_pct'

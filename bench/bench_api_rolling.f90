@@ -44,12 +44,15 @@ program fastcontact_bench_api_rolling
         case default
             write (*, '(a)') 'usage: fastcontact-bench-api-rolling [--nx N --ny N] [--steps N] [--amp A] [--fn-vary] '// &
                 '[--mode both|predicted] [--out FILE]'
-            error stop 2
+            stop 2
         end select
         i = i + 1
     end do
     if (nx < 2 .or. nx > 4096 .or. ny < 2 .or. ny > 4096 .or. nsteps < 3 .or. nsteps > 100000 .or. &
-        .not. (abs(amp) <= 0.5_dp)) error stop 'bad arguments: 2 <= nx, ny <= 4096, 3 <= steps <= 1e5, |amp| <= 0.5'
+        .not. (abs(amp) <= 0.5_dp)) then
+        write (*, '(a)') 'fastcontact-bench-api-rolling: bad arguments: 2 <= nx, ny <= 4096, 3 <= steps <= 1e5, |amp| <= 0.5'
+        stop 2
+    end if
     call open_case(ha)
     if (both) call open_case(hb)
     ms = 0; kry = 0; nor = 0

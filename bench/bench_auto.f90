@@ -10,7 +10,7 @@
 !! `--replay-only` runs only the replay.
 !! Timings are wall-clock seconds of one run (set-up included); repeat for variance.
 program bench_auto
-    use, intrinsic :: iso_fortran_env, only: int64
+    use, intrinsic :: iso_fortran_env, only: int64, error_unit
     use fc_kinds, only: dp, msg_len
     use fc_namelist, only: fc_case_chunk, read_case_file
     use fc_input, only: fc_case_input, apply_case
@@ -52,10 +52,14 @@ program bench_auto
     i = 1
     do while (i <= command_argument_count())
         call get_command_argument(i, arg)
-        if (arg == '--csv') then
+        if (arg == '--csv' .and. i < command_argument_count()) then
             call get_command_argument(i + 1, csv_path); i = i + 1
         else if (arg == '--replay-only') then
             replay_only = .true.
+        else
+            write (error_unit, '(a)') 'fastcontact-bench-auto: unknown argument "'//trim(arg)//'"'
+            write (error_unit, '(a)') 'usage: fastcontact-bench-auto [--csv FILE] [--replay-only]'
+            stop 2
         end if
         i = i + 1
     end do

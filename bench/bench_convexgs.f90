@@ -32,7 +32,7 @@ program fastcontact_bench_convexgs
     real(dp) :: omega
     if (command_argument_count() /= 5) then
         write (*, '(a)') 'usage: fastcontact-bench-convexgs NX NY CASE OMEGA ALTERNATE(0/1)'
-        error stop 1
+        stop 2
     end if
     call get_command_argument(1, arg); read (arg, *) nx
     call get_command_argument(2, arg); read (arg, *) ny
@@ -41,7 +41,7 @@ program fastcontact_bench_convexgs
     call get_command_argument(5, arg); read (arg, *) isym
     if (c < 1 .or. c > 7 .or. nx < 2 .or. ny < 2 .or. nx > 1024 .or. ny > 1024 .or. .not. (omega > 0 .and. omega < 2)) then
         write (*, '(a)') 'CASE in 1..7, NX and NY in 2..1024, 0 < OMEGA < 2'
-        error stop 1
+        stop 2
     end if
     mat%g1 = 200; mat%g2 = 200; mat%nu1 = 0.42_dp; mat%nu2 = 0.42_dp
     call combine_material(mat, stat, msg)

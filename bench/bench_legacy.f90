@@ -10,6 +10,7 @@
 !!
 !! Writes a Markdown table to standard output (doc/legacy_api.md quotes it).
 program bench_legacy
+    use, intrinsic :: iso_fortran_env, only: error_unit
     use fc_kinds, only: dp
     use fc_legacy
     implicit none
@@ -22,13 +23,24 @@ program bench_legacy
     real(dp) :: t, fac, fn, fx, fy, mz
     integer(8) :: c0, c1, rate
     ncalls = 1000
-    if (command_argument_count() >= 2) then
-        call get_command_argument(1, arg)
-        if (arg == '--calls') then
-            call get_command_argument(2, arg)
-            read (arg, *) ncalls
+    k = 1
+    do while (k <= command_argument_count())
+        call get_command_argument(k, arg)
+        if (arg == '--calls' .and. k < command_argument_count()) then
+            k = k + 1
+            call get_command_argument(k, arg)
+            read (arg, *, iostat=ierr) ncalls
+            if (ierr /= 0 .or. ncalls < 1 .or. ncalls > 1000000) then
+                write (error_unit, '(a)') 'fastcontact-bench-legacy: --calls needs an integer in [1, 1000000]'
+                stop 2
+            end if
+        else
+            write (error_unit, '(a)') 'fastcontact-bench-legacy: unknown argument "'//trim(arg)//'"'
+            write (error_unit, '(a)') 'usage: fastcontact-bench-legacy [--calls N]'
+            stop 2
         end if
-    end if
+        k = k + 1
+    end do
     write (*, '(a,i0,a)') '| grid | sequence | mode | ms/call | normal it/call | tangential it/call | builds |  (', &
         ncalls, ' calls)'
     write (*, '(a)') '|---|---|---|---:|---:|---:|---:|'

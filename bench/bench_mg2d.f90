@@ -38,7 +38,7 @@ program fastcontact_bench_mg2d
         case default
             write (*, '(a)') 'usage: fastcontact-bench-mg2d [--mp M] [--k K] [--cycle 11|10|01] [--one-grid] [--repeat R] '// &
                 '[--threads N]'
-            error stop 2
+            stop 2
         end select
         iarg = iarg + 1
     end do
@@ -48,7 +48,7 @@ program fastcontact_bench_mg2d
     case (1); set%nu1 = 0; set%nu2 = 1
     case default
         write (*, '(a,i0,a)') 'fastcontact-bench-mg2d: --cycle ', cyc, ' is not 11, 10 or 01'
-        error stop 2
+        stop 2
     end select
     call set_thread_count(nthreads)
     call cpu_time(c0)
@@ -84,7 +84,7 @@ contains
         if (ios /= 0 .or. v < lo .or. v > hi) then
             write (*, '(a,i0,a,i0,a)') 'fastcontact-bench-mg2d: '//trim(arg)//' needs an integer in [', lo, ', ', hi, &
                 '], got "'//trim(val)//'"'
-            error stop 2
+            stop 2
         end if
     end subroutine int_arg
 
