@@ -14,8 +14,10 @@
 !!   Toeplitz inverses), or odd, c(−i,−j) = −c(i,j) (symbol imaginary: the coupling blocks
 !!   A^xz, A^zx, A^yz, A^zy); only other kernels keep a complex symbol;
 !! * FFTW plans and the work buffers live in a reference-counted plan set.  Blocks of one
-!!   operator on one grid share ONE set (`plans_from` on the build routines); the set is
-!!   freed with the last block using it, by [[fc_bttb]]'s `destroy` or its final binding;
+!!   operator on one grid share ONE set (`plans_from` on the build routines), and so do
+!!   the normal and the tangential operator when they are built one after the other; the
+!!   set is freed with the last block using it, by [[fc_bttb]]'s `destroy` or its final
+!!   binding;
 !! * copies are deep: assigning an [[fc_bttb]] gives the copy its own plans and buffers
 !!   (defined assignment), so a copy stays valid after the original is destroyed and two
 !!   copies never write into each other's buffers.  A copied operator made of several
@@ -23,9 +25,10 @@
 !! Blocks sharing a plan set must not be applied concurrently (one set of buffers).  Plans
 !! are made and destroyed inside the critical section `fc_fftw_planner` (see fc_threads).
 !!
-!! Size (~1050 lines): construction (Strang circulants included, which read the plan set's
-!! buffers), lifetime, the products and the block products' lanes (which add a second
-!! plan set and buffer to it) share the plan set and its buffers; splitting them would
+!! Size (~1180 lines): construction (Strang circulants and the even circulants' symbols of
+!! TangCG's block inverse included, which use the plan set's buffers), lifetime, the
+!! products and the block products' lanes (which add a second plan set and buffer to it)
+!! share the plan set and its buffers; splitting them would
 !! make the plan set public, and a module of its own below this one would add a layer to
 !! the module graph (doc/architecture.md).
 module fc_toeplitz
