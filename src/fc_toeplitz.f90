@@ -199,6 +199,8 @@ contains
         real(dp) :: smax
         integer :: mx, my, i, j, di, dj, jw
         type(fc_fft_plans), pointer :: w2n
+        if (size(kext, 1) /= 2*nx + 1 .or. size(kext, 2) /= 2*ny + 1) &
+            error stop 'inverse_toeplitz_from_kernel: the coefficients must cover the offsets -n..n'
         mx = 2*nx; if (nx == 1) mx = 1
         my = 2*ny; if (ny == 1) my = 1
         call setup_plans(prec, nx, ny, circulant_size(nx), circulant_size(ny), plans_from)
