@@ -4,7 +4,9 @@
 !!
 !! * **Accuracy target** (`&solver target`): solve on a coarse grid, refine by factors of two
 !!   in each direction (the coarse pressure and tractions, copied to the 2×2 children, start
-!!   the next solve), and estimate the relative discretisation error of the computed loads —
+!!   the next solve; a direction whose elements are already at most half as long as in the
+!!   other waits until the other has caught up, [[refinement_factors]]), and estimate the
+!!   relative discretisation error of the computed loads —
 !!   `fn` (approach prescribed) or the approach (fn prescribed); |(Fx, Fy)| (shifts
 !!   prescribed, relative to max(|Ft|, 0.1·mu·Fn)) or |(xi, eta)| (forces prescribed); `pmax`
 !!   with `target_pmax` — from successive grids.  With d_k the relative change from grid k−1
@@ -232,14 +234,13 @@ contains
         character(len=*), intent(out) :: errmsg
         type(fc_case) :: sl
         real(dp), allocatable :: p0(:, :), px0(:, :), py0(:, :)
-        integer :: k, nlev, fy
+        integer :: k, nlev, fx, fy
         real(dp) :: est, ratio, noise
         logical :: monotone, probe
         character(len=64) :: qname
         nlev = 1
         if (s%target > 0) nlev = s%max_levels
-        fy = 2
-        if (s%ny == 1) fy = 1
+        call refinement_factors(s, s%nx, s%ny, fx, fy)
         out%total_seconds = 0
         out%estimate = -1; out%target_met = .false.; out%reliable = .true.
         out%sufficient = 0; out%sufficient_bound = -1
@@ -247,19 +248,21 @@ contains
         sl = s
         ! probe grid: with a target, start one level below the given grid (a quarter of its
         ! cost) so that the given grid itself can be the answer when it already meets the target
-        probe = s%target > 0 .and. mod(s%nx, 2) == 0 .and. s%nx >= 16 .and. &
-            (s%ny == 1 .or. (mod(s%ny, 2) == 0 .and. s%ny >= 16))
+        ! (coarsened by the factors that refine the given grid)
+        probe = s%target > 0 .and. (fx == 1 .or. (mod(s%nx, 2) == 0 .and. s%nx >= 16)) .and. &
+            (fy == 1 .or. (mod(s%ny, 2) == 0 .and. s%ny >= 16))
         if (probe) then
-            sl%nx = s%nx/2; sl%ny = s%ny/fy
+            sl%nx = s%nx/fx; sl%ny = s%ny/fy
             nlev = nlev + 1
         end if
         do k = 1, nlev
             if (k > 1) then
-                sl%nx = 2*sl%nx; sl%ny = fy*sl%ny
-                call prolong_copy(out%result%normal%pn, 2, fy, p0)
+                if (.not. (probe .and. k == 2)) call refinement_factors(s, sl%nx, sl%ny, fx, fy)
+                sl%nx = fx*sl%nx; sl%ny = fy*sl%ny
+                call prolong_copy(out%result%normal%pn, fx, fy, p0)
                 if (out%result%tangential_run) then
-                    call prolong_copy(out%result%tangential%px, 2, fy, px0)
-                    call prolong_copy(out%result%tangential%py, 2, fy, py0)
+                    call prolong_copy(out%result%tangential%px, fx, fy, px0)
+                    call prolong_copy(out%result%tangential%py, fx, fy, py0)
                 end if
             end if
             if (real(sl%nx, dp)*sl%ny > 4096.0_dp**2) then
@@ -414,6 +417,27 @@ contains
         to%iterations = from%iterations; to%outer_iterations = from%outer_iterations; to%matvecs = from%matvecs
         to%residual = from%residual; to%cpu_seconds = from%cpu_seconds; to%message = from%message
     end subroutine move_tangential
+
+    !> Refinement factors (1 or 2 per direction) of the accuracy target for an nx×ny grid on
+    !! the area of `s`: two, except in a direction whose elements are already at most half
+    !! as long as in the other, which waits until the other has caught up — the elements
+    !! tend to squares, and the error, set by the longer side, halves its h each level.  A
+    !! strip (ny = 1) refines in x only.  (Both directions doubled a 16×4097 grid, whose
+    !! elements were 256 times longer in x than in y, to 64×16388: 1 GB for nothing.)
+    pure subroutine refinement_factors(s, nx, ny, fx, fy)
+        type(fc_case), intent(in) :: s
+        integer, intent(in) :: nx, ny
+        integer, intent(out) :: fx, fy
+        real(dp) :: dx, dy
+        fx = 2; fy = 2
+        if (ny == 1) then
+            fy = 1
+            return
+        end if
+        dx = (s%xmax - s%xmin)/nx; dy = (s%ymax - s%ymin)/ny
+        if (dx <= 0.5_dp*dy) fx = 1
+        if (dy <= 0.5_dp*dx) fy = 1
+    end subroutine refinement_factors
 
     !> Copy interpolation of a coarse field to a grid refined by fx × fy (each coarse
     !! element's value on its children).

@@ -50,6 +50,7 @@ contains
             new_unittest('richardson_rules', test_richardson), &
             new_unittest('hertz_target_auto_area', test_hertz_target_auto), &
             new_unittest('hertz_target_fixed_grid', test_hertz_target_fixed), &
+            new_unittest('target_refines_the_longer_side', test_target_anisotropic), &
             new_unittest('hertz_target_with_pmax', test_hertz_target_pmax), &
             new_unittest('cattaneo_target', test_cattaneo_target), &
             new_unittest('loose_target_given_grid_suffices', test_loose_target), &
@@ -226,6 +227,41 @@ contains
             ' <= estimate '//num(out%estimate)//' <= target')
         call check(error, err_coarse > 5.0e-4_dp, 'one level coarser must miss the target: '//num(err_coarse))
     end subroutine test_hertz_target_fixed
+
+    !> Hertz Test I on a 16×64 grid over 20×12 mm: elements 1.25 × 0.1875 mm.  The target
+    !! refines x alone (probe 8×64, then 16, 32 × 64) until the elements are within a factor
+    !! two of squares, then both directions; the estimate still bounds the true error.
+    !! (Before, both directions doubled from the start: 32×128, 64×256, …)
+    subroutine test_target_anisotropic(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_auto_outcome) :: out
+        type(fc_hertz_solution) :: hz
+        real(dp) :: err, dx, dy
+        integer :: k, n
+        logical :: ok
+        call solve_text(hertz_scene//'&grid nx = 16, ny = 64, xmin = -10.0, xmax = 10.0, ymin = -6.0, ymax = 6.0 /'// &
+            nl//'&solver target = 5.0e-4 /'//nl, out, error)
+        if (allocated(error)) return
+        n = size(out%levels)
+        call check(error, out%target_met .and. n >= 3, 'target met after the probe and two grids at least')
+        if (allocated(error)) return
+        call check(error, out%levels(1)%nx == 8 .and. out%levels(1)%ny == 64, 'probe coarsened in x only')
+        ok = .true.
+        do k = 2, n
+            dx = 20.0_dp/out%levels(k - 1)%nx; dy = 12.0_dp/out%levels(k - 1)%ny
+            if (dy <= 0.5_dp*dx) then
+                ok = ok .and. out%levels(k)%nx == 2*out%levels(k - 1)%nx .and. out%levels(k)%ny == out%levels(k - 1)%ny
+            else
+                ok = ok .and. out%levels(k)%nx == 2*out%levels(k - 1)%nx .and. out%levels(k)%ny == 2*out%levels(k - 1)%ny
+            end if
+        end do
+        call check(error, ok, 'x alone while its elements are over twice as long as in y, then both')
+        call check(error, out%levels(2)%ny == 64 .and. out%levels(3)%ny == 64, 'y kept at 64 on 16 and 32 in x')
+        hz = test_i_hertz()
+        err = abs(out%result%normal%fn - hz%fn)/hz%fn
+        call check(error, err <= out%estimate .and. out%estimate <= 5.0e-4_dp, 'true error '//num(err)// &
+            ' <= estimate '//num(out%estimate)//' <= target')
+    end subroutine test_target_anisotropic
 
     !> With target_pmax the estimate covers the pmax error too (true errors vs analytic p0).
     subroutine test_hertz_target_pmax(error)
