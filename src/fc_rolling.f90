@@ -295,7 +295,7 @@ contains
         type(fc_tangential_result), intent(inout) :: res
         integer :: nx, ny, m
         real(dp), dimension(size(gs, 1), size(gs, 2)) :: px, py, sx, sy, ux, uy, cx, cy, dx_, dy_, mx, my, &
-            pox, poy, tnorm, ex, ey, th
+            pox, poy, tnorm, ex, ey
         logical, dimension(size(gs, 1), size(gs, 2)) :: adh, slp
         real(dp), allocatable :: vb(:, :), hess(:, :), cs(:), sn(:), gvec(:), yv(:), hist(:)
         ! GMRES works on the unknowns of the active set only (x of adhesion and slip, y of
@@ -424,14 +424,10 @@ contains
                 converged = .true.
                 exit
             end if
-            ! update: adhesion tractions, slip angles (rotation on the circle)
-            pox = px; poy = py
-            where (adh)
-                px = px + dx_; py = py + dy_
-            elsewhere (slp)
-                th = atan2(py, px) + dx_
-                px = gk*cos(th); py = gk*sin(th)
-            end where
+            ! update: adhesion tractions, slip angles (rotation on the circle by the angle
+            ! change, on the traction's unit vector: one sine and cosine per slip element
+            ! instead of the angle's atan2 and the new angle's cosine and sine)
+            call update_tractions()
             change = traction_change(px, py, pox, poy, floor=gscale)
             if (newton <= size(hist)) hist(newton) = change
             if (ieee_is_nan(change) .or. change > 1.0e12_dp) then
@@ -499,6 +495,34 @@ contains
         end where
         allocate (res%history(min(newton, size(hist))), source=hist(1:min(newton, size(hist))))
     contains
+        !> The Newton update, old tractions kept in (pox, poy): adhesion p + δp; slip p turned
+        !! on its circle |p| = g_k by the angle change δθ, as g_k·R(δθ)·p/|p| (a traction at 0
+        !! starts from the angle 0, as atan2(0, 0) did).
+        subroutine update_tractions()
+            integer :: i, j
+            real(dp) :: r, c, s, t, qx, qy
+            !$omp parallel do default(shared) private(i, r, c, s, t, qx, qy) schedule(static) if(par)
+            do j = 1, ny
+                do i = 1, nx
+                    qx = px(i, j); qy = py(i, j)
+                    pox(i, j) = qx; poy(i, j) = qy
+                    if (adh(i, j)) then
+                        px(i, j) = qx + dx_(i, j); py(i, j) = qy + dy_(i, j)
+                    else if (slp(i, j)) then
+                        c = cos(dx_(i, j)); s = sin(dx_(i, j))
+                        r = sqrt(qx**2 + qy**2)
+                        if (r > 0) then
+                            t = gk(i, j)/r
+                            px(i, j) = t*(qx*c - qy*s); py(i, j) = t*(qx*s + qy*c)
+                        else
+                            px(i, j) = gk(i, j)*c; py(i, j) = gk(i, j)*s
+                        end if
+                    end if
+                end do
+            end do
+            !$omp end parallel do
+        end subroutine update_tractions
+
         !> u = A p, s = w + (u − u_{+x})/δx (one FFT product).
         subroutine exact_slip()
             call top%apply(px, py, ux, uy)
