@@ -45,13 +45,10 @@ contains
     subroutine build_block_inverse(prec, kxx, kxy, kyy, nx, ny, plans_from)
         type(fc_block_inverse), intent(inout) :: prec
         integer, intent(in) :: nx, ny
-        real(dp), intent(in) :: kxx(-nx:, -ny:), kxy(-nx:, -ny:), kyy(-nx:, -ny:)
+        real(dp), intent(in) :: kxx(-nx:nx, -ny:ny), kxy(-nx:nx, -ny:ny), kyy(-nx:nx, -ny:ny)
         type(fc_bttb), intent(in), optional :: plans_from
         real(dp) :: a, b, c, det, tr, disc, l1, l2, lmax, floor_, scale
         integer :: mx, my, i, k
-        if (any([size(kxx, 1), size(kxy, 1), size(kyy, 1)] /= 2*nx + 1) .or. &
-            any([size(kxx, 2), size(kxy, 2), size(kyy, 2)] /= 2*ny + 1)) &
-            error stop 'build_block_inverse: the coefficients must cover the offsets -n..n'
         mx = 2*nx; if (nx == 1) mx = 1
         my = 2*ny; if (ny == 1) my = 1
         prec%nx = nx; prec%ny = ny

@@ -25,7 +25,7 @@
 !! Blocks sharing a plan set must not be applied concurrently (one set of buffers).  Plans
 !! are made and destroyed inside the critical section `fc_fftw_planner` (see fc_threads).
 !!
-!! Size (~1180 lines): construction (Strang circulants and the even circulants' symbols of
+!! Size (~1190 lines): construction (Strang circulants and the even circulants' symbols of
 !! TangCG's block inverse included, which use the plan set's buffers), lifetime, the
 !! products and the block products' lanes (which add a second plan set and buffer to it)
 !! share the plan set and its buffers; splitting them would
@@ -135,8 +135,6 @@ contains
         integer, intent(in) :: nx, ny
         real(dp), allocatable, intent(inout) :: kernel(:, :)
         type(fc_bttb), intent(in), optional :: plans_from
-        if (any(lbound(kernel) > [-(nx - 1), -(ny - 1)]) .or. any(ubound(kernel) < [nx - 1, ny - 1])) &
-            error stop 'build_bttb_taking_kernel: the coefficients do not cover the offsets of the grid'
         call setup_plans(op, nx, ny, circulant_size(nx), circulant_size(ny), plans_from)
         call place_kernel(op, kernel)
         call move_alloc(kernel, op%kernel)
@@ -190,37 +188,24 @@ contains
     !! (The 1D strip solver keeps the thesis' (2n−1)-circulant, [[strip_toeplitz_inverse]].)
     subroutine inverse_toeplitz_from_kernel(kext, nx, ny, prec, min_symbol, plans_from, keep_kernel)
         integer, intent(in) :: nx, ny
-        real(dp), intent(in) :: kext(-nx:, -ny:)
+        real(dp), intent(in) :: kext(-nx:nx, -ny:ny)
         type(fc_bttb), intent(inout) :: prec
         real(dp), intent(out), optional :: min_symbol  !! smallest symbol value / largest (diagnostic)
         logical, intent(in), optional :: keep_kernel   !! see [[drop_kernel]] (default .true.)
         type(fc_bttb), intent(in), optional :: plans_from
         real(dp), allocatable :: mker(:, :)
         real(dp) :: smax
-        integer :: mx, my, i, j, di, dj, jw
+        integer :: mx, my, j, jw
         type(fc_fft_plans), pointer :: w2n
-        if (size(kext, 1) /= 2*nx + 1 .or. size(kext, 2) /= 2*ny + 1) &
-            error stop 'inverse_toeplitz_from_kernel: the coefficients must cover the offsets -n..n'
+        logical :: own
         mx = 2*nx; if (nx == 1) mx = 1
         my = 2*ny; if (ny == 1) my = 1
         call setup_plans(prec, nx, ny, circulant_size(nx), circulant_size(ny), plans_from)
         ! M is defined on the 2nx×2ny circulant; the products run on circulant_size, which is
         ! the same size unless FFTW transforms 2n slowly: then a set of plans of its own
-        w2n => prec%fft
-        if (prec%mx /= mx .or. prec%my /= my) then
-            allocate (w2n)
-            !$omp critical (fc_fftw_planner)
-            call plans_create(w2n, nx, ny, mx, my)
-            !$omp end critical (fc_fftw_planner)
-        end if
+        call doubled_circulant_plans(nx, ny, prec%fft, w2n, own)
+        call fill_doubled_circulant(w2n, kext, nx, ny, odd_odd=.false.)
         associate (w => w2n)
-            do j = 0, my - 1
-                dj = j; if (j > my/2) dj = j - my
-                do i = 0, mx - 1
-                    di = i; if (i > mx/2) di = i - mx
-                    w%rbuf(i + 1, j + 1) = kext(di, dj)
-                end do
-            end do
             call full_forward(w)
             smax = maxval(real(w%cbuf, dp))
             if (present(min_symbol)) min_symbol = minval(real(w%cbuf, dp))/smax
@@ -233,12 +218,7 @@ contains
                 mker(-(nx - 1):-1, j) = w%rbuf(mx - nx + 2:mx, jw)
             end do
         end associate
-        if (.not. associated(w2n, prec%fft)) then
-            !$omp critical (fc_fftw_planner)
-            call plans_free(w2n)
-            !$omp end critical (fc_fftw_planner)
-            deallocate (w2n)
-        end if
+        call release_doubled_circulant_plans(w2n, own)
         call load_kernel(prec, mker)
         call finish_symbol(prec)
         call drop_kernel(prec, keep_kernel)
@@ -573,28 +553,63 @@ contains
     !! a set of their own.
     subroutine even_circulant_symbol(kext, nx, ny, odd_odd, symbol, plans_from)
         integer, intent(in) :: nx, ny
-        real(dp), intent(in) :: kext(-nx:, -ny:)
+        real(dp), intent(in) :: kext(-nx:nx, -ny:ny)
         logical, intent(in) :: odd_odd
         real(dp), intent(out) :: symbol(:, :)   !! (mx/2 + 1, my)
         type(fc_bttb), intent(in), optional :: plans_from
-        type(fc_fft_plans), pointer :: w
+        type(fc_fft_plans), pointer :: cand, w
         logical :: own
-        integer :: mx, my, i, j, di, dj
+        cand => null()
+        if (present(plans_from)) cand => plans_from%fft
+        call doubled_circulant_plans(nx, ny, cand, w, own)
+        call fill_doubled_circulant(w, kext, nx, ny, odd_odd)
+        call full_forward(w)
+        symbol = real(w%cbuf, dp)
+        call release_doubled_circulant_plans(w, own)
+    end subroutine even_circulant_symbol
+
+    !> The plan set for whole-array transforms of the 2nx×2ny circulant (1 in a direction of
+    !! one element): `cand` when it is made for that size, else a new set (`own`).
+    subroutine doubled_circulant_plans(nx, ny, cand, w, own)
+        integer, intent(in) :: nx, ny
+        type(fc_fft_plans), pointer, intent(in) :: cand
+        type(fc_fft_plans), pointer, intent(out) :: w
+        logical, intent(out) :: own
+        integer :: mx, my
         mx = 2*nx; if (nx == 1) mx = 1
         my = 2*ny; if (ny == 1) my = 1
         own = .true.
-        if (present(plans_from)) then
-            if (associated(plans_from%fft)) own = .not. (plans_from%fft%mx == mx .and. plans_from%fft%my == my &
-                .and. plans_from%fft%nx == nx .and. plans_from%fft%ny == ny)
-        end if
+        if (associated(cand)) own = .not. (cand%nx == nx .and. cand%ny == ny .and. cand%mx == mx .and. cand%my == my)
         if (own) then
             allocate (w)
             !$omp critical (fc_fftw_planner)
             call plans_create(w, nx, ny, mx, my)
             !$omp end critical (fc_fftw_planner)
         else
-            w => plans_from%fft
+            w => cand
         end if
+    end subroutine doubled_circulant_plans
+
+    !> Free a set [[doubled_circulant_plans]] made (`own`); a borrowed one stays.
+    subroutine release_doubled_circulant_plans(w, own)
+        type(fc_fft_plans), pointer, intent(inout) :: w
+        logical, intent(in) :: own
+        if (.not. own) return
+        !$omp critical (fc_fftw_planner)
+        call plans_free(w)
+        !$omp end critical (fc_fftw_planner)
+        deallocate (w)
+    end subroutine release_doubled_circulant_plans
+
+    !> w's real buffer ← the 2nx×2ny circulant of kext(−n…n): offset d at modulo(d, m) + 1,
+    !! the wrap-around slot (offset ±n) holding kext(n), or 0 with `odd_odd`.
+    subroutine fill_doubled_circulant(w, kext, nx, ny, odd_odd)
+        type(fc_fft_plans), intent(inout) :: w
+        integer, intent(in) :: nx, ny
+        real(dp), intent(in) :: kext(-nx:nx, -ny:ny)
+        logical, intent(in) :: odd_odd
+        integer :: mx, my, i, j, di, dj
+        mx = w%mx; my = w%my
         do j = 0, my - 1
             dj = j; if (j > my/2) dj = j - my
             do i = 0, mx - 1
@@ -606,15 +621,7 @@ contains
                 end if
             end do
         end do
-        call full_forward(w)
-        symbol = real(w%cbuf, dp)
-        if (own) then
-            !$omp critical (fc_fftw_planner)
-            call plans_free(w)
-            !$omp end critical (fc_fftw_planner)
-            deallocate (w)
-        end if
-    end subroutine even_circulant_symbol
+    end subroutine fill_doubled_circulant
 
     ! ---- copies and lifetime ----------------------------------------------------------------
 
