@@ -201,15 +201,25 @@ contains
 
     ! ------------------------------------------------------------ buffered writer ----
 
-    subroutine writer_open(self, path, stat, errmsg)
+    !> Open `path` for writing: replaced, or with `append` extended at its end (it must exist).
+    subroutine writer_open(self, path, stat, errmsg, append)
         class(fc_stream_writer), intent(inout) :: self
         character(len=*), intent(in) :: path
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
+        logical, intent(in), optional :: append
         character(len=256) :: iomsg
+        logical :: app
         errmsg = ''
-        open (newunit=self%unit, file=path, access='stream', form='unformatted', status='replace', &
-              action='write', iostat=stat, iomsg=iomsg)
+        app = .false.
+        if (present(append)) app = append
+        if (app) then
+            open (newunit=self%unit, file=path, access='stream', form='unformatted', status='old', &
+                  position='append', action='write', iostat=stat, iomsg=iomsg)
+        else
+            open (newunit=self%unit, file=path, access='stream', form='unformatted', status='replace', &
+                  action='write', iostat=stat, iomsg=iomsg)
+        end if
         if (stat /= 0) then
             self%unit = -1
             errmsg = "cannot write '"//trim(path)//"': "//trim(iomsg); return
@@ -285,7 +295,13 @@ contains
     !! x running fastest) to `path`.  With the tangential solution (`state`, `px`, `py`, `sx`,
     !! `sy` all present) the status is E exterior, A adhesion, S slip from `state`; without,
     !! A where pn > 0 and E elsewhere, and px..sy are written as 0.
-    subroutine write_element_table_csv(path, x, y, pn, gap, stat, errmsg, state, px, py, sx, sy)
+    !!
+    !! A table may be written in consecutive blocks of rows (the ranks of a distributed
+    !! solve, in order): `y` and the arrays hold the block's rows, `iy_first` is the grid
+    !! index of its first row (default 1), and `append` extends the file instead of
+    !! replacing it, without the header.  The blocks together are byte for byte the table
+    !! written at once.
+    subroutine write_element_table_csv(path, x, y, pn, gap, stat, errmsg, state, px, py, sx, sy, iy_first, append)
         character(len=*), intent(in) :: path
         real(dp), intent(in) :: x(:), y(:)               !! element centres [mm]
         real(dp), intent(in) :: pn(:, :), gap(:, :)
@@ -293,18 +309,24 @@ contains
         character(len=*), intent(out) :: errmsg
         integer, intent(in), optional :: state(:, :)
         real(dp), intent(in), optional :: px(:, :), py(:, :), sx(:, :), sy(:, :)
+        integer, intent(in), optional :: iy_first   !! grid index of the first row of `y` (default 1)
+        logical, intent(in), optional :: append     !! append the rows to `path`, no header
         type(fc_stream_writer) :: w
         character(len=:), allocatable :: xs(:)
         integer, allocatable :: xl(:)
         character(len=32) :: ys
-        integer :: nx, ny, i, j, yl, pos
+        integer :: nx, ny, i, j, yl, pos, j0
         character(len=1) :: st
-        logical :: tang
+        logical :: tang, app
         character(len=*), parameter :: zero4 = ',0,0,0,0,'
         character(len=1), parameter :: nl = achar(10)
         nx = size(x); ny = size(y)
+        j0 = 0
+        if (present(iy_first)) j0 = iy_first - 1
+        app = .false.
+        if (present(append)) app = append
         tang = present(state) .and. present(px) .and. present(py) .and. present(sx) .and. present(sy)
-        call w%open(path, stat, errmsg)
+        call w%open(path, stat, errmsg, append=app)
         if (stat /= 0) return
         ! the coordinates repeat on every row and column: format them once
         allocate (character(len=32) :: xs(nx))
@@ -313,7 +335,7 @@ contains
             xl(i) = 0
             call put_real(x(i), xs(i), xl(i))
         end do
-        call w%put('ix,iy,x,y,status,pn,px,py,sx,sy,gap'//nl, stat)
+        if (.not. app) call w%put('ix,iy,x,y,status,pn,px,py,sx,sy,gap'//nl, stat)
         do j = 1, ny
             yl = 0
             call put_real(y(j), ys, yl)
@@ -324,7 +346,7 @@ contains
                 associate (b => w%buf)
                     call put_int(i, b, pos)
                     b(pos + 1:pos + 1) = ','; pos = pos + 1
-                    call put_int(j, b, pos)
+                    call put_int(j0 + j, b, pos)
                     b(pos + 1:pos + 1) = ','
                     b(pos + 2:pos + 1 + xl(i)) = xs(i)(1:xl(i)); pos = pos + 1 + xl(i)
                     b(pos + 1:pos + 1) = ','

@@ -21,6 +21,7 @@ contains
             new_unittest('format_equals_runtime_es23', test_format), &
             new_unittest('parse_equals_runtime_read', test_parse), &
             new_unittest('csv_parses_back_to_printed_precision', test_csv_roundtrip), &
+            new_unittest('csv_in_row_blocks_equals_whole', test_csv_blocks), &
             new_unittest('npy_roundtrip', test_npy_roundtrip), &
             new_unittest('read_table_layout_and_errors', test_read_table), &
             new_unittest('driver_table_format_keys', test_driver_format) ]
@@ -114,6 +115,72 @@ contains
         end do
         call check(error, nbad == 0, 'parse_real = run-time read on 20000 formatted randoms')
     end subroutine test_parse
+
+    !> The element table written in consecutive blocks of rows (as the ranks of a distributed
+    !! solve write it: the first block replaces the file with the header, the others append
+    !! their rows numbered from `iy_first`) is byte for byte the table written at once, for
+    !! the tangential and the normal form; appending to a missing file is an error.
+    subroutine test_csv_blocks(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_grid) :: grid
+        real(dp), allocatable :: pn(:, :), gap(:, :), px(:, :), py(:, :), sx(:, :), sy(:, :)
+        integer, allocatable :: st(:, :)
+        real(dp), allocatable :: xc(:), yc(:)
+        integer :: stat, i, j, b, form
+        integer, parameter :: cuts(4) = [0, 2, 3, 5]   ! blocks of rows 1–2, 3, 4–5
+        character(len=512) :: msg
+        character(len=:), allocatable :: whole, blocks
+        character(len=*), parameter :: p1 = 'build/test_table_io_whole.csv', p2 = 'build/test_table_io_blocks.csv'
+        call make_grid(grid, 7, 5, -1.0_dp, 2.0_dp, -3.0_dp, 0.5_dp, stat, msg)
+        call sample(grid, pn, gap, px, py, sx, sy, st)
+        xc = [(grid%x(i), i=1, grid%nx)]; yc = [(grid%y(j), j=1, grid%ny)]
+        do form = 1, 2
+            if (form == 1) then
+                call write_element_table_csv(p1, xc, yc, pn, gap, stat, msg, st, px, py, sx, sy)
+            else
+                call write_element_table_csv(p1, xc, yc, pn, gap, stat, msg)
+            end if
+            call check(error, stat == 0, 'whole table: '//trim(msg))
+            if (allocated(error)) return
+            do b = 1, size(cuts) - 1
+                associate (j0 => cuts(b) + 1, j1 => cuts(b + 1))
+                    if (form == 1) then
+                        call write_element_table_csv(p2, xc, yc(j0:j1), pn(:, j0:j1), gap(:, j0:j1), stat, msg, &
+                            st(:, j0:j1), px(:, j0:j1), py(:, j0:j1), sx(:, j0:j1), sy(:, j0:j1), iy_first=j0, append=b > 1)
+                    else
+                        call write_element_table_csv(p2, xc, yc(j0:j1), pn(:, j0:j1), gap(:, j0:j1), stat, msg, &
+                            iy_first=j0, append=b > 1)
+                    end if
+                end associate
+                call check(error, stat == 0, 'block: '//trim(msg))
+                if (allocated(error)) return
+            end do
+            whole = file_text(p1); blocks = file_text(p2)
+            call check(error, len(whole) > 0 .and. whole == blocks, merge('tangential', 'normal    ', form == 1)// &
+                ' table in blocks differs from the whole table')
+            if (allocated(error)) return
+        end do
+        call delete(p1); call delete(p2)
+        call write_element_table_csv(p2, xc, yc, pn, gap, stat, msg, iy_first=1, append=.true.)
+        call check(error, stat /= 0 .and. index(msg, p2) > 0, 'appending to a missing file: an error naming it')
+    contains
+        function file_text(path) result(s)
+            character(len=*), intent(in) :: path
+            character(len=:), allocatable :: s
+            integer :: u, n
+            open (newunit=u, file=path, access='stream', form='unformatted', status='old', action='read')
+            inquire (unit=u, size=n)
+            allocate (character(len=n) :: s)
+            read (u) s
+            close (u)
+        end function file_text
+        subroutine delete(path)
+            character(len=*), intent(in) :: path
+            integer :: u, ios
+            open (newunit=u, file=path, status='old', iostat=ios)
+            if (ios == 0) close (u, status='delete')
+        end subroutine delete
+    end subroutine test_csv_blocks
 
     !> A tangential table written by write_case_csv parses back (run-time read) to the values
     !! to the printed precision (16 significant digits: 5e-16 relative), with the rows, the
