@@ -49,7 +49,7 @@ module fc_driver
     integer, parameter, public :: EXIT_INPUT_ERROR = 1  !! bad command line, file or case input
     integer, parameter, public :: EXIT_NOT_CONVERGED = 2 !! a solver did not converge / diverged
 
-    public :: run_driver, driver_usage
+    public :: run_driver, driver_usage, make_directory, remove_file
 
 contains
 

@@ -15,7 +15,8 @@ program test_mpi
     use fc_threads, only: set_thread_count
     use fcm_norm
     use fcm_geometry
-use fcm_batch_tests, only: batch_tests
+    use fcm_batch_tests, only: batch_tests
+    use fcm_dist_tests, only: dist_driver_tests
     implicit none
     integer :: provided, ierr, rank, nprocs, npass, nfail, tot(2)
     character(len=32) :: only
@@ -35,7 +36,8 @@ use fcm_batch_tests, only: batch_tests
     call run('dist_grid_too_small_rejected', test_too_small)
     call run('periodic_wavy_full_contact', test_wavy_full_contact)
     call run('dist_periodic_equals_serial', test_periodic_dist)
-call batch_tests(only, npass, nfail)
+    call batch_tests(only, npass, nfail)
+    call dist_driver_tests(only, npass, nfail)
     tot = [npass, nfail]
     call mpi_allreduce(MPI_IN_PLACE, tot, 2, MPI_INTEGER, MPI_MIN, MPI_COMM_WORLD, ierr)
     npass = tot(1)

@@ -1,0 +1,400 @@
+!> Distributed driver `fastcontact-mpi CASES.nml --distributed [--out DIR]`: every case of
+!! the file is solved by all ranks together, for grids too large for one machine's memory.
+!!
+!! The cases are read, inherited and checked exactly as by the serial driver ([[run_driver]]:
+!! [[apply_case]], [[validate_case]], [[build_case]]).  Each rank then holds a slab of rows of
+!! the grid (the layout of [[fcm_bttb]]): it generates the undeformed distance of its rows
+!! itself ([[fcm_geometry]]), and the normal problem is solved by the distributed BCCG
+!! ([[solve_dist_normal]]).  No rank ever holds a whole-grid array.
+!!
+!! Outputs, in the serial driver's formats: `DIR/<name>.json` (rank 0; the serial keys, with
+!! `"model": "distributed"` and the rank count in the notes), `DIR/<name>.csv` (the element
+!! table, written by the ranks in turn, each appending its rows: byte for byte the table a
+!! single process would write of the same pressures), and the case report without the
+!! contact map (rank 0).  The exit status follows the serial rules.
+!!
+!! What a distributed case may ask for: `problem = 'normal'`, `&solver normal = 'bccg'`
+!! (without deflation), a given grid (no automatic area, no accuracy target), the half-space
+!! (no influence-coefficient files), geometries generated row by row (`quadratic`,
+!! `cylinder`, `punch_rough`, `wavy`), periodic or not, prescribed approach or force, CSV
+!! tables.  Anything else is an input error naming the group, key and value.  Model
+!! reductions are not applied: the case is solved on its grid as given.  The distributed
+!! BCCG applies its FFT preconditioner in the Toeplitz form (`fft_preconditioner =
+!! 'toeplitz'`), whatever the key says; the answers agree within `tol`.
+!!
+!! The operator is kept while grid, material and periodicity stay the same, as the serial
+!! driver keeps its operators across consecutive cases.
+module fcm_dist_driver
+    use mpi
+    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit_default => error_unit
+    use fc_kinds, only: dp, msg_len, FC_CONVERGED, status_name
+    use fc_strings, only: fmt_int, fmt_real
+    use fc_geometry, only: fc_grid, make_grid, h_no_contact
+    use fc_influence, only: fc_material, combine_material
+    use fc_hertz, only: hertz_from_approach, hertz_from_force
+    use fc_namelist, only: fc_case_chunk, read_case_file
+    use fc_input, only: fc_case_input, apply_case, grid_is_auto
+    use fc_input_validate, only: validate_case
+    use fc_input_scene, only: build_case, case_notes
+    use fc_scene, only: fc_case
+    use fc_output, only: fc_case_summary, write_case_json, write_case_report
+    use fc_table_io, only: write_element_table_csv
+    use fc_driver, only: EXIT_OK, EXIT_INPUT_ERROR, EXIT_NOT_CONVERGED, make_directory, remove_file
+    use fc_threads, only: set_thread_count
+    use fcm_norm, only: fcm_normal_operator, build_dist_normal_operator, solve_dist_normal
+    use fcm_geometry, only: quadratic_gap_rows, wavy_gap_rows, punch_rough_gap_rows
+    use fc_norm, only: fc_normal_result
+    implicit none
+    private
+
+    public :: run_dist_driver, dist_case_unsupported
+
+contains
+
+    !> Solve every case of the file given in `args` on all ranks of `comm` (collective).
+    !! `args` as for the serial driver (CASES.nml, --out DIR, --help); `exit_code` is the same
+    !! on every rank.  Report and error messages are written by rank 0 to `report_unit`
+    !! (default stdout) and `err_unit` (default stderr).
+    subroutine run_dist_driver(args, comm, exit_code, report_unit, err_unit)
+        character(len=*), intent(in) :: args(:)
+        integer, intent(in) :: comm
+        integer, intent(out) :: exit_code
+        integer, intent(in), optional :: report_unit, err_unit
+        integer :: rep, err, rank, nprocs, ierr, i, k, stat, ncase_err, ncase_fail, case_status
+        character(len=:), allocatable :: case_file, out_dir
+        type(fc_case_chunk), allocatable :: cases(:)
+        type(fc_case_input) :: state, saved_state
+        character(len=64), allocatable :: used(:)
+        character(len=64) :: name
+        character(len=msg_len) :: errmsg
+        type(fcm_normal_operator) :: dop
+        logical :: built
+        type(fc_grid) :: built_grid
+        type(fc_material) :: built_mat
+        logical :: built_periodic
+        rep = output_unit; err = error_unit_default
+        if (present(report_unit)) rep = report_unit
+        if (present(err_unit)) err = err_unit
+        call mpi_comm_rank(comm, rank, ierr)
+        call mpi_comm_size(comm, nprocs, ierr)
+        exit_code = EXIT_OK
+        built = .false.; built_periodic = .false.
+        ! ---- command line (the same on every rank)
+        i = 1
+        do while (i <= size(args))
+            select case (trim(args(i)))
+            case ('-h', '--help')
+                if (rank == 0) write (rep, '(a)') dist_usage()
+                return
+            case ('--out', '-o')
+                if (i == size(args)) then
+                    if (rank == 0) write (err, '(a)') 'fastcontact-mpi: --out needs a directory'
+                    exit_code = EXIT_INPUT_ERROR; return
+                end if
+                out_dir = trim(args(i + 1)); i = i + 1
+            case default
+                if (args(i)(1:1) == '-' .or. allocated(case_file)) then
+                    if (rank == 0) write (err, '(a)') "fastcontact-mpi: unexpected argument '"//trim(args(i))//"'"
+                    if (rank == 0) write (err, '(a)') dist_usage()
+                    exit_code = EXIT_INPUT_ERROR; return
+                end if
+                case_file = trim(args(i))
+            end select
+            i = i + 1
+        end do
+        if (.not. allocated(case_file)) then
+            if (rank == 0) write (err, '(a)') 'fastcontact-mpi: no case file given'
+            if (rank == 0) write (err, '(a)') dist_usage()
+            exit_code = EXIT_INPUT_ERROR; return
+        end if
+        if (allocated(out_dir)) then
+            if (len_trim(out_dir) == 0) then
+                if (rank == 0) write (err, '(a)') 'fastcontact-mpi: --out needs a non-empty directory'
+                exit_code = EXIT_INPUT_ERROR; return
+            end if
+        end if
+        call read_case_file(case_file, cases, stat, errmsg)
+        if (stat /= 0) then
+            if (rank == 0) write (err, '(a)') 'fastcontact-mpi: '//trim(case_file)//': '//trim(errmsg)
+            exit_code = EXIT_INPUT_ERROR; return
+        end if
+        allocate (used(0))
+        ncase_err = 0; ncase_fail = 0
+        do k = 1, size(cases)
+            call run_one(k, case_status)
+            select case (case_status)
+            case (0)
+            case (1); ncase_err = ncase_err + 1
+            case default; ncase_fail = ncase_fail + 1
+            end select
+        end do
+        if (rank == 0) write (rep, '(a,i0,a,i0,a,i0,a,i0,a,i0,a)') 'fastcontact-mpi: ', size(cases), &
+            ' case(s) on ', nprocs, ' ranks: ', size(cases) - ncase_err - ncase_fail, ' converged, ', ncase_fail, &
+            ' not converged, ', ncase_err, ' with input errors'
+        if (ncase_err > 0) then
+            exit_code = EXIT_INPUT_ERROR
+        else if (ncase_fail > 0) then
+            exit_code = EXIT_NOT_CONVERGED
+        end if
+    contains
+
+        !> Case k on all ranks; case_status 0 converged, 1 input error, 2 solver failure.
+        subroutine run_one(k, case_status)
+            integer, intent(in) :: k
+            integer, intent(out) :: case_status
+            character(len=:), allocatable :: dir
+            type(fc_case) :: kase
+            type(fc_material) :: mat
+            type(fc_grid) :: grid
+            type(fc_normal_result) :: res
+            type(fc_case_summary) :: s
+            real(dp), allocatable :: h0(:, :)
+            real(dp) :: t0, ca, cb
+            integer :: j0, j1, nyl, nbefore
+            logical :: reuse, can_touch
+            t0 = mpi_wtime()
+            case_status = 1
+            saved_state = state
+            nbefore = size(used)
+            call apply_case(cases(k), k, state, name, stat, errmsg)
+            dir = output_dir()
+            if (stat /= 0) then
+                call case_error(nbefore); return
+            end if
+            if (any(used == state%name)) then
+                errmsg = "&case name = '"//trim(state%name)//"': already used in this file (outputs would be overwritten)"
+                call case_error(nbefore, clean=.false.); return
+            end if
+            used = [character(len=64) :: used, name]
+            call validate_case(state, stat, errmsg)
+            if (stat /= 0) then
+                call case_error(nbefore); return
+            end if
+            kase = build_case(state)
+            errmsg = dist_case_unsupported(state, kase)
+            if (len_trim(errmsg) > 0) then
+                call case_error(nbefore); return
+            end if
+            call make_directory(dir, stat)
+            if (stat /= 0) then
+                errmsg = "&output dir = '"//dir//"': cannot create the directory"
+                call case_error(nbefore, clean=.false.); return
+            end if
+            if (kase%threads > 0) call set_thread_count(kase%threads)
+            ! ---- operator: built on all ranks, kept while grid, material and periodicity match
+            mat = kase%material
+            call combine_material(mat, stat, errmsg)
+            if (stat == 0) call make_grid(grid, kase%nx, kase%ny, kase%xmin, kase%xmax, kase%ymin, kase%ymax, stat, errmsg)
+            if (stat /= 0) then
+                errmsg = '&grid nx = '//fmt_int(kase%nx)//', ny = '//fmt_int(kase%ny)//': '//trim(errmsg)
+                call case_error(nbefore); return
+            end if
+            reuse = built .and. (kase%periodic .eqv. built_periodic) .and. same_grid(grid, built_grid) .and. &
+                mat%g == built_mat%g .and. mat%nu == built_mat%nu
+            if (.not. reuse) then
+                built = .false.
+                call build_dist_normal_operator(dop, mat, grid, comm, stat, errmsg, periodic=kase%periodic)
+                if (stat /= 0) then
+                    if (kase%periodic) then
+                        errmsg = '&grid periodic = .true., nx = '//fmt_int(kase%nx)//', ny = '//fmt_int(kase%ny)//': '// &
+                            trim(errmsg)
+                    else
+                        errmsg = '&grid nx = '//fmt_int(kase%nx)//', ny = '//fmt_int(kase%ny)//': '//trim(errmsg)
+                    end if
+                    call case_error(nbefore); return
+                end if
+                built = .true.; built_grid = grid; built_mat = mat; built_periodic = kase%periodic
+            end if
+            ! ---- this rank's rows of h0
+            nyl = dop%lay%nyl
+            j0 = dop%lay%y0 + 1; j1 = dop%lay%y0 + nyl
+            allocate (h0(grid%nx, j0:j1))
+            select case (kase%kind)
+            case ('quadratic')
+                call quadratic_gap_rows(grid, kase%rx, kase%ry, j0, j1, h0)
+            case ('cylinder')
+                call quadratic_gap_rows(grid, kase%rx, 0.0_dp, j0, j1, h0)
+            case ('punch_rough')
+                call punch_rough_gap_rows(grid, kase%diameter, kase%rough, j0, j1, h0)
+            case ('wavy')
+                call wavy_gap_rows(grid, kase%amplitude, kase%wavelength_x, kase%wavelength_y, j0, j1, h0)
+            end select
+            can_touch = any(h0 < 0.5_dp*h_no_contact)
+            call mpi_allreduce(MPI_IN_PLACE, can_touch, 1, MPI_LOGICAL, MPI_LOR, comm, ierr)
+            if (.not. can_touch) then
+                errmsg = "&geometry kind = '"//trim(kase%kind)//"': no element can come into contact "// &
+                    '(e.g. punch diameter smaller than an element)'
+                call case_error(nbefore); return
+            end if
+            ! ---- solve
+            if (kase%normal%force_prescribed) then
+                call solve_dist_normal(dop, h0, kase%settings%normal, res, stat, errmsg, fn=kase%normal%fn)
+            else
+                call solve_dist_normal(dop, h0, kase%settings%normal, res, stat, errmsg, approach=kase%normal%approach)
+            end if
+            if (stat /= 0) then
+                errmsg = '&'//trim(errmsg)      ! the library names the group ('normal: …', 'solver: …')
+                call case_error(nbefore); return
+            end if
+            ! ---- summary (the serial driver's keys)
+            s%name = state%name; s%title = state%title; s%problem = state%problem; s%geometry = state%kind
+            s%force_prescribed = state%force_prescribed
+            s%tol = kase%settings%normal%tol
+            s%notes = state%notes//case_notes(state)//'distributed over '//fmt_int(nprocs)//' ranks. '
+            if (mat%k /= 0) s%notes = s%notes//'K = '//fmt_real(mat%k)// &
+                ' /= 0: the normal problem is solved without the tangential coupling. '
+            s%status = status_name(res%status); s%message = res%message
+            s%solver = 'bccg'; s%solver_normal = 'bccg'
+            s%fft_preconditioner = 'toeplitz'
+            s%status_normal = s%status
+            s%fn = res%fn; s%approach = res%approach; s%pmax = res%pmax
+            s%ncon = res%ncon; s%nadh = res%ncon; s%nslip = 0
+            s%iterations = res%iterations; s%outer_iterations = res%outer_iterations; s%matvecs = res%matvecs
+            s%iterations_normal = res%iterations; s%outer_iterations_normal = res%outer_iterations
+            s%matvecs_normal = res%matvecs
+            s%residual = res%residual; s%residual_normal = res%residual
+            s%operator_built = .not. reuse
+            if (.not. reuse) s%setup_seconds = dop%setup_seconds
+            s%cpu_seconds_normal = s%setup_seconds + res%cpu_seconds
+            s%outcome%grid = grid; s%outcome%material = mat
+            s%outcome%model = 'distributed'
+            s%outcome%touches_boundary = res%touches_boundary
+            s%outcome%result%normal%precond_applications = res%precond_applications
+            if (allocated(res%history)) s%outcome%result%normal%history = res%history
+            if (state%kind == 'quadratic' .and. state%rx > 0 .and. state%ry > 0) then
+                ca = 0.5_dp/state%rx; cb = 0.5_dp/state%ry
+                s%has_hertz = .true.
+                if (state%force_prescribed) then
+                    s%hertz = hertz_from_force(ca, cb, mat%g/(1 - mat%nu), state%fn)
+                else
+                    s%hertz = hertz_from_approach(ca, cb, mat%g/(1 - mat%nu), state%approach)
+                end if
+            end if
+            ! ---- outputs: the table by the ranks in turn, then the summary and report on rank 0
+            if (state%table) then
+                call write_table(dir//'/'//trim(state%name)//'.csv', grid, j0, res)
+                if (stat /= 0) then
+                    call case_error(nbefore); return
+                end if
+            else if (rank == 0) then
+                call remove_file(dir//'/'//trim(state%name)//'.csv')
+            end if
+            s%cpu_seconds = mpi_wtime() - t0
+            stat = 0
+            if (rank == 0) call write_case_json(dir//'/'//trim(state%name)//'.json', s, stat, errmsg)
+            call mpi_bcast(stat, 1, MPI_INTEGER, 0, comm, ierr)
+            if (stat /= 0) then
+                call mpi_bcast(errmsg, len(errmsg), MPI_CHARACTER, 0, comm, ierr)
+                if (rank == 0) call remove_file(dir//'/'//trim(state%name)//'.csv')
+                call case_error(nbefore); return
+            end if
+            if (rank == 0) call write_case_report(rep, s, reshape([0.0_dp], [0, 0]))
+            if (res%status == FC_CONVERGED) then
+                case_status = 0
+            else
+                case_status = 2
+                if (rank == 0) write (err, '(a,i0,a)') 'fastcontact-mpi: case ', k, " '"//trim(state%name)//"': solver "// &
+                    trim(status_name(res%status))//': '//trim(s%message)
+            end if
+        end subroutine run_one
+
+        !> The element table of this case, rank after rank (rank 0 with the header), each
+        !! appending its rows; stat and errmsg the same on every rank afterwards.
+        subroutine write_table(path, grid, j0, res)
+            character(len=*), intent(in) :: path
+            type(fc_grid), intent(in) :: grid
+            integer, intent(in) :: j0
+            type(fc_normal_result), intent(in) :: res
+            integer :: r, ii, jj, st
+            character(len=msg_len) :: msg
+            st = 0; msg = ''
+            do r = 0, nprocs - 1
+                if (r == rank) call write_element_table_csv(path, [(grid%x(ii), ii=1, grid%nx)], &
+                    [(grid%y(jj), jj=j0, j0 + size(res%pn, 2) - 1)], res%pn, res%gap, st, msg, iy_first=j0, append=r > 0)
+                call mpi_barrier(comm, ierr)
+            end do
+            call mpi_allreduce(st, stat, 1, MPI_INTEGER, MPI_MAX, comm, ierr)
+            errmsg = ''
+            if (stat /= 0) errmsg = "&output table = .true.: cannot write the element table '"//path//"'"
+        end subroutine write_table
+
+        !> Report an input error of case k (rank 0) and remove its stale outputs; the next case
+        !! inherits from the last case without input errors.
+        subroutine case_error(nbefore, clean)
+            integer, intent(in) :: nbefore
+            logical, intent(in), optional :: clean
+            character(len=16) :: where
+            logical :: do_clean
+            do_clean = .true.
+            if (present(clean)) do_clean = clean
+            if (rank == 0) then
+                write (where, '(i0)') cases(k)%line
+                write (err, '(a,i0,a)') 'fastcontact-mpi: case ', k, " '"//trim(name)//"' (line "//trim(where)//'): '// &
+                    trim(errmsg)
+                write (rep, '(a)') ' case '//trim(name)//'   *** ERROR *** '//trim(errmsg)
+                write (rep, '(a)') ''
+                if (do_clean .and. .not. any(used(1:nbefore) == name)) then
+                    call remove_file(output_dir()//'/'//trim(name)//'.json')
+                    call remove_file(output_dir()//'/'//trim(name)//'.csv')
+                end if
+            end if
+            state = saved_state
+        end subroutine case_error
+
+        function output_dir() result(d)
+            character(len=:), allocatable :: d
+            if (allocated(out_dir)) then
+                d = out_dir
+            else
+                d = trim(state%dir)
+            end if
+        end function output_dir
+    end subroutine run_dist_driver
+
+    !> Why a checked case cannot be solved distributed ('' when it can), naming the group,
+    !! key and value.
+    function dist_case_unsupported(state, kase) result(msg)
+        type(fc_case_input), intent(in) :: state
+        type(fc_case), intent(in) :: kase
+        character(len=msg_len) :: msg
+        character(len=*), parameter :: tail = ' (distributed solves: normal problems on a given grid)'
+        msg = ''
+        if (state%problem /= 'normal') then
+            msg = "&case problem = '"//trim(state%problem)//"': a distributed solve is a normal problem "// &
+                "(problem = 'normal')"
+        else if (trim(state%normal_solver) /= 'bccg') then
+            msg = "&solver normal = '"//trim(state%normal_solver)//"': the distributed solver is 'bccg'"
+        else if (state%deflation) then
+            msg = '&solver deflation = .true.: not available in the distributed solver'
+        else if (grid_is_auto(state)) then
+            msg = '&grid: the automatic potential contact area is not available; give nx, ny, xmin, xmax, ymin, ymax'//tail
+        else if (kase%target > 0) then
+            msg = '&solver target = '//fmt_real(kase%target)//': accuracy targets are not available'//tail
+        else if (len_trim(state%ic_file) > 0 .or. len_trim(state%ic_file2) > 0) then
+            msg = "&material ic_file = '"//trim(state%ic_file)//"': influence coefficients from files are not "// &
+                'available; distributed solves use the half-space'
+        else if (all(trim(state%kind) /= [character(len=16) :: 'quadratic', 'cylinder', 'punch_rough', 'wavy'])) then
+            msg = "&geometry kind = '"//trim(state%kind)//"': distributed solves generate the geometry on each rank: "// &
+                "kind = 'quadratic', 'cylinder', 'punch_rough' or 'wavy'"
+        else if (state%table .and. trim(state%table_format) /= 'csv') then
+            msg = "&output table_format = '"//trim(state%table_format)//"': distributed solves write CSV tables "// &
+                "(table_format = 'csv')"
+        end if
+    end function dist_case_unsupported
+
+    !> Same grid (size and edges) for the operator.
+    pure logical function same_grid(a, b)
+        type(fc_grid), intent(in) :: a, b
+        same_grid = a%nx == b%nx .and. a%ny == b%ny .and. a%xmin == b%xmin .and. a%xmax == b%xmax .and. &
+            a%ymin == b%ymin .and. a%ymax == b%ymax
+    end function same_grid
+
+    function dist_usage() result(text)
+        character(len=:), allocatable :: text
+        character(len=1), parameter :: nl = achar(10)
+        text = 'usage: mpirun -np P fastcontact-mpi CASES.nml --distributed [--out DIR]'//nl// &
+            '  every case solved by all P ranks together (normal problems, BCCG, grids generated'//nl// &
+            '  row by row); without --distributed the cases are spread over the ranks'
+    end function dist_usage
+
+end module fcm_dist_driver

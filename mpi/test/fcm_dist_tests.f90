@@ -1,0 +1,306 @@
+!> Tests of the distributed driver (`fastcontact-mpi --distributed`): a namelist of normal
+!! cases solved by all ranks together gives the serial driver's answers (force, approach,
+!! contact count, pressure table) and its table layout; unsupported cases are input errors
+!! naming the group, key and value, and the cases after them still run.
+module fcm_dist_tests
+    use mpi
+    use fc_kinds, only: dp
+    use fc_driver, only: run_driver
+    use fcm_dist_driver, only: run_dist_driver
+    implicit none
+    private
+    public :: dist_driver_tests
+
+    character(len=*), parameter :: dir = 'build/test-mpi-dist'
+    character(len=8), parameter :: names(3) = [character(len=8) :: 'dh_a', 'dh_f', 'dw_p']
+
+contains
+
+    subroutine dist_driver_tests(only, npass, nfail)
+        character(len=*), intent(in) :: only
+        integer, intent(inout) :: npass, nfail
+        call run('dist_driver_equals_serial_driver', test_equal)
+        call run('dist_driver_rejects_unsupported', test_unsupported)
+    contains
+        subroutine run(name, test)
+            character(len=*), intent(in) :: name
+            interface
+                subroutine test(msg)
+                    character(len=:), allocatable, intent(out) :: msg
+                end subroutine test
+            end interface
+            character(len=:), allocatable :: msg
+            logical :: ok
+            integer :: rank, ierr
+            if (len_trim(only) > 0 .and. trim(only) /= name) return
+            call mpi_comm_rank(MPI_COMM_WORLD, rank, ierr)
+            call test(msg)
+            ok = .not. allocated(msg)
+            call mpi_allreduce(MPI_IN_PLACE, ok, 1, MPI_LOGICAL, MPI_LAND, MPI_COMM_WORLD, ierr)
+            if (ok) then
+                npass = npass + 1
+                if (rank == 0) write (*, '(a)') '  PASS  mpi/'//name
+            else
+                nfail = nfail + 1
+                if (allocated(msg)) write (*, '(a,i0,a)') '  FAIL  mpi/'//name//' (rank ', rank, '): '//msg
+            end if
+        end subroutine run
+    end subroutine dist_driver_tests
+
+    !> Three cases (Hertz with prescribed approach, then force — inherited grid and
+    !! material, the operator reused —, a periodic wavy cell with prescribed force), tol
+    !! 1e−10 so that the serial and the distributed solve are the same solution to round-off
+    !! whatever their paths: force and approach to 1e−9, the same contact count, every
+    !! element's pressure to 1e−8·pmax and its gap to 1e−8 of the largest gap, and the
+    !! table's coordinates, indices and status letters identical text.  The summary says
+    !! where it was solved.
+    subroutine test_equal(msg)
+        character(len=:), allocatable, intent(out) :: msg
+        integer :: rank, ierr, code_s, code_d, urep, uerr, k
+        character(len=4096), allocatable :: args(:)
+        character(len=:), allocatable :: js, jd
+        call mpi_comm_rank(MPI_COMM_WORLD, rank, ierr)
+        if (rank == 0) then
+            call execute_command_line('mkdir -p '//dir//'/serial '//dir//'/dist')
+            call write_cases(dir//'/cases.nml')
+            open (newunit=urep, file=dir//'/serial.rep', status='replace')
+            open (newunit=uerr, file=dir//'/serial.err', status='replace')
+            args = [character(len=4096) :: dir//'/cases.nml', '--out', dir//'/serial']
+            call run_driver(args, code_s, urep, uerr)
+            close (urep); close (uerr)
+        end if
+        call mpi_barrier(MPI_COMM_WORLD, ierr)
+        open (newunit=urep, file=dir//'/dist.rep'//rank_suffix(rank), status='replace')
+        open (newunit=uerr, file=dir//'/dist.err'//rank_suffix(rank), status='replace')
+        args = [character(len=4096) :: dir//'/cases.nml', '--out', dir//'/dist']
+        call run_dist_driver(args, MPI_COMM_WORLD, code_d, urep, uerr)
+        close (urep); close (uerr)
+        if (rank /= 0) return
+        if (code_s /= 0 .or. code_d /= 0) then
+            msg = 'exit codes serial '//itoa(code_s)//', distributed '//itoa(code_d)//': '// &
+                slurp_file(dir//'/dist.err0')//slurp_file(dir//'/serial.err'); return
+        end if
+        do k = 1, size(names)
+            js = slurp_file(dir//'/serial/'//trim(names(k))//'.json')
+            jd = slurp_file(dir//'/dist/'//trim(names(k))//'.json')
+            if (.not. close_to(json_num(jd, 'fn'), json_num(js, 'fn'), 1e-9_dp) .or. &
+                .not. close_to(json_num(jd, 'approach'), json_num(js, 'approach'), 1e-9_dp) .or. &
+                json_num(jd, 'ncon') /= json_num(js, 'ncon') .or. json_num(jd, 'ncon') < 1) then
+                msg = trim(names(k))//': fn, approach or ncon differ from the serial driver'; return
+            end if
+            if (index(jd, '"model": "distributed"') == 0 .or. index(jd, 'distributed over ') == 0 .or. &
+                index(jd, '"status": "converged"') == 0) then
+                msg = trim(names(k))//'.json: model, notes or status not as expected'; return
+            end if
+            call compare_tables(dir//'/serial/'//trim(names(k))//'.csv', dir//'/dist/'//trim(names(k))//'.csv', msg)
+            if (allocated(msg)) then
+                msg = trim(names(k))//'.csv: '//msg; return
+            end if
+        end do
+        jd = slurp_file(dir//'/dist/dh_f.json')
+        if (index(jd, '"operator_built": false') == 0) msg = 'dh_f: the operator of dh_a (same grid) was not reused'
+    end subroutine test_equal
+
+    !> Unsupported cases are input errors (exit status 1) naming group, key and value, the
+    !! cases after them still run, and a bad command line is rejected.
+    subroutine test_unsupported(msg)
+        character(len=:), allocatable, intent(out) :: msg
+        integer :: rank, ierr, code, urep, uerr, u
+        character(len=4096), allocatable :: args(:)
+        character(len=:), allocatable :: e
+        character(len=*), parameter :: expect(5) = [character(len=40) :: "&case problem = 'normal+tangential'", &
+            "&solver normal = 'norm'", "&geometry kind = 'table'", "&output table_format = 'npy'", &
+            "&grid: the automatic potential contact"]
+        integer :: k
+        call mpi_comm_rank(MPI_COMM_WORLD, rank, ierr)
+        if (rank == 0) then
+            call execute_command_line('mkdir -p '//dir//'/bad')
+            open (newunit=u, file=dir//'/h0.txt', status='replace', action='write')   ! a valid 24 x 20 table
+            write (u, '(24(es12.4))') (0.01_dp*k, k=1, 480)
+            close (u)
+            open (newunit=u, file=dir//'/bad.nml', status='replace', action='write')
+            write (u, '(a)') "&case name = 'ok1' /"
+            write (u, '(a)') "&material g1 = 82000.0, g2 = 82000.0, nu1 = 0.28, nu2 = 0.28 /"
+            write (u, '(a)') "&grid nx = 24, ny = 20, xmin = -1.2, xmax = 1.2, ymin = -1.0, ymax = 1.0 /"
+            write (u, '(a)') "&geometry kind = 'quadratic', rx = 40.0, ry = 30.0 /"
+            write (u, '(a)') "&normal approach = 0.004 /"
+            write (u, '(a)') "&case name = 'tang', problem = 'normal+tangential' /"
+            write (u, '(a)') "&tangential mu = 0.3, xi = 2.0e-4 /"
+            write (u, '(a)') "&case name = 'norm_solver' /"
+            write (u, '(a)') "&solver normal = 'norm' /"
+            write (u, '(a)') "&case name = 'table_geo' /"
+            write (u, '(a)') "&geometry kind = 'table', file = '"//dir//"/h0.txt' /"
+            write (u, '(a)') "&case name = 'npy' /"
+            write (u, '(a)') "&output table_format = 'npy' /"
+            write (u, '(a)') "&case name = 'auto_area' /"
+            write (u, '(a)') "&grid auto = .true. /"
+            write (u, '(a)') "&case name = 'ok2' /"
+            write (u, '(a)') "&normal approach = 0.005 /"
+            close (u)
+        end if
+        call mpi_barrier(MPI_COMM_WORLD, ierr)
+        open (newunit=urep, file=dir//'/bad.rep'//rank_suffix(rank), status='replace')
+        open (newunit=uerr, file=dir//'/bad.err'//rank_suffix(rank), status='replace')
+        args = [character(len=4096) :: dir//'/bad.nml', '--out', dir//'/bad']
+        call run_dist_driver(args, MPI_COMM_WORLD, code, urep, uerr)
+        close (urep); close (uerr)
+        if (code /= 1) then
+            msg = 'exit status '//itoa(code)//' (expected 1: input errors)'; return
+        end if
+        if (rank == 0) then
+            e = slurp_file(dir//'/bad.err0')
+            do k = 1, size(expect)
+                if (index(e, trim(expect(k))) == 0) then
+                    msg = 'no error naming '//trim(expect(k))//' in: '//e; return
+                end if
+            end do
+            if (index(e, "'ok1'") > 0 .or. index(e, "'ok2'") > 0) then
+                msg = 'a supported case reported an error: '//e; return
+            end if
+            if (index(slurp_file(dir//'/bad/ok2.json'), '"status": "converged"') == 0) then
+                msg = 'the case after the errors was not solved'; return
+            end if
+        end if
+        args = [character(len=4096) :: dir//'/bad.nml', '--bogus']
+        open (newunit=uerr, file=dir//'/bad2.err'//rank_suffix(rank), status='replace')
+        call run_dist_driver(args, MPI_COMM_WORLD, code, urep, uerr)
+        close (uerr)
+        if (code /= 1) msg = 'unknown argument: exit status '//itoa(code)//' (expected 1)'
+    end subroutine test_unsupported
+
+    subroutine write_cases(path)
+        character(len=*), intent(in) :: path
+        integer :: u
+        open (newunit=u, file=path, status='replace', action='write')
+        write (u, '(a)') "&case name = 'dh_a', title = 'Hertz, approach' /"
+        write (u, '(a)') "&material g1 = 82000.0, g2 = 82000.0, nu1 = 0.28, nu2 = 0.28 /"
+        write (u, '(a)') "&grid nx = 40, ny = 35, xmin = -2.0, xmax = 2.0, ymin = -1.6, ymax = 1.6 /"
+        write (u, '(a)') "&geometry kind = 'quadratic', rx = 30.0, ry = 20.0 /"
+        write (u, '(a)') "&normal approach = 0.03 /"
+        write (u, '(a)') "&solver tol = 1.0e-10 /"
+        write (u, '(a)') "&case name = 'dh_f', title = 'Hertz, force' /"
+        write (u, '(a)') "&normal fn = 600.0 /"
+        write (u, '(a)') "&case name = 'dw_p', title = 'periodic wavy cell, force' /"
+        write (u, '(a)') "&grid periodic = .true., nx = 32, ny = 32, xmin = -1.0, xmax = 1.0, ymin = -1.0, ymax = 1.0 /"
+        write (u, '(a)') "&geometry kind = 'wavy', amplitude = 2.0e-3, wavelength_x = 2.0, wavelength_y = 2.0 /"
+        write (u, '(a)') "&normal fn = 200.0 /"
+        close (u)
+    end subroutine write_cases
+
+    !> The two element tables: same header and rows; ix, iy, x, y and status as the same
+    !! text, pn to 1e−8 of its largest value, gap to 1e−8 of the largest |gap|.
+    subroutine compare_tables(pa, pb, msg)
+        character(len=*), intent(in) :: pa, pb
+        character(len=:), allocatable, intent(inout) :: msg
+        integer :: ua, ub, ios_a, ios_b, n
+        character(len=512) :: la, lb
+        real(dp), allocatable :: va(:, :), vb(:, :)
+        real(dp) :: pscale, gscale
+        open (newunit=ua, file=pa, status='old', action='read', iostat=ios_a)
+        open (newunit=ub, file=pb, status='old', action='read', iostat=ios_b)
+        if (ios_a /= 0 .or. ios_b /= 0) then
+            msg = 'a table is missing'; return
+        end if
+        read (ua, '(a)') la; read (ub, '(a)') lb
+        if (la /= lb) then
+            msg = 'headers differ'; return
+        end if
+        allocate (va(2, 0), vb(2, 0))
+        n = 0
+        do
+            read (ua, '(a)', iostat=ios_a) la
+            read (ub, '(a)', iostat=ios_b) lb
+            if (ios_a /= 0 .or. ios_b /= 0) exit
+            n = n + 1
+            if (field_prefix(la) /= field_prefix(lb)) then
+                msg = 'row '//itoa(n)//' differs in ix, iy, x, y or status: '//trim(la)//' | '//trim(lb); return
+            end if
+            va = reshape([va, pn_gap(la)], [2, n]); vb = reshape([vb, pn_gap(lb)], [2, n])
+        end do
+        close (ua); close (ub)
+        if (ios_a == 0 .or. ios_b == 0) then
+            msg = 'row counts differ'; return
+        end if
+        if (n == 0) then
+            msg = 'empty table'; return
+        end if
+        pscale = maxval(abs(va(1, :))); gscale = maxval(abs(va(2, :)))
+        if (maxval(abs(va(1, :) - vb(1, :))) > 1e-8_dp*pscale .or. maxval(abs(va(2, :) - vb(2, :))) > 1e-8_dp*gscale) &
+            msg = 'pressures or gaps differ beyond 1e-8'
+    end subroutine compare_tables
+
+    !> ix,iy,x,y,status of a table row (the text up to the 5th comma).
+    function field_prefix(line) result(p)
+        character(len=*), intent(in) :: line
+        character(len=:), allocatable :: p
+        integer :: i, c
+        c = 0
+        do i = 1, len_trim(line)
+            if (line(i:i) == ',') c = c + 1
+            if (c == 5) exit
+        end do
+        p = line(1:i)
+    end function field_prefix
+
+    !> pn (6th field) and gap (11th) of a table row.
+    function pn_gap(line) result(v)
+        character(len=*), intent(in) :: line
+        real(dp) :: v(2)
+        character(len=len(line)) :: t
+        real(dp) :: f(9)
+        integer :: i1, i2, c
+        t = line
+        c = index(t, ',E,') + index(t, ',A,') + index(t, ',S,')
+        t(c + 1:c + 1) = '0'
+        read (t, *) i1, i2, f(1), f(2), f(3), f(4), f(5), f(6), f(7), f(8), f(9)
+        v = [f(4), f(9)]
+    end function pn_gap
+
+    !> The number after `"key": ` in a JSON text (huge when absent).
+    real(dp) function json_num(text, key) result(v)
+        character(len=*), intent(in) :: text, key
+        integer :: i, j, ios
+        v = huge(1.0_dp)
+        i = index(text, '"'//key//'": ')
+        if (i == 0) return
+        i = i + len(key) + 4
+        j = scan(text(i:), ','//new_line('a'))
+        if (j == 0) return
+        read (text(i:i + j - 2), *, iostat=ios) v
+        if (ios /= 0) v = huge(1.0_dp)
+    end function json_num
+
+    logical function close_to(a, b, rel)
+        real(dp), intent(in) :: a, b, rel
+        close_to = abs(a - b) <= rel*max(abs(a), abs(b)) .and. abs(b) < huge(1.0_dp)
+    end function close_to
+
+    function rank_suffix(rank) result(s)
+        integer, intent(in) :: rank
+        character(len=:), allocatable :: s
+        s = itoa(rank)
+    end function rank_suffix
+
+    function itoa(i) result(s)
+        integer, intent(in) :: i
+        character(len=:), allocatable :: s
+        character(len=16) :: b
+        write (b, '(i0)') i
+        s = trim(b)
+    end function itoa
+
+    function slurp_file(path) result(text)
+        character(len=*), intent(in) :: path
+        character(len=:), allocatable :: text
+        integer :: u, sz, ios
+        open (newunit=u, file=path, access='stream', form='unformatted', action='read', iostat=ios)
+        if (ios /= 0) then
+            text = '<missing '//path//'>'; return
+        end if
+        inquire (unit=u, size=sz)
+        allocate (character(len=sz) :: text)
+        if (sz > 0) read (u) text
+        close (u)
+    end function slurp_file
+
+end module fcm_dist_tests
