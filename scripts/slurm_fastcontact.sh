@@ -2,7 +2,7 @@
 # Example Slurm job for fastcontact on a cluster (doc/parallel.md).  Adapt partition,
 # account, modules and paths to your site.  Two uses, pick one at the bottom:
 #   A. MPI batch: the cases of a namelist file spread over all ranks (one core each);
-#   B. distributed solve of one very large rough-surface cell (FFTW-MPI slabs).
+#   B. distributed solve of one very large rough-surface cell (FFTW-MPI slabs, --distributed).
 #SBATCH --job-name=fastcontact
 #SBATCH --nodes=2
 #SBATCH --ntasks-per-node=32
@@ -20,6 +20,10 @@ FC_BENCH=${FC_BENCH:-$HOME/.local/bin/fastcontact-mpi-bench}
 # A. a creep-force map or parameter sweep: one namelist file, one output directory
 srun "$FC_MPI" sweep.nml --out "results-$SLURM_JOB_ID"
 
-# B. one periodic rough-surface cell of 16384^2 elements, prescribed mean pressure
-#    (memory model: ~15 MB + 130 B x 16384^2 / ranks per rank, i.e. ~0.55 GB/rank on 64 ranks)
+# B. one periodic rough-surface cell solved by all ranks together: a namelist as
+#    mpi/example/rough_cell.nml with nx = ny = 16384 (memory model: ~15 MB + 130 B x 16384^2
+#    / ranks per rank, i.e. ~0.55 GB/rank on 64 ranks); the element table alone is ~30 GB of
+#    text, so give &output table = .false. unless it is wanted
+# srun "$FC_MPI" cell16384.nml --distributed --out "cell-$SLURM_JOB_ID"
+#    or the benchmark program on a generated cell:
 # srun "$FC_BENCH" --n 16384 --case periodic --csv "cell-$SLURM_JOB_ID.csv"

@@ -241,6 +241,8 @@ contains
             s%force_prescribed = state%force_prescribed
             s%tol = kase%settings%normal%tol
             s%notes = state%notes//case_notes(state)//'distributed over '//fmt_int(nprocs)//' ranks. '
+            if (len_trim(kase%fft_wisdom) > 0) s%notes = s%notes//"&solver fft_wisdom = '"//trim(kase%fft_wisdom)// &
+                "' not used: the distributed transforms are planned by FFTW_ESTIMATE. "
             if (mat%k /= 0) s%notes = s%notes//'K = '//fmt_real(mat%k)// &
                 ' /= 0: the normal problem is solved without the tangential coupling. '
             s%status = status_name(res%status); s%message = res%message
@@ -258,7 +260,7 @@ contains
             s%cpu_seconds_normal = s%setup_seconds + res%cpu_seconds
             s%outcome%grid = grid; s%outcome%material = mat
             s%outcome%model = 'distributed'
-            s%outcome%touches_boundary = res%touches_boundary
+            s%outcome%touches_boundary = res%touches_boundary .and. .not. kase%periodic   ! a cell has no edge
             s%outcome%result%normal%precond_applications = res%precond_applications
             if (allocated(res%history)) s%outcome%result%normal%history = res%history
             if (state%kind == 'quadratic' .and. state%rx > 0 .and. state%ry > 0) then
