@@ -233,7 +233,13 @@ contains
                 call solve_dist_normal(dop, h0, kase%settings%normal, res, stat, errmsg, approach=kase%normal%approach)
             end if
             if (stat /= 0) then
-                errmsg = '&'//trim(errmsg)      ! the library names the group ('normal: …', 'solver: …')
+                ! the library names the group ('normal: approach = …'): as the driver's '&normal approach = …'
+                j0 = index(errmsg, ': ')
+                if (j0 > 1 .and. j0 <= 12) then
+                    errmsg = '&'//errmsg(1:j0 - 1)//' '//trim(errmsg(j0 + 2:))
+                else
+                    errmsg = '&normal '//trim(errmsg)
+                end if
                 call case_error(nbefore); return
             end if
             ! ---- summary (the serial driver's keys)

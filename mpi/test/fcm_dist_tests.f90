@@ -105,16 +105,17 @@ contains
         if (index(jd, '"operator_built": false') == 0) msg = 'dh_f: the operator of dh_a (same grid) was not reused'
     end subroutine test_equal
 
-    !> Unsupported cases are input errors (exit status 1) naming group, key and value, the
-    !! cases after them still run, and a bad command line is rejected.
+    !> Unsupported cases are input errors (exit status 1) naming group, key and value, as is
+    !! an approach that brings no element into contact (the solver's message in the
+    !! driver's form); the cases after them still run, and a bad command line is rejected.
     subroutine test_unsupported(msg)
         character(len=:), allocatable, intent(out) :: msg
         integer :: rank, ierr, code, urep, uerr, u
         character(len=4096), allocatable :: args(:)
         character(len=:), allocatable :: e
-        character(len=*), parameter :: expect(5) = [character(len=40) :: "&case problem = 'normal+tangential'", &
+        character(len=*), parameter :: expect(6) = [character(len=40) :: "&case problem = 'normal+tangential'", &
             "&solver normal = 'norm'", "&geometry kind = 'table'", "&output table_format = 'npy'", &
-            "&grid: the automatic potential contact"]
+            "&grid: the automatic potential contact", "'no_contact' (line 16): &normal approach ="]
         integer :: k
         call mpi_comm_rank(MPI_COMM_WORLD, rank, ierr)
         if (rank == 0) then
@@ -138,6 +139,8 @@ contains
             write (u, '(a)') "&output table_format = 'npy' /"
             write (u, '(a)') "&case name = 'auto_area' /"
             write (u, '(a)') "&grid auto = .true. /"
+            write (u, '(a)') "&case name = 'no_contact' /"
+            write (u, '(a)') "&normal approach = -0.01 /"
             write (u, '(a)') "&case name = 'ok2' /"
             write (u, '(a)') "&normal approach = 0.005 /"
             close (u)
