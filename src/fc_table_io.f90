@@ -394,7 +394,11 @@ contains
     !! sx, sy, gap (float64), in the machine's byte order (declared in the header).
     !! `numpy.load(path)['pn']` gives the pressure column.  Same optional arguments as
     !! [[write_element_table_csv]].
-    subroutine write_element_table_npy(path, x, y, pn, gap, stat, errmsg, state, px, py, sx, sy)
+    !!
+    !! In blocks of rows as [[write_element_table_csv]]: `iy_first`, `append`, and for the
+    !! first block `ny_total`, the rows of the whole table, which the header's shape counts.
+    subroutine write_element_table_npy(path, x, y, pn, gap, stat, errmsg, state, px, py, sx, sy, iy_first, append, &
+                                       ny_total)
         character(len=*), intent(in) :: path
         real(dp), intent(in) :: x(:), y(:)
         real(dp), intent(in) :: pn(:, :), gap(:, :)
@@ -402,6 +406,9 @@ contains
         character(len=*), intent(out) :: errmsg
         integer, intent(in), optional :: state(:, :)
         real(dp), intent(in), optional :: px(:, :), py(:, :), sx(:, :), sy(:, :)
+        integer, intent(in), optional :: iy_first   !! grid index of the first row of `y` (default 1)
+        logical, intent(in), optional :: append     !! append the records to `path`, no header
+        integer, intent(in), optional :: ny_total   !! rows of the whole table (default size(y))
         integer, parameter :: rec = 73    ! 2·4 + 2·8 + 1 + 6·8 bytes
         type(fc_stream_writer) :: w
         character(len=:), allocatable :: header
@@ -409,14 +416,20 @@ contains
         character(len=8) :: r8
         character(len=4) :: i4
         character(len=24) :: shape
-        integer :: nx, ny, i, j, pos, hlen, total
-        logical :: tang
+        integer :: nx, ny, i, j, pos, hlen, total, j0, nyt
+        logical :: tang, app
         real(dp) :: v(6)
         nx = size(x); ny = size(y)
+        j0 = 0
+        if (present(iy_first)) j0 = iy_first - 1
+        app = .false.
+        if (present(append)) app = append
+        nyt = ny
+        if (present(ny_total)) nyt = ny_total
         tang = present(state) .and. present(px) .and. present(py) .and. present(sx) .and. present(sy)
         bo = '<'
         if (iachar(transfer(1_int32, 'a')) == 0) bo = '>'
-        write (shape, '(i0)') int(nx, int64)*ny
+        write (shape, '(i0)') int(nx, int64)*nyt
         header = "{'descr': [('ix', '"//bo//"i4'), ('iy', '"//bo//"i4'), ('x', '"//bo//"f8'), ('y', '"//bo// &
             "f8'), ('status', '|S1'), ('pn', '"//bo//"f8'), ('px', '"//bo//"f8'), ('py', '"//bo//"f8'), ('sx', '"// &
             bo//"f8'), ('sy', '"//bo//"f8'), ('gap', '"//bo//"f8')], 'fortran_order': False, 'shape': ("// &
@@ -425,10 +438,12 @@ contains
         total = 10 + len(header) + 1
         hlen = len(header) + 1 + modulo(-total, 64)
         header = header//repeat(' ', hlen - len(header) - 1)//achar(10)
-        call w%open(path, stat, errmsg)
+        call w%open(path, stat, errmsg, append=app)
         if (stat /= 0) return
-        call w%put(achar(147)//'NUMPY'//achar(1)//achar(0)//achar(modulo(hlen, 256))//achar(hlen/256), stat)
-        if (stat == 0) call w%put(header, stat)
+        if (.not. app) then
+            call w%put(achar(147)//'NUMPY'//achar(1)//achar(0)//achar(modulo(hlen, 256))//achar(hlen/256), stat)
+            if (stat == 0) call w%put(header, stat)
+        end if
         do j = 1, ny
             if (stat /= 0) exit
             do i = 1, nx
@@ -444,7 +459,7 @@ contains
                     v = [pn(i, j), 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, gap(i, j)]
                 end if
                 i4 = transfer(int(i, int32), i4); w%buf(pos + 1:pos + 4) = i4
-                i4 = transfer(int(j, int32), i4); w%buf(pos + 5:pos + 8) = i4
+                i4 = transfer(int(j0 + j, int32), i4); w%buf(pos + 5:pos + 8) = i4
                 r8 = transfer(x(i), r8); w%buf(pos + 9:pos + 16) = r8
                 r8 = transfer(y(j), r8); w%buf(pos + 17:pos + 24) = r8
                 w%buf(pos + 25:pos + 25) = st

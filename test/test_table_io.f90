@@ -21,7 +21,7 @@ contains
             new_unittest('format_equals_runtime_es23', test_format), &
             new_unittest('parse_equals_runtime_read', test_parse), &
             new_unittest('csv_parses_back_to_printed_precision', test_csv_roundtrip), &
-            new_unittest('csv_in_row_blocks_equals_whole', test_csv_blocks), &
+            new_unittest('tables_in_row_blocks_equal_whole', test_csv_blocks), &
             new_unittest('npy_roundtrip', test_npy_roundtrip), &
             new_unittest('read_table_layout_and_errors', test_read_table), &
             new_unittest('driver_table_format_keys', test_driver_format) ]
@@ -119,7 +119,8 @@ contains
     !> The element table written in consecutive blocks of rows (as the ranks of a distributed
     !! solve write it: the first block replaces the file with the header, the others append
     !! their rows numbered from `iy_first`) is byte for byte the table written at once, for
-    !! the tangential and the normal form; appending to a missing file is an error.
+    !! the tangential and the normal form and for the `.npy` form (whose first block's
+    !! header counts the whole table); appending to a missing file is an error.
     subroutine test_csv_blocks(error)
         type(error_type), allocatable, intent(out) :: error
         type(fc_grid) :: grid
@@ -160,6 +161,18 @@ contains
                 ' table in blocks differs from the whole table')
             if (allocated(error)) return
         end do
+        ! the .npy form: the first block's header counts the whole table
+        call write_element_table_npy(p1, xc, yc, pn, gap, stat, msg, st, px, py, sx, sy)
+        do b = 1, size(cuts) - 1
+            associate (j0 => cuts(b) + 1, j1 => cuts(b + 1))
+                call write_element_table_npy(p2, xc, yc(j0:j1), pn(:, j0:j1), gap(:, j0:j1), stat, msg, &
+                    st(:, j0:j1), px(:, j0:j1), py(:, j0:j1), sx(:, j0:j1), sy(:, j0:j1), iy_first=j0, append=b > 1, &
+                    ny_total=grid%ny)
+            end associate
+        end do
+        whole = file_text(p1); blocks = file_text(p2)
+        call check(error, len(whole) > 0 .and. whole == blocks, '.npy table in blocks differs from the whole table')
+        if (allocated(error)) return
         call delete(p1); call delete(p2)
         call write_element_table_csv(p2, xc, yc, pn, gap, stat, msg, iy_first=1, append=.true.)
         call check(error, stat /= 0 .and. index(msg, p2) > 0, 'appending to a missing file: an error naming it')

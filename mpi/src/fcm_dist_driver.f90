@@ -8,16 +8,17 @@
 !! ([[solve_dist_normal]]).  No rank ever holds a whole-grid array.
 !!
 !! Outputs, in the serial driver's formats: `DIR/<name>.json` (rank 0; the serial keys, with
-!! `"model": "distributed"` and the rank count in the notes), `DIR/<name>.csv` (the element
-!! table, written by the ranks in turn, each appending its rows: byte for byte the table a
-!! single process would write of the same pressures), and the case report without the
-!! contact map (rank 0).  The exit status follows the serial rules.
+!! `"model": "distributed"` and the rank count in the notes), the element table
+!! `DIR/<name>.csv` and/or `.npy` (`&output table_format`; written by the ranks in turn, each
+!! appending its rows: byte for byte the table a single process would write of the same
+!! pressures), and the case report without the contact map (rank 0).  The exit status
+!! follows the serial rules.
 !!
 !! What a distributed case may ask for: `problem = 'normal'`, `&solver normal = 'bccg'`
 !! (without deflation), a given grid (no automatic area, no accuracy target), the half-space
 !! (no influence-coefficient files), geometries generated row by row (`quadratic`,
-!! `cylinder`, `punch_rough`, `wavy`), periodic or not, prescribed approach or force, CSV
-!! tables.  Anything else is an input error naming the group, key and value.  Model
+!! `cylinder`, `punch_rough`, `wavy`), periodic or not, prescribed approach or force.
+!! Anything else is an input error naming the group, key and value.  Model
 !! reductions are not applied: the case is solved on its grid as given.  The distributed
 !! BCCG applies its FFT preconditioner in the Toeplitz form (`fft_preconditioner =
 !! 'toeplitz'`), whatever the key says; the answers agree within `tol`.
@@ -38,7 +39,7 @@ module fcm_dist_driver
     use fc_input_scene, only: build_case, case_notes
     use fc_scene, only: fc_case
     use fc_output, only: fc_case_summary, write_case_json, write_case_report
-    use fc_table_io, only: write_element_table_csv
+    use fc_table_io, only: write_element_table_csv, write_element_table_npy
     use fc_driver, only: EXIT_OK, EXIT_INPUT_ERROR, EXIT_NOT_CONVERGED, make_directory, remove_file
     use fc_threads, only: set_thread_count
     use fcm_norm, only: fcm_normal_operator, build_dist_normal_operator, solve_dist_normal
@@ -280,7 +281,9 @@ contains
             end if
             ! ---- outputs: the table by the ranks in turn, then the summary and report on rank 0
             if (state%table) then
-                call write_table(dir//'/'//trim(state%name)//'.csv', grid, j0, res)
+                if (state%table_format /= 'npy') call write_table(dir//'/'//trim(state%name)//'.csv', grid, j0, res, .false.)
+                if (stat == 0 .and. state%table_format /= 'csv') &
+                    call write_table(dir//'/'//trim(state%name)//'.npy', grid, j0, res, .true.)
                 if (stat /= 0) then
                     call case_error(nbefore); return
                 end if
@@ -306,19 +309,29 @@ contains
             end if
         end subroutine run_one
 
-        !> The element table of this case, rank after rank (rank 0 with the header), each
-        !! appending its rows; stat and errmsg the same on every rank afterwards.
-        subroutine write_table(path, grid, j0, res)
+        !> The element table of this case (CSV, or `.npy` with `npy`), rank after rank (rank 0
+        !! with the header), each appending its rows; stat and errmsg the same on every rank
+        !! afterwards.
+        subroutine write_table(path, grid, j0, res, npy)
             character(len=*), intent(in) :: path
             type(fc_grid), intent(in) :: grid
             integer, intent(in) :: j0
             type(fc_normal_result), intent(in) :: res
+            logical, intent(in) :: npy
             integer :: r, ii, jj, st
             character(len=msg_len) :: msg
             st = 0; msg = ''
             do r = 0, nprocs - 1
-                if (r == rank) call write_element_table_csv(path, [(grid%x(ii), ii=1, grid%nx)], &
-                    [(grid%y(jj), jj=j0, j0 + size(res%pn, 2) - 1)], res%pn, res%gap, st, msg, iy_first=j0, append=r > 0)
+                if (r == rank) then
+                    associate (xs => [(grid%x(ii), ii=1, grid%nx)], ys => [(grid%y(jj), jj=j0, j0 + size(res%pn, 2) - 1)])
+                        if (npy) then
+                            call write_element_table_npy(path, xs, ys, res%pn, res%gap, st, msg, iy_first=j0, &
+                                append=r > 0, ny_total=grid%ny)
+                        else
+                            call write_element_table_csv(path, xs, ys, res%pn, res%gap, st, msg, iy_first=j0, append=r > 0)
+                        end if
+                    end associate
+                end if
                 call mpi_barrier(comm, ierr)
             end do
             call mpi_allreduce(st, stat, 1, MPI_INTEGER, MPI_MAX, comm, ierr)
@@ -384,9 +397,6 @@ contains
         else if (all(trim(state%kind) /= [character(len=16) :: 'quadratic', 'cylinder', 'punch_rough', 'wavy'])) then
             msg = "&geometry kind = '"//trim(state%kind)//"': distributed solves generate the geometry on each rank: "// &
                 "kind = 'quadratic', 'cylinder', 'punch_rough' or 'wavy'"
-        else if (state%table .and. trim(state%table_format) /= 'csv') then
-            msg = "&output table_format = '"//trim(state%table_format)//"': distributed solves write CSV tables "// &
-                "(table_format = 'csv')"
         end if
     end function dist_case_unsupported
 
