@@ -49,7 +49,8 @@ module fc_driver
     integer, parameter, public :: EXIT_INPUT_ERROR = 1  !! bad command line, file or case input
     integer, parameter, public :: EXIT_NOT_CONVERGED = 2 !! a solver did not converge / diverged
 
-    public :: run_driver, driver_usage, make_directory, remove_file
+    public :: run_driver, driver_usage, make_directory, remove_file, parse_driver_arguments, write_case_error
+    public :: case_output_dir, remove_case_outputs
 
 contains
 
@@ -85,8 +86,8 @@ contains
         !> operators kept by the caller across calls (the MPI batch: one set per rank); a call
         !! reuses them while grid and material match, exactly as consecutive cases of one file do
         type(fc_contact_operators), intent(inout), optional :: operators
-        integer :: rep, err, i, k, stat, ncase_err, ncase_fail
-        character(len=:), allocatable :: case_file, out_dir
+        integer :: rep, err, k, stat, ncase_err, ncase_fail
+        character(len=:), allocatable :: case_file, out_dir, action, errtext
         type(fc_case_chunk), allocatable :: cases(:)
         type(fc_case_input) :: state, saved_state
         integer, allocatable :: used_case(:)
@@ -100,48 +101,16 @@ contains
         if (present(error_unit)) err = error_unit
         exit_code = EXIT_OK
         ! ---- command line
-        i = 1
-        do while (i <= size(args))
-            select case (trim(args(i)))
-            case ('-h', '--help')
-                write (rep, '(a)') driver_usage()
-                return
-            case ('-V', '--version')
-                write (rep, '(a)') fc_build_info()
-                return
-            case ('--out', '-o')
-                if (i == size(args)) then
-                    write (err, '(a)') 'fastcontact: --out needs a directory'
-                    write (err, '(a)') driver_usage()
-                    exit_code = EXIT_INPUT_ERROR; return
-                end if
-                out_dir = trim(args(i + 1)); i = i + 1
-            case default
-                if (len_trim(args(i)) > 6) then
-                    if (args(i)(1:6) == '--out=') then
-                        out_dir = trim(args(i)(7:)); i = i + 1; cycle
-                    end if
-                end if
-                if (args(i)(1:1) == '-' .or. allocated(case_file)) then
-                    write (err, '(a)') "fastcontact: unexpected argument '"//trim(args(i))//"'"
-                    write (err, '(a)') driver_usage()
-                    exit_code = EXIT_INPUT_ERROR; return
-                end if
-                case_file = trim(args(i))
-            end select
-            i = i + 1
-        end do
-        if (.not. allocated(case_file)) then
-            write (err, '(a)') 'fastcontact: no case file given'
-            write (err, '(a)') driver_usage()
+        call parse_driver_arguments(args, 'fastcontact', driver_usage(), case_file, out_dir, action, errtext)
+        select case (action)
+        case ('help')
+            write (rep, '(a)') driver_usage(); return
+        case ('version')
+            write (rep, '(a)') fc_build_info(); return
+        case ('error')
+            write (err, '(a)') errtext
             exit_code = EXIT_INPUT_ERROR; return
-        end if
-        if (allocated(out_dir)) then
-            if (len_trim(out_dir) == 0) then
-                write (err, '(a)') 'fastcontact: --out needs a non-empty directory'
-                exit_code = EXIT_INPUT_ERROR; return
-            end if
-        end if
+        end select
         ! ---- read and split the file
         call read_case_file(case_file, cases, stat, errmsg)
         if (stat /= 0) then
@@ -444,33 +413,41 @@ contains
         !> Report an input error of the current case and remove stale outputs.
         subroutine case_error(clean)
             logical, intent(in), optional :: clean
-            character(len=16) :: where
             logical :: do_clean
             do_clean = .true.
             if (present(clean)) do_clean = clean
-            write (where, '(i0)') cases(k)%line
-            write (err, '(a,i0,a)') 'fastcontact: case ', k, " '"//trim(name)//"' (line "//trim(where)//'): '// &
-                trim(errmsg)
-            write (rep, '(a)') ' case '//trim(name)//'   *** ERROR *** '//trim(errmsg)
-            write (rep, '(a)') ''
+            call write_case_error(rep, err, 'fastcontact', k, cases(k)%line, name, errmsg)
             ! never remove the outputs of an earlier case of the same name
-            if (do_clean .and. .not. any(used(1:nused_before) == name)) then
-                call remove_file(output_dir()//'/'//trim(name)//'.json')
-                call remove_file(output_dir()//'/'//trim(name)//'.csv')
-            end if
+            if (do_clean .and. .not. any(used(1:nused_before) == name)) call remove_case_outputs(output_dir(), name)
             ! the next case inherits from the last case without input errors
             state = saved_state
         end subroutine case_error
 
         function output_dir() result(d)
             character(len=:), allocatable :: d
-            if (allocated(out_dir)) then
-                d = out_dir
-            else
-                d = trim(state%dir)
-            end if
+            d = case_output_dir(state, out_dir)
         end function output_dir
     end subroutine run_driver
+
+    !> The output directory of a case: `out_dir` (the command line's --out) when present,
+    !! else the case's `&output dir`.
+    function case_output_dir(state, out_dir) result(d)
+        type(fc_case_input), intent(in) :: state
+        character(len=*), intent(in), optional :: out_dir
+        character(len=:), allocatable :: d
+        if (present(out_dir)) then
+            d = out_dir
+        else
+            d = trim(state%dir)
+        end if
+    end function case_output_dir
+
+    !> Remove a case's summary and table from `dir` (stale outputs of a case that failed).
+    subroutine remove_case_outputs(dir, name)
+        character(len=*), intent(in) :: dir, name
+        call remove_file(dir//'/'//trim(name)//'.json')
+        call remove_file(dir//'/'//trim(name)//'.csv')
+    end subroutine remove_case_outputs
 
     !> Summary of an analytic (problem = 'hertz') case: no grid, Hertz values as results.
     subroutine analytic_summary(s, state)
@@ -591,6 +568,64 @@ contains
             end if
         end select
     end subroutine library_context
+
+    !> The drivers' command line: `CASES.nml [--out DIR | --out=DIR] | --help | --version`.
+    !! `action` is 'run' (case_file and, when given, out_dir set), 'help', 'version' or
+    !! 'error' (`errtext`: the message lines, prefixed by `prog`, with `usage` where it helps).
+    subroutine parse_driver_arguments(args, prog, usage, case_file, out_dir, action, errtext)
+        character(len=*), intent(in) :: args(:)
+        character(len=*), intent(in) :: prog    !! program name for the messages
+        character(len=*), intent(in) :: usage   !! usage text
+        character(len=:), allocatable, intent(out) :: case_file, out_dir, action, errtext
+        integer :: i
+        action = 'run'; errtext = ''
+        i = 1
+        do while (i <= size(args))
+            select case (trim(args(i)))
+            case ('-h', '--help')
+                action = 'help'; return
+            case ('-V', '--version')
+                action = 'version'; return
+            case ('--out', '-o')
+                if (i == size(args)) then
+                    call fail(prog//': --out needs a directory'//new_line('a')//usage); return
+                end if
+                out_dir = trim(args(i + 1)); i = i + 1
+            case default
+                if (len_trim(args(i)) > 6) then
+                    if (args(i)(1:6) == '--out=') then
+                        out_dir = trim(args(i)(7:)); i = i + 1; cycle
+                    end if
+                end if
+                if (args(i)(1:1) == '-' .or. allocated(case_file)) then
+                    call fail(prog//": unexpected argument '"//trim(args(i))//"'"//new_line('a')//usage); return
+                end if
+                case_file = trim(args(i))
+            end select
+            i = i + 1
+        end do
+        if (.not. allocated(case_file)) then
+            call fail(prog//': no case file given'//new_line('a')//usage); return
+        end if
+        if (allocated(out_dir)) then
+            if (len_trim(out_dir) == 0) call fail(prog//': --out needs a non-empty directory')
+        end if
+    contains
+        subroutine fail(text)
+            character(len=*), intent(in) :: text
+            action = 'error'; errtext = text
+        end subroutine fail
+    end subroutine parse_driver_arguments
+
+    !> An input error of case `k` (at `line` of the file): the message on `err` and the
+    !! report's error line on `rep`.
+    subroutine write_case_error(rep, err, prog, k, line, name, errmsg)
+        integer, intent(in) :: rep, err, k, line
+        character(len=*), intent(in) :: prog, name, errmsg
+        write (err, '(a,i0,a,i0,a)') prog//': case ', k, " '"//trim(name)//"' (line ", line, '): '//trim(errmsg)
+        write (rep, '(a)') ' case '//trim(name)//'   *** ERROR *** '//trim(errmsg)
+        write (rep, '(a)') ''
+    end subroutine write_case_error
 
     !> mkdir -p DIR by the C library's mkdir (each parent in turn; existing ones are
     !! fine), not by a shell: a child process cost every run about 2 ms.  stat ≠ 0 when DIR

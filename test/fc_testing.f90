@@ -31,7 +31,7 @@ module fc_testing
         module procedure check_logical, check_real
     end interface check
 
-    public :: check, new_unittest, run_suite, rel_diff, file_lines
+    public :: check, new_unittest, run_suite, rel_diff, file_lines, file_bytes, delete_file
 
 contains
 
@@ -126,5 +126,27 @@ contains
         end do
         close (u)
     end function file_lines
+
+    !> The bytes of a file ('' when it cannot be read).
+    function file_bytes(path) result(s)
+        character(len=*), intent(in) :: path
+        character(len=:), allocatable :: s
+        integer :: u, n, ios
+        s = ''
+        open (newunit=u, file=path, access='stream', form='unformatted', status='old', action='read', iostat=ios)
+        if (ios /= 0) return
+        inquire (unit=u, size=n)
+        deallocate (s); allocate (character(len=max(0, n)) :: s)
+        if (n > 0) read (u, iostat=ios) s
+        close (u)
+    end function file_bytes
+
+    !> Delete a file if it exists.
+    subroutine delete_file(path)
+        character(len=*), intent(in) :: path
+        integer :: u, ios
+        open (newunit=u, file=path, status='old', iostat=ios)
+        if (ios == 0) close (u, status='delete')
+    end subroutine delete_file
 
 end module fc_testing

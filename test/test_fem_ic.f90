@@ -77,7 +77,7 @@ contains
         call check(error, b%mx == 6 .and. b%my == 4 .and. b%dx == a%dx .and. b%dy == a%dy, 'sizes differ')
         call check(error, all(b%a == a%a), 'coefficients differ after the round trip')
         call check(error, b%g == a%g .and. b%nu == a%nu .and. b%hash == a%hash .and. b%content == 'body', 'header differs')
-        call delete('test_fem_ic_own.fcic')
+        call delete_file('test_fem_ic_own.fcic')
     end subroutine test_own_roundtrip
 
     !> write → read → write → read of CONTACT's format keeps every coefficient bit for bit.
@@ -104,7 +104,7 @@ contains
         call write_contact_file('test_fem_ic.cnt', b, stat, msg)
         call read_contact_file('test_fem_ic.cnt', c, stat, msg)
         call check(error, stat == 0 .and. all(c%a == b%a), 'second round trip not bit for bit')
-        call delete('test_fem_ic.cnt')
+        call delete_file('test_fem_ic.cnt')
     end subroutine test_contact_roundtrip
 
     !> Two half-space body sets combine to the library's analytic kernel, all eight blocks,
@@ -153,7 +153,7 @@ contains
         call read_ic_file('test_fem_ic_bad.fcic', b, stat, msg)
         call check(error, stat /= 0 .and. index(msg, 'xy and yx differ') > 0, &
             'xy /= yx accepted or unclear message: '//trim(msg))
-        call delete('test_fem_ic_bad.fcic')
+        call delete_file('test_fem_ic_bad.fcic')
     end subroutine test_reject_nonsymmetric
 
     subroutine test_reject_non_spd(error)
@@ -180,7 +180,7 @@ contains
         call read_ic_file('test_fem_ic_bad.cnt', b, stat, msg)
         call check(error, stat /= 0 .and. index(msg, 'tangential block') > 0 .and. index(msg, 'not positive definite') > 0, &
             'indefinite tangential block accepted or unclear message: '//trim(msg))
-        call delete('test_fem_ic_bad.fcic'); call delete('test_fem_ic_bad.cnt')
+        call delete_file('test_fem_ic_bad.fcic'); call delete_file('test_fem_ic_bad.cnt')
     end subroutine test_reject_non_spd
 
     subroutine test_reject_header(error)
@@ -204,7 +204,7 @@ contains
         close (u)
         call read_contact_file('test_fem_ic_hdr.fcic', b, stat, msg)
         call check(error, stat /= 0 .and. index(msg, 'lsymmx = 0') > 0, 'lsymmx = 0 accepted: '//trim(msg))
-        call delete('test_fem_ic_hdr.fcic')
+        call delete_file('test_fem_ic_hdr.fcic')
     end subroutine test_reject_header
 
     !> The equivalent nodal forces of the deck add up to the load on the quarter cell:
@@ -361,7 +361,7 @@ contains
             if (allocated(error)) return
             call ops_a%destroy(); call ops_f%destroy()
         end do
-        call delete('test_fem_ic_b1.fcic'); call delete('test_fem_ic_b2.fcic')
+        call delete_file('test_fem_ic_b1.fcic'); call delete_file('test_fem_ic_b2.fcic')
     end subroutine test_file_solve
 
     !> FMG and a grid with other cells are refused while file coefficients are in use.
@@ -425,7 +425,7 @@ contains
         call fc_get_forces(h, fn1, fx, fy, mz, ierr)
         call check(error, ierr == FCL_OK .and. fn1 == fn0, 'half-space kernels not restored')
         call fc_finalize(h, ierr)
-        call delete('test_fem_ic_api.fcic')
+        call delete_file('test_fem_ic_api.fcic')
     end subroutine test_flat_api
 
     !> Small, quick model used by the tests (quadratic hexahedra, coarse grading).
@@ -506,12 +506,5 @@ contains
         real(dp), intent(in) :: a, b
         dev = a/b - 1
     end function dev
-
-    subroutine delete(path)
-        character(len=*), intent(in) :: path
-        integer :: u, ios
-        open (newunit=u, file=path, status='old', iostat=ios)
-        if (ios == 0) close (u, status='delete')
-    end subroutine delete
 
 end module test_fem_ic

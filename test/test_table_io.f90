@@ -156,7 +156,7 @@ contains
                 call check(error, stat == 0, 'block: '//trim(msg))
                 if (allocated(error)) return
             end do
-            whole = file_text(p1); blocks = file_text(p2)
+            whole = file_bytes(p1); blocks = file_bytes(p2)
             call check(error, len(whole) > 0 .and. whole == blocks, merge('tangential', 'normal    ', form == 1)// &
                 ' table in blocks differs from the whole table')
             if (allocated(error)) return
@@ -170,29 +170,12 @@ contains
                     ny_total=grid%ny)
             end associate
         end do
-        whole = file_text(p1); blocks = file_text(p2)
+        whole = file_bytes(p1); blocks = file_bytes(p2)
         call check(error, len(whole) > 0 .and. whole == blocks, '.npy table in blocks differs from the whole table')
         if (allocated(error)) return
-        call delete(p1); call delete(p2)
+        call delete_file(p1); call delete_file(p2)
         call write_element_table_csv(p2, xc, yc, pn, gap, stat, msg, iy_first=1, append=.true.)
         call check(error, stat /= 0 .and. index(msg, p2) > 0, 'appending to a missing file: an error naming it')
-    contains
-        function file_text(path) result(s)
-            character(len=*), intent(in) :: path
-            character(len=:), allocatable :: s
-            integer :: u, n
-            open (newunit=u, file=path, access='stream', form='unformatted', status='old', action='read')
-            inquire (unit=u, size=n)
-            allocate (character(len=n) :: s)
-            read (u) s
-            close (u)
-        end function file_text
-        subroutine delete(path)
-            character(len=*), intent(in) :: path
-            integer :: u, ios
-            open (newunit=u, file=path, status='old', iostat=ios)
-            if (ios == 0) close (u, status='delete')
-        end subroutine delete
     end subroutine test_csv_blocks
 
     !> A tangential table written by write_case_csv parses back (run-time read) to the values

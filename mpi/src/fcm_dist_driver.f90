@@ -40,7 +40,9 @@ module fcm_dist_driver
     use fc_scene, only: fc_case
     use fc_output, only: fc_case_summary, write_case_json, write_case_report
     use fc_table_io, only: write_element_table_csv, write_element_table_npy
-    use fc_driver, only: EXIT_OK, EXIT_INPUT_ERROR, EXIT_NOT_CONVERGED, make_directory, remove_file
+    use fc_driver, only: EXIT_OK, EXIT_INPUT_ERROR, EXIT_NOT_CONVERGED, make_directory, remove_file, &
+        parse_driver_arguments, write_case_error, case_output_dir, remove_case_outputs
+    use fc_version, only: fc_build_info
     use fc_threads, only: set_thread_count
     use fcm_norm, only: fcm_normal_operator, build_dist_normal_operator, solve_dist_normal
     use fcm_geometry, only: quadratic_gap_rows, wavy_gap_rows, punch_rough_gap_rows
@@ -61,8 +63,8 @@ contains
         integer, intent(in) :: comm
         integer, intent(out) :: exit_code
         integer, intent(in), optional :: report_unit, err_unit
-        integer :: rep, err, rank, nprocs, ierr, i, k, stat, ncase_err, ncase_fail, case_status
-        character(len=:), allocatable :: case_file, out_dir
+        integer :: rep, err, rank, nprocs, ierr, k, stat, ncase_err, ncase_fail, case_status
+        character(len=:), allocatable :: case_file, out_dir, action, errtext
         type(fc_case_chunk), allocatable :: cases(:)
         type(fc_case_input) :: state, saved_state
         character(len=64), allocatable :: used(:)
@@ -81,39 +83,18 @@ contains
         exit_code = EXIT_OK
         built = .false.; built_periodic = .false.
         ! ---- command line (the same on every rank)
-        i = 1
-        do while (i <= size(args))
-            select case (trim(args(i)))
-            case ('-h', '--help')
-                if (rank == 0) write (rep, '(a)') dist_usage()
-                return
-            case ('--out', '-o')
-                if (i == size(args)) then
-                    if (rank == 0) write (err, '(a)') 'fastcontact-mpi: --out needs a directory'
-                    exit_code = EXIT_INPUT_ERROR; return
-                end if
-                out_dir = trim(args(i + 1)); i = i + 1
-            case default
-                if (args(i)(1:1) == '-' .or. allocated(case_file)) then
-                    if (rank == 0) write (err, '(a)') "fastcontact-mpi: unexpected argument '"//trim(args(i))//"'"
-                    if (rank == 0) write (err, '(a)') dist_usage()
-                    exit_code = EXIT_INPUT_ERROR; return
-                end if
-                case_file = trim(args(i))
-            end select
-            i = i + 1
-        end do
-        if (.not. allocated(case_file)) then
-            if (rank == 0) write (err, '(a)') 'fastcontact-mpi: no case file given'
-            if (rank == 0) write (err, '(a)') dist_usage()
+        call parse_driver_arguments(args, 'fastcontact-mpi', dist_usage(), case_file, out_dir, action, errtext)
+        select case (action)
+        case ('help')
+            if (rank == 0) write (rep, '(a)') dist_usage()
+            return
+        case ('version')
+            if (rank == 0) write (rep, '(a)') fc_build_info()
+            return
+        case ('error')
+            if (rank == 0) write (err, '(a)') errtext
             exit_code = EXIT_INPUT_ERROR; return
-        end if
-        if (allocated(out_dir)) then
-            if (len_trim(out_dir) == 0) then
-                if (rank == 0) write (err, '(a)') 'fastcontact-mpi: --out needs a non-empty directory'
-                exit_code = EXIT_INPUT_ERROR; return
-            end if
-        end if
+        end select
         call read_case_file(case_file, cases, stat, errmsg)
         if (stat /= 0) then
             if (rank == 0) write (err, '(a)') 'fastcontact-mpi: '//trim(case_file)//': '//trim(errmsg)
@@ -344,31 +325,19 @@ contains
         subroutine case_error(nbefore, clean)
             integer, intent(in) :: nbefore
             logical, intent(in), optional :: clean
-            character(len=16) :: where
             logical :: do_clean
             do_clean = .true.
             if (present(clean)) do_clean = clean
             if (rank == 0) then
-                write (where, '(i0)') cases(k)%line
-                write (err, '(a,i0,a)') 'fastcontact-mpi: case ', k, " '"//trim(name)//"' (line "//trim(where)//'): '// &
-                    trim(errmsg)
-                write (rep, '(a)') ' case '//trim(name)//'   *** ERROR *** '//trim(errmsg)
-                write (rep, '(a)') ''
-                if (do_clean .and. .not. any(used(1:nbefore) == name)) then
-                    call remove_file(output_dir()//'/'//trim(name)//'.json')
-                    call remove_file(output_dir()//'/'//trim(name)//'.csv')
-                end if
+                call write_case_error(rep, err, 'fastcontact-mpi', k, cases(k)%line, name, errmsg)
+                if (do_clean .and. .not. any(used(1:nbefore) == name)) call remove_case_outputs(output_dir(), name)
             end if
             state = saved_state
         end subroutine case_error
 
         function output_dir() result(d)
             character(len=:), allocatable :: d
-            if (allocated(out_dir)) then
-                d = out_dir
-            else
-                d = trim(state%dir)
-            end if
+            d = case_output_dir(state, out_dir)
         end function output_dir
     end subroutine run_dist_driver
 

@@ -6,6 +6,7 @@ module fcm_batch_tests
     use mpi
     use fc_driver, only: run_driver
     use fcm_batch, only: run_mpi_batch, guided_chunks
+    use fcm_test_support, only: run_mpi_test, slurp_file
     implicit none
     private
     public :: batch_tests
@@ -19,34 +20,10 @@ contains
     subroutine batch_tests(only, npass, nfail)
         character(len=*), intent(in) :: only
         integer, intent(inout) :: npass, nfail
-        call run('batch_equals_serial_driver', test_equal)
-        call run('batch_bad_command_line', test_bad_args)
-        call run('batch_guided_chunks', test_guided)
-        call run('batch_shared_wisdom_file', test_shared_wisdom)
-    contains
-        subroutine run(name, test)
-            character(len=*), intent(in) :: name
-            interface
-                subroutine test(msg)
-                    character(len=:), allocatable, intent(out) :: msg
-                end subroutine test
-            end interface
-            character(len=:), allocatable :: msg
-            logical :: ok
-            integer :: rank, ierr
-            if (len_trim(only) > 0 .and. trim(only) /= name) return
-            call mpi_comm_rank(MPI_COMM_WORLD, rank, ierr)
-            call test(msg)
-            ok = .not. allocated(msg)
-            call mpi_allreduce(MPI_IN_PLACE, ok, 1, MPI_LOGICAL, MPI_LAND, MPI_COMM_WORLD, ierr)
-            if (ok) then
-                npass = npass + 1
-                if (rank == 0) write (*, '(a)') '  PASS  mpi/'//name
-            else
-                nfail = nfail + 1
-                if (allocated(msg)) write (*, '(a,i0,a)') '  FAIL  mpi/'//name//' (rank ', rank, '): '//msg
-            end if
-        end subroutine run
+        call run_mpi_test('batch_equals_serial_driver', only, test_equal, npass, nfail)
+        call run_mpi_test('batch_bad_command_line', only, test_bad_args, npass, nfail)
+        call run_mpi_test('batch_guided_chunks', only, test_guided, npass, nfail)
+        call run_mpi_test('batch_shared_wisdom_file', only, test_shared_wisdom, npass, nfail)
     end subroutine batch_tests
 
     subroutine write_cases(path)
@@ -268,20 +245,6 @@ contains
         close (u)
         if (code /= 1) msg = 'missing case file must give exit status 1'
     end subroutine test_bad_args
-
-    function slurp_file(path) result(text)
-        character(len=*), intent(in) :: path
-        character(len=:), allocatable :: text
-        integer :: u, sz, ios
-        open (newunit=u, file=path, access='stream', form='unformatted', action='read', iostat=ios)
-        if (ios /= 0) then
-            text = '<missing '//path//'>'; return
-        end if
-        inquire (unit=u, size=sz)
-        allocate (character(len=sz) :: text)
-        if (sz > 0) read (u) text
-        close (u)
-    end function slurp_file
 
     !> JSON text with every number after a key ending in "seconds…" replaced by X.
     !> JSON text with the values that depend on where and when a case ran masked: timings

@@ -7,6 +7,8 @@ module fcm_dist_tests
     use fc_kinds, only: dp
     use fc_driver, only: run_driver
     use fcm_dist_driver, only: run_dist_driver
+    use fc_strings, only: fmt_int
+    use fcm_test_support, only: run_mpi_test, slurp_file
     implicit none
     private
     public :: dist_driver_tests
@@ -19,32 +21,8 @@ contains
     subroutine dist_driver_tests(only, npass, nfail)
         character(len=*), intent(in) :: only
         integer, intent(inout) :: npass, nfail
-        call run('dist_driver_equals_serial_driver', test_equal)
-        call run('dist_driver_rejects_unsupported', test_unsupported)
-    contains
-        subroutine run(name, test)
-            character(len=*), intent(in) :: name
-            interface
-                subroutine test(msg)
-                    character(len=:), allocatable, intent(out) :: msg
-                end subroutine test
-            end interface
-            character(len=:), allocatable :: msg
-            logical :: ok
-            integer :: rank, ierr
-            if (len_trim(only) > 0 .and. trim(only) /= name) return
-            call mpi_comm_rank(MPI_COMM_WORLD, rank, ierr)
-            call test(msg)
-            ok = .not. allocated(msg)
-            call mpi_allreduce(MPI_IN_PLACE, ok, 1, MPI_LOGICAL, MPI_LAND, MPI_COMM_WORLD, ierr)
-            if (ok) then
-                npass = npass + 1
-                if (rank == 0) write (*, '(a)') '  PASS  mpi/'//name
-            else
-                nfail = nfail + 1
-                if (allocated(msg)) write (*, '(a,i0,a)') '  FAIL  mpi/'//name//' (rank ', rank, '): '//msg
-            end if
-        end subroutine run
+        call run_mpi_test('dist_driver_equals_serial_driver', only, test_equal, npass, nfail)
+        call run_mpi_test('dist_driver_rejects_unsupported', only, test_unsupported, npass, nfail)
     end subroutine dist_driver_tests
 
     !> Three cases (Hertz with prescribed approach, then force — inherited grid and
@@ -79,7 +57,7 @@ contains
         close (urep); close (uerr)
         if (rank /= 0) return
         if (code_s /= 0 .or. code_d /= 0) then
-            msg = 'exit codes serial '//itoa(code_s)//', distributed '//itoa(code_d)//': '// &
+            msg = 'exit codes serial '//fmt_int(code_s)//', distributed '//fmt_int(code_d)//': '// &
                 slurp_file(dir//'/dist.err0')//slurp_file(dir//'/serial.err'); return
         end if
         do k = 1, size(names)
@@ -157,7 +135,7 @@ contains
         call run_dist_driver(args, MPI_COMM_WORLD, code, urep, uerr)
         close (urep); close (uerr)
         if (code /= 1) then
-            msg = 'exit status '//itoa(code)//' (expected 1: input errors)'; return
+            msg = 'exit status '//fmt_int(code)//' (expected 1: input errors)'; return
         end if
         if (rank == 0) then
             e = slurp_file(dir//'/bad.err0')
@@ -177,7 +155,7 @@ contains
         open (newunit=uerr, file=dir//'/bad2.err'//rank_suffix(rank), status='replace')
         call run_dist_driver(args, MPI_COMM_WORLD, code, urep, uerr)
         close (uerr)
-        if (code /= 1) msg = 'unknown argument: exit status '//itoa(code)//' (expected 1)'
+        if (code /= 1) msg = 'unknown argument: exit status '//fmt_int(code)//' (expected 1)'
     end subroutine test_unsupported
 
     subroutine write_cases(path)
@@ -226,7 +204,7 @@ contains
             if (ios_a /= 0 .or. ios_b /= 0) exit
             n = n + 1
             if (field_prefix(la) /= field_prefix(lb)) then
-                msg = 'row '//itoa(n)//' differs in ix, iy, x, y or status: '//trim(la)//' | '//trim(lb); return
+                msg = 'row '//fmt_int(n)//' differs in ix, iy, x, y or status: '//trim(la)//' | '//trim(lb); return
             end if
             va = reshape([va, pn_gap(la)], [2, n]); vb = reshape([vb, pn_gap(lb)], [2, n])
         end do
@@ -251,7 +229,7 @@ contains
         integer :: h, n, k, p
         real(dp), allocatable :: pa(:), pb(:)
         if (len(a) /= len(b) .or. len(a) < 12) then
-            msg = 'sizes differ ('//itoa(len(a))//' and '//itoa(len(b))//' bytes)'; return
+            msg = 'sizes differ ('//fmt_int(len(a))//' and '//fmt_int(len(b))//' bytes)'; return
         end if
         h = 10 + iachar(a(9:9)) + 256*iachar(a(10:10))
         if (a(1:h) /= b(1:h)) then
@@ -265,7 +243,7 @@ contains
         do k = 1, n
             p = h + (k - 1)*rec
             if (a(p + 1:p + 25) /= b(p + 1:p + 25)) then
-                msg = 'record '//itoa(k)//': ix, iy, x, y or status differ'; return
+                msg = 'record '//fmt_int(k)//': ix, iy, x, y or status differ'; return
             end if
             pa(k) = transfer(a(p + 26:p + 33), 1.0_dp); pb(k) = transfer(b(p + 26:p + 33), 1.0_dp)
         end do
@@ -321,29 +299,7 @@ contains
     function rank_suffix(rank) result(s)
         integer, intent(in) :: rank
         character(len=:), allocatable :: s
-        s = itoa(rank)
+        s = fmt_int(rank)
     end function rank_suffix
-
-    function itoa(i) result(s)
-        integer, intent(in) :: i
-        character(len=:), allocatable :: s
-        character(len=16) :: b
-        write (b, '(i0)') i
-        s = trim(b)
-    end function itoa
-
-    function slurp_file(path) result(text)
-        character(len=*), intent(in) :: path
-        character(len=:), allocatable :: text
-        integer :: u, sz, ios
-        open (newunit=u, file=path, access='stream', form='unformatted', action='read', iostat=ios)
-        if (ios /= 0) then
-            text = '<missing '//path//'>'; return
-        end if
-        inquire (unit=u, size=sz)
-        allocate (character(len=sz) :: text)
-        if (sz > 0) read (u) text
-        close (u)
-    end function slurp_file
 
 end module fcm_dist_tests

@@ -16,6 +16,7 @@ program test_mpi
     use fcm_norm
     use fcm_geometry
     use fcm_batch_tests, only: batch_tests
+    use fcm_test_support, only: mpi_test_procedure, run_mpi_test
     use fcm_dist_tests, only: dist_driver_tests
     implicit none
     integer :: provided, ierr, rank, nprocs, npass, nfail, tot(2)
@@ -50,24 +51,8 @@ contains
 
     subroutine run(name, test)
         character(len=*), intent(in) :: name
-        interface
-            subroutine test(msg)
-                character(len=:), allocatable, intent(out) :: msg
-            end subroutine test
-        end interface
-        character(len=:), allocatable :: msg
-        logical :: ok
-        if (len_trim(only) > 0 .and. trim(only) /= name) return
-        call test(msg)
-        ok = .not. allocated(msg)
-        call mpi_allreduce(MPI_IN_PLACE, ok, 1, MPI_LOGICAL, MPI_LAND, MPI_COMM_WORLD, ierr)
-        if (ok) then
-            npass = npass + 1
-            if (rank == 0) write (*, '(a)') '  PASS  mpi/'//name
-        else
-            nfail = nfail + 1
-            if (allocated(msg)) write (*, '(a,i0,a)') '  FAIL  mpi/'//name//' (rank ', rank, '): '//msg
-        end if
+        procedure(mpi_test_procedure) :: test
+        call run_mpi_test(name, only, test, npass, nfail)
     end subroutine run
 
     subroutine check(msg, cond, text)
