@@ -50,7 +50,7 @@ module fc_driver
     integer, parameter, public :: EXIT_NOT_CONVERGED = 2 !! a solver did not converge / diverged
 
     public :: run_driver, driver_usage, make_directory, remove_file, parse_driver_arguments, write_case_error
-    public :: case_output_dir, remove_case_outputs
+    public :: case_output_dir, remove_case_outputs, hertz_reference
 
 contains
 
@@ -158,7 +158,6 @@ contains
             type(fc_case_summary) :: s
             integer(int64) :: t0, t1, t2, rate
             integer :: j, final_status
-            real(dp) :: ca, cb
             logical :: tang
             type(fc_case) :: kase
             call system_clock(t0, rate)
@@ -258,15 +257,7 @@ contains
             end associate
             if (mat%k /= 0 .and. .not. tang) s%notes = s%notes//'K = '//fmt_real(mat%k)// &
                 ' /= 0: the normal problem is solved without the tangential coupling. '
-            if (state%kind == 'quadratic' .and. state%rx > 0 .and. state%ry > 0) then
-                ca = 0.5_dp/state%rx; cb = 0.5_dp/state%ry
-                s%has_hertz = .true.
-                if (state%force_prescribed) then
-                    s%hertz = hertz_from_force(ca, cb, mat%g/(1 - mat%nu), state%fn)
-                else
-                    s%hertz = hertz_from_approach(ca, cb, mat%g/(1 - mat%nu), state%approach)
-                end if
-            end if
+            call hertz_reference(s, state, mat)
             ! ---- outputs
             if (state%table) then
                 stat = 0
@@ -441,6 +432,23 @@ contains
             d = trim(state%dir)
         end if
     end function case_output_dir
+
+    !> The analytic Hertz solution beside a quadratic case's numbers (both radii given): for
+    !! its prescribed force or approach, with the combined material `mat`.
+    subroutine hertz_reference(s, state, mat)
+        type(fc_case_summary), intent(inout) :: s
+        type(fc_case_input), intent(in) :: state
+        type(fc_material), intent(in) :: mat
+        real(dp) :: ca, cb
+        if (.not. (state%kind == 'quadratic' .and. state%rx > 0 .and. state%ry > 0)) return
+        ca = 0.5_dp/state%rx; cb = 0.5_dp/state%ry
+        s%has_hertz = .true.
+        if (state%force_prescribed) then
+            s%hertz = hertz_from_force(ca, cb, mat%g/(1 - mat%nu), state%fn)
+        else
+            s%hertz = hertz_from_approach(ca, cb, mat%g/(1 - mat%nu), state%approach)
+        end if
+    end subroutine hertz_reference
 
     !> Remove a case's summary and table from `dir` (stale outputs of a case that failed).
     subroutine remove_case_outputs(dir, name)

@@ -32,7 +32,6 @@ module fcm_dist_driver
     use fc_strings, only: fmt_int, fmt_real
     use fc_geometry, only: fc_grid, make_grid, h_no_contact
     use fc_influence, only: fc_material, combine_material
-    use fc_hertz, only: hertz_from_approach, hertz_from_force
     use fc_namelist, only: fc_case_chunk, read_case_file
     use fc_input, only: fc_case_input, apply_case, grid_is_auto
     use fc_input_validate, only: validate_case
@@ -41,7 +40,7 @@ module fcm_dist_driver
     use fc_output, only: fc_case_summary, write_case_json, write_case_report
     use fc_table_io, only: write_element_table_csv, write_element_table_npy
     use fc_driver, only: EXIT_OK, EXIT_INPUT_ERROR, EXIT_NOT_CONVERGED, make_directory, remove_file, &
-        parse_driver_arguments, write_case_error, case_output_dir, remove_case_outputs
+        parse_driver_arguments, write_case_error, case_output_dir, remove_case_outputs, hertz_reference
     use fc_version, only: fc_build_info
     use fc_threads, only: set_thread_count
     use fcm_norm, only: fcm_normal_operator, build_dist_normal_operator, solve_dist_normal
@@ -131,7 +130,7 @@ contains
             type(fc_normal_result) :: res
             type(fc_case_summary) :: s
             real(dp), allocatable :: h0(:, :)
-            real(dp) :: t0, ca, cb
+            real(dp) :: t0
             integer :: j0, j1, nyl, nbefore
             logical :: reuse, can_touch
             t0 = mpi_wtime()
@@ -251,15 +250,7 @@ contains
             s%outcome%touches_boundary = res%touches_boundary .and. .not. kase%periodic   ! a cell has no edge
             s%outcome%result%normal%precond_applications = res%precond_applications
             if (allocated(res%history)) s%outcome%result%normal%history = res%history
-            if (state%kind == 'quadratic' .and. state%rx > 0 .and. state%ry > 0) then
-                ca = 0.5_dp/state%rx; cb = 0.5_dp/state%ry
-                s%has_hertz = .true.
-                if (state%force_prescribed) then
-                    s%hertz = hertz_from_force(ca, cb, mat%g/(1 - mat%nu), state%fn)
-                else
-                    s%hertz = hertz_from_approach(ca, cb, mat%g/(1 - mat%nu), state%approach)
-                end if
-            end if
+            call hertz_reference(s, state, mat)
             ! ---- outputs: the table by the ranks in turn, then the summary and report on rank 0
             if (state%table) then
                 if (state%table_format /= 'npy') call write_table(dir//'/'//trim(state%name)//'.csv', grid, j0, res, .false.)
