@@ -72,6 +72,10 @@ module fc_input
 
     !> Largest grid accepted (nx·ny).
     integer(i8), parameter, public :: max_grid_elements = 4096_i8*4096_i8
+    !> Largest grid of a distributed solve (`fastcontact-mpi --distributed`, every rank holding
+    !! a slab of rows): the largest size projected in doc/parallel.md (≈ 0.57 GB per rank on
+    !! 256 ranks).
+    integer(i8), parameter, public :: max_dist_grid_elements = 32768_i8*32768_i8
 
     !> All input values of a case (inherited state); defaults as in the module header.
     type, public :: fc_case_input

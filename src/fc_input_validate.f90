@@ -52,12 +52,18 @@ contains
     end function effective_record
 
     !> Check the values of a case, group by group; the message names group, key and value.
-    subroutine validate_case(s_in, stat, errmsg)
+    subroutine validate_case(s_in, stat, errmsg, grid_limit)
         type(fc_case_input), intent(in) :: s_in
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
+        !> largest nx·ny accepted (default `max_grid_elements`; the distributed driver's is
+        !! `max_dist_grid_elements`)
+        integer(i8), intent(in), optional :: grid_limit
         type(fc_case_input) :: s
+        integer(i8) :: limit
         stat = FC_OK; errmsg = ''
+        limit = max_grid_elements
+        if (present(grid_limit)) limit = grid_limit
         s = effective_record(s_in)
         call validate_case_group(s, errmsg)
         if (len_trim(errmsg) == 0) then
@@ -66,7 +72,7 @@ contains
             else
                 call validate_material(s, errmsg)
                 if (len_trim(errmsg) == 0) call validate_geometry(s, errmsg)
-                if (len_trim(errmsg) == 0) call validate_grid(s, errmsg)
+                if (len_trim(errmsg) == 0) call validate_grid(s, limit, errmsg)
                 if (len_trim(errmsg) == 0) call validate_normal(s, errmsg)
                 if (len_trim(errmsg) == 0) call validate_tangential(s, errmsg)
                 if (len_trim(errmsg) == 0) call validate_solver(s, errmsg)
@@ -219,9 +225,10 @@ contains
     end subroutine validate_geometry
 
     !> &grid: the automatic-area and accuracy-target keys; for a fixed area all of nx … ymax
-    !! given, nx, ny ≥ 1, non-empty, at most 4096² elements.
-    subroutine validate_grid(s, errmsg)
+    !! given, nx, ny ≥ 1, non-empty, at most `limit` elements (4096² unless distributed).
+    subroutine validate_grid(s, limit, errmsg)
         type(fc_case_input), intent(in) :: s
+        integer(i8), intent(in) :: limit   !! largest nx·ny
         character(len=*), intent(out) :: errmsg
         integer :: i
         logical :: auto
@@ -300,8 +307,9 @@ contains
             errmsg = '&grid xmax = '//fmt_real(s%xmax)//': must be > xmin = '//fmt_real(s%xmin)//' (empty grid)'
         else if (.not. (s%ymax > s%ymin)) then
             errmsg = '&grid ymax = '//fmt_real(s%ymax)//': must be > ymin = '//fmt_real(s%ymin)//' (empty grid)'
-        else if (int(s%nx, i8)*int(s%ny, i8) > max_grid_elements) then
-            errmsg = '&grid nx = '//fmt_int(s%nx)//', ny = '//fmt_int(s%ny)//': oversized grid (nx*ny > 4096*4096)'
+        else if (int(s%nx, i8)*int(s%ny, i8) > limit) then
+            errmsg = '&grid nx = '//fmt_int(s%nx)//', ny = '//fmt_int(s%ny)//': oversized grid (nx*ny > '// &
+                fmt_int(nint(sqrt(real(limit, dp))))//'*'//fmt_int(nint(sqrt(real(limit, dp))))//')'
         end if
     end subroutine validate_grid
 

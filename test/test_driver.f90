@@ -8,6 +8,9 @@ module test_driver
     use fc_kinds, only: dp
     use fc_testing, only: error_type, unittest_type, new_unittest, check, read_all => file_lines
     use fc_driver, only: run_driver
+    use fc_namelist, only: fc_case_chunk, read_case_file
+    use fc_input, only: fc_case_input, apply_case, max_dist_grid_elements
+    use fc_input_validate, only: validate_case
     use fc_version, only: fc_version_string, fc_version_major, fc_version_minor, fc_version_patch
     use fc_fftw, only: fftw_forget_wisdom
     use fc_fft_effort, only: strip_plans_in_wisdom
@@ -35,6 +38,7 @@ contains
             new_unittest('fft_preconditioner_key', test_fft_preconditioner_key), &
             new_unittest('unknown_group', test_unknown_group), &
             new_unittest('wrong_type', test_wrong_type), &
+            new_unittest('grid_limit_serial_and_distributed', test_grid_limit), &
             new_unittest('missing_geometry_kind', test_missing_kind), &
             new_unittest('missing_load', test_missing_load), &
             new_unittest('g_not_positive', test_g_not_positive), &
@@ -1062,5 +1066,40 @@ contains
         call expect_bad(error, replace(strip_case('bad', '1', '64', 'fft-rsm'), "'strip2d'", "'quadratic'"), &
             [character(len=16) :: '&geometry', 'kind', 'quadratic', 'strip2d'])
     end subroutine test_strip_needs_kind
+
+    !> The grid bound: the serial driver refuses nx·ny > 4096², a distributed solve
+    !! (`grid_limit = max_dist_grid_elements`) accepts 5000 × 4000 and refuses 40000², each
+    !! message naming the key, the values and the limit.
+    subroutine test_grid_limit(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_case_chunk), allocatable :: cases(:)
+        type(fc_case_input) :: state
+        character(len=64) :: name
+        character(len=512) :: msg
+        integer :: u, stat
+        character(len=*), parameter :: path = 'build/test_driver_grid_limit.nml'
+        open (newunit=u, file=path, status='replace', action='write')
+        write (u, '(a)') "&case name = 'big' /"
+        write (u, '(a)') "&material g1 = 82000.0, g2 = 82000.0, nu1 = 0.28, nu2 = 0.28 /"
+        write (u, '(a)') "&grid nx = 5000, ny = 4000, xmin = 0.0, xmax = 1.0, ymin = 0.0, ymax = 1.0, periodic = .true. /"
+        write (u, '(a)') "&geometry kind = 'punch_rough', diameter = 2.0, sigma = 1.0e-3 /"
+        write (u, '(a)') "&normal fn = 200.0 /"
+        close (u, status='keep')
+        call read_case_file(path, cases, stat, msg)
+        call check(error, stat == 0, 'read: '//trim(msg))
+        if (allocated(error)) return
+        call apply_case(cases(1), 1, state, name, stat, msg)
+        call check(error, stat == 0, 'apply: '//trim(msg))
+        if (allocated(error)) return
+        call validate_case(state, stat, msg)
+        call check(error, stat /= 0 .and. index(msg, '&grid nx = 5000, ny = 4000: oversized grid (nx*ny > 4096*4096)') == 1, &
+            'serial bound: '//trim(msg))
+        call validate_case(state, stat, msg, grid_limit=max_dist_grid_elements)
+        call check(error, stat == 0, 'distributed bound refuses 5000 x 4000: '//trim(msg))
+        state%nx = 40000; state%ny = 40000
+        call validate_case(state, stat, msg, grid_limit=max_dist_grid_elements)
+        call check(error, stat /= 0 .and. index(msg, 'oversized grid (nx*ny > 32768*32768)') > 0, &
+            'distributed bound: '//trim(msg))
+    end subroutine test_grid_limit
 
 end module test_driver

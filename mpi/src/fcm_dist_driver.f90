@@ -15,7 +15,8 @@
 !! follows the serial rules.
 !!
 !! What a distributed case may ask for: `problem = 'normal'`, `&solver normal = 'bccg'`
-!! (without deflation), a given grid (no automatic area, no accuracy target), the half-space
+!! (without deflation), a given grid of up to 32768² elements (the serial driver's limit is
+!! 4096²) (no automatic area, no accuracy target), the half-space
 !! (no influence-coefficient files), geometries generated row by row (`quadratic`,
 !! `cylinder`, `punch_rough`, `wavy`), periodic or not, prescribed approach or force.
 !! Anything else is an input error naming the group, key and value.  Model
@@ -33,7 +34,7 @@ module fcm_dist_driver
     use fc_geometry, only: fc_grid, make_grid, h_no_contact
     use fc_influence, only: fc_material, combine_material
     use fc_namelist, only: fc_case_chunk, read_case_file
-    use fc_input, only: fc_case_input, apply_case, grid_is_auto
+    use fc_input, only: fc_case_input, apply_case, grid_is_auto, max_dist_grid_elements
     use fc_input_validate, only: validate_case
     use fc_input_scene, only: build_case, case_notes
     use fc_scene, only: fc_case
@@ -147,7 +148,7 @@ contains
                 call case_error(nbefore, clean=.false.); return
             end if
             used = [character(len=64) :: used, name]
-            call validate_case(state, stat, errmsg)
+            call validate_case(state, stat, errmsg, grid_limit=max_dist_grid_elements)   ! grids beyond one machine
             if (stat /= 0) then
                 call case_error(nbefore); return
             end if
