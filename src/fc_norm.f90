@@ -184,7 +184,8 @@ contains
     !! orchestrator's operator build, where it overlaps the tangential build.
     subroutine prepare_precond_circulant(nop)
         type(fc_normal_operator), intent(inout) :: nop
-        if (nop%precond_circulant%built() .or. nop%precond%parity /= SYMBOL_EVEN) return
+        ! a periodic cell's M is already a circulant on the grid
+        if (nop%precond_circulant%built() .or. nop%precond%parity /= SYMBOL_EVEN .or. nop%precond%periodic) return
         call strang_circulant_of_symbol(nop%a_zz, nop%precond%rsymbol, nop%precond_circulant, keep_kernel=.false.)
     end subroutine prepare_precond_circulant
 
@@ -642,21 +643,33 @@ contains
     end function contact_on_edge
 
     !> u ← u − A·min(p, 0) for the few elements where p < 0, using A's coefficients
-    !! directly (one kernel column per element).
+    !! directly (one kernel column per element).  A periodic operator (a circulant on the
+    !! grid, its coefficients stored for offsets 0 … n−1) takes the offsets modulo the grid.
     subroutine subtract_sparse_columns(op, p, u)
         type(fc_bttb), intent(in) :: op
         real(dp), intent(in) :: p(:, :)
         real(dp), intent(inout) :: u(:, :)
-        integer :: k, l, j, nx, ny
+        integer :: k, l, j, nx, ny, dj
         nx = op%nx; ny = op%ny
         do l = 1, ny
             do k = 1, nx
                 if (p(k, l) < 0) then
-                    !$omp parallel do default(shared) schedule(static) if(nx*ny > omp_min_elements)
-                    do j = 1, ny
-                        u(:, j) = u(:, j) - p(k, l)*op%kernel(1 - k:nx - k, j - l)
-                    end do
-                    !$omp end parallel do
+                    if (op%periodic) then
+                        ! offsets i − k wrap at k: the column in two pieces
+                        !$omp parallel do default(shared) private(dj) schedule(static) if(nx*ny > omp_min_elements)
+                        do j = 1, ny
+                            dj = modulo(j - l, op%my)
+                            u(k:nx, j) = u(k:nx, j) - p(k, l)*op%kernel(0:nx - k, dj)
+                            u(1:k - 1, j) = u(1:k - 1, j) - p(k, l)*op%kernel(op%mx - k + 1:op%mx - 1, dj)
+                        end do
+                        !$omp end parallel do
+                    else
+                        !$omp parallel do default(shared) schedule(static) if(nx*ny > omp_min_elements)
+                        do j = 1, ny
+                            u(:, j) = u(:, j) - p(k, l)*op%kernel(1 - k:nx - k, j - l)
+                        end do
+                        !$omp end parallel do
+                    end if
                 end if
             end do
         end do

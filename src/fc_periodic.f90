@@ -22,16 +22,17 @@
 !! and its Fourier symbol is real — the same values serve the serial operator built here
 !! and the distributed one of the MPI package (cosine transforms of the quadrant).
 !!
-!! Operators.  The periodic product is a circular convolution, i.e. a Toeplitz product
-!! with kernel K(d) = w(d mod n), so the serial operator reuses [[build_bttb_from_kernel]]
-!! (doubled-grid FFTs; every solver path of [[fc_norm]] then works unchanged, including
-!! the column updates of clipped elements).  The preconditioner is the exact inverse of
-!! the circulant on mean-free vectors: symbol 1/ŵ (zero mode 0, values floored at 1e−8 of
-!! the largest as in [[inverse_toeplitz_from_kernel]]).
+!! Operators.  The periodic product is a circular convolution: the serial operator is the
+!! circulant of w on the grid itself ([[build_bttb_periodic]]: nx×ny transforms, a quarter
+!! of the doubled grid's work and memory; [[fc_norm]]'s column updates of clipped elements
+!! take the offsets modulo the grid).  The preconditioner is the exact inverse of the
+!! circulant on mean-free vectors: symbol 1/ŵ (zero mode 0, values floored at 1e−8 of the
+!! largest as in [[inverse_toeplitz_from_kernel]]), on the same plans.
 module fc_periodic
     use fc_kinds, only: dp, i8, msg_len, FC_ERR_VALUE
     use fc_geometry, only: fc_grid
-    use fc_influence, only: fc_material, element_coefficient, IC_ZZ, build_bttb_from_kernel
+    use fc_influence, only: fc_material, element_coefficient, IC_ZZ
+    use fc_toeplitz, only: build_bttb_periodic
     use fc_norm, only: fc_normal_operator
     use fc_fftw
     implicit none
@@ -103,7 +104,7 @@ contains
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
         integer, intent(in), optional :: images   !! image rings (default [[periodic_images_default]])
-        real(dp), allocatable :: q(:, :), w(:, :), kt(:, :), rb(:, :)
+        real(dp), allocatable :: q(:, :), w(:, :), rb(:, :)
         complex(dp), allocatable :: cb(:, :)
         type(c_ptr) :: plan_f, plan_b
         real(dp) :: smax, s
@@ -126,9 +127,7 @@ contains
             end do
         end do
         w = w - sum(w)/size(w)
-        allocate (kt(-(nx - 1):nx - 1, -(ny - 1):ny - 1))
-        call circulant_as_toeplitz(w, kt)
-        call build_bttb_from_kernel(nop%a_zz, kt, nx, ny)
+        call build_bttb_periodic(nop%a_zz, w)
         ! exact inverse on mean-free vectors: symbol 1/ŵ, zero mode dropped
         allocate (rb(nx, ny), cb(nx/2 + 1, ny))
         !$omp critical (fc_fftw_planner)
@@ -150,23 +149,10 @@ contains
         call fftw_destroy_plan(plan_f); call fftw_destroy_plan(plan_b)
         !$omp end critical (fc_fftw_planner)
         w = rb
-        call circulant_as_toeplitz(w, kt)
-        call build_bttb_from_kernel(nop%precond, kt, nx, ny)
+        call build_bttb_periodic(nop%precond, w, plans_from=nop%a_zz, keep_kernel=.false.)
         call system_clock(t1)
         nop%setup_seconds = real(t1 - t0, dp)/rate
     end subroutine build_periodic_normal_operator
 
-    !> Toeplitz kernel of a circular convolution: kt(d, e) = w(d mod nx, e mod ny).
-    subroutine circulant_as_toeplitz(w, kt)
-        real(dp), intent(in) :: w(0:, 0:)
-        real(dp), intent(out) :: kt(-(size(w, 1) - 1):, -(size(w, 2) - 1):)
-        integer :: d, e, nx, ny
-        nx = size(w, 1); ny = size(w, 2)
-        do e = -(ny - 1), ny - 1
-            do d = -(nx - 1), nx - 1
-                kt(d, e) = w(modulo(d, nx), modulo(e, ny))
-            end do
-        end do
-    end subroutine circulant_as_toeplitz
 
 end module fc_periodic
