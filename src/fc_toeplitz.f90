@@ -32,7 +32,7 @@
 !! make the plan set public, and a module of its own below this one would add a layer to
 !! the module graph (doc/architecture.md).
 module fc_toeplitz
-    use fc_kinds, only: dp
+    use fc_kinds, only: dp, i8
     use, intrinsic :: iso_c_binding, only: c_loc
     use fc_fftw
     use fc_threads, only: omp_min_elements, fftw_threads_for_size, lanes_min_elements, fftw_planner_threads
@@ -59,6 +59,13 @@ module fc_toeplitz
         type(c_ptr) :: plan_x_fwd = c_null_ptr, plan_y_fwd = c_null_ptr
         type(c_ptr) :: plan_y_bwd = c_null_ptr, plan_x_bwd = c_null_ptr
         type(c_ptr) :: plan_xf_fwd = c_null_ptr, plan_xf_bwd = c_null_ptr
+        !> Large spectra (mxh·my ≥ [[transposed_y_min]]) take the y passes on column chunks
+        !! of `tw` columns copied into contiguous buffers (`tbuf`, one per thread), where the
+        !! strided plans run out of cache; `tw` = 0: the strided plans.
+        integer :: tw = 0
+        integer :: tthreads = 1                        !! threads (buffers) of the chunked passes
+        type(c_ptr) :: plan_yt_fwd = c_null_ptr, plan_yt_bwd = c_null_ptr
+        complex(dp), allocatable :: tbuf(:, :, :)     !! (my, tw, tthreads)
         integer :: refs = 0                !! blocks using this set
         integer :: planner_threads = 1     !! threads of these plans
         !> lanes of [[block_product]]: its two components run side by side, one thread each,
@@ -70,6 +77,12 @@ module fc_toeplitz
         integer :: lanes_state = 0
     end type fc_fft_plans
     integer, parameter :: LANES_NONE = 0, LANES_ON = 1
+    !> Spectra of at least this many complex values (mxh·my: 33 MB, a 1024² grid's doubled
+    !! spectrum) take the chunked y passes: measured 0.55–0.66 of the strided passes' time at
+    !! 1024² and 0.57–0.63 at 2048², no gain at 512² (a spectrum of 17 MB that the caches
+    !! hold) and below (doc/operators.md, "Plans").
+    integer, parameter :: transposed_y_min = 2**21
+    integer, parameter :: transposed_y_width = 16   !! columns per chunk (my·16 values)
 
     !> BTTB operator: y = A x for one influence block (or preconditioner) on one grid.
     type, public :: fc_bttb
@@ -96,6 +109,7 @@ module fc_toeplitz
         procedure :: shares_plans => bttb_shares_plans
         procedure :: lanes_on => bttb_lanes_on
         procedure :: storage_bytes => bttb_storage_bytes
+        procedure :: chunked_y => bttb_chunked_y
         procedure, private :: bttb_assign
         generic :: assignment(=) => bttb_assign
         final :: bttb_final
@@ -375,6 +389,7 @@ contains
             w%plan_xf_fwd = x_pass_r2c(my)
             w%plan_xf_bwd = x_pass_c2r(my)
         end if
+        if (int(mxh, i8)*my >= transposed_y_min .and. my > 1) call chunk_plans()
         w%refs = 1
     contains
         type(c_ptr) function x_pass_r2c(columns) result(plan)
@@ -392,7 +407,78 @@ contains
             plan = fftw_plan_many_dft(1_c_int, [int(my, c_int)], int(mxh, c_int), w%cbuf, [int(my, c_int)], &
                 int(mxh, c_int), 1_c_int, w%cbuf, [int(my, c_int)], int(mxh, c_int), 1_c_int, sign, FFTW_ESTIMATE)
         end function y_pass
+        !> Single-threaded plans of `tw` contiguous columns (the chunks run on threads of
+        !! their own) and one buffer per thread.
+        subroutine chunk_plans()
+            integer :: saved
+            w%tw = transposed_y_width
+            w%tthreads = 1
+            !$ w%tthreads = max(1, omp_get_max_threads())
+            allocate (w%tbuf(my, w%tw, w%tthreads))
+            saved = 0
+            call fftw_threads_for_size(1, saved)
+            w%plan_yt_fwd = fftw_plan_many_dft(1_c_int, [int(my, c_int)], int(w%tw, c_int), w%tbuf, [int(my, c_int)], &
+                1_c_int, int(my, c_int), w%tbuf, [int(my, c_int)], 1_c_int, int(my, c_int), FFTW_FORWARD, FFTW_ESTIMATE)
+            w%plan_yt_bwd = fftw_plan_many_dft(1_c_int, [int(my, c_int)], int(w%tw, c_int), w%tbuf, [int(my, c_int)], &
+                1_c_int, int(my, c_int), w%tbuf, [int(my, c_int)], 1_c_int, int(my, c_int), FFTW_BACKWARD, FFTW_ESTIMATE)
+            call fftw_threads_for_size(-1, saved)
+        end subroutine chunk_plans
     end subroutine plans_create
+
+    !> The y pass of a product or transform, in place on the spectrum c (mxh × my): complex
+    !! transforms of length my along y, forward or backward, reading rows 1…rows_in of c (the
+    !! rows beyond taken as zero) and writing rows 1…rows_out.  Small spectra run the
+    !! strided plan over all rows (the caller has zeroed rows beyond rows_in); large ones
+    !! ([[transposed_y_min]]) copy chunks of `tw` columns transposed into contiguous
+    !! buffers, transform them there and copy back the rows needed.
+    subroutine y_pass(w, c, forward, rows_in, rows_out)
+        type(fc_fft_plans), intent(inout) :: w
+        complex(dp), intent(inout), contiguous :: c(:, :)
+        logical, intent(in) :: forward
+        integer, intent(in) :: rows_in, rows_out
+        integer :: k, nb, tid
+        type(c_ptr) :: plan
+        if (w%tw == 0) then
+            if (forward) then
+                call fftw_execute_dft(w%plan_y_fwd, c, c)
+            else
+                call fftw_execute_dft(w%plan_y_bwd, c, c)
+            end if
+            return
+        end if
+        plan = w%plan_yt_fwd
+        if (.not. forward) plan = w%plan_yt_bwd
+        nb = (size(c, 1) + w%tw - 1)/w%tw
+        !$omp parallel do default(shared) private(tid) schedule(static) num_threads(w%tthreads)
+        do k = 1, nb
+            tid = 1
+            !$ tid = omp_get_thread_num() + 1
+            call y_chunk(plan, c, w%tbuf(:, :, tid), (k - 1)*w%tw + 1, min(size(c, 1), k*w%tw), rows_in, rows_out)
+        end do
+        !$omp end parallel do
+    end subroutine y_pass
+
+    !> One chunk of [[y_pass]]: columns ib…ie of c through the buffer b (my × tw).
+    subroutine y_chunk(plan, c, b, ib, ie, rows_in, rows_out)
+        type(c_ptr), intent(in) :: plan
+        complex(dp), intent(inout) :: c(:, :)
+        complex(dp), intent(inout), contiguous :: b(:, :)
+        integer, intent(in) :: ib, ie, rows_in, rows_out
+        integer :: i, j
+        do j = 1, rows_in
+            do i = ib, ie
+                b(j, i - ib + 1) = c(i, j)
+            end do
+        end do
+        b(rows_in + 1:, 1:ie - ib + 1) = 0
+        if (ie - ib + 1 < size(b, 2)) b(:, ie - ib + 2:) = 0   ! the last chunk's unused columns
+        call fftw_execute_dft(plan, b, b)
+        do j = 1, rows_out
+            do i = ib, ie
+                c(i, j) = b(j, i - ib + 1)
+            end do
+        end do
+    end subroutine y_chunk
 
     !> cbuf ← the 2D FFT of the whole real buffer (rbuf is kept).
     subroutine full_forward(w)
@@ -402,13 +488,13 @@ contains
         else
             call fftw_execute_dft_r2c(w%plan_x_fwd, w%rbuf, w%cbuf)
         end if
-        call fftw_execute_dft(w%plan_y_fwd, w%cbuf, w%cbuf)
+        call y_pass(w, w%cbuf, .true., w%my, w%my)
     end subroutine full_forward
 
     !> rbuf ← the unnormalised 2D inverse FFT of cbuf (cbuf is destroyed).
     subroutine full_backward(w)
         type(fc_fft_plans), intent(inout) :: w
-        call fftw_execute_dft(w%plan_y_bwd, w%cbuf, w%cbuf)
+        call y_pass(w, w%cbuf, .false., w%my, w%my)
         if (c_associated(w%plan_xf_bwd)) then
             call fftw_execute_dft_c2r(w%plan_xf_bwd, w%cbuf, w%rbuf)
         else
@@ -425,6 +511,10 @@ contains
         if (c_associated(w%plan_y_fwd)) call fftw_destroy_plan(w%plan_y_fwd)
         if (c_associated(w%plan_y_bwd)) call fftw_destroy_plan(w%plan_y_bwd)
         if (c_associated(w%plan_x_bwd)) call fftw_destroy_plan(w%plan_x_bwd)
+        if (c_associated(w%plan_yt_fwd)) call fftw_destroy_plan(w%plan_yt_fwd)
+        if (c_associated(w%plan_yt_bwd)) call fftw_destroy_plan(w%plan_yt_bwd)
+        w%plan_yt_fwd = c_null_ptr; w%plan_yt_bwd = c_null_ptr; w%tw = 0
+        if (allocated(w%tbuf)) deallocate (w%tbuf)
         w%plan_xf_fwd = c_null_ptr; w%plan_xf_bwd = c_null_ptr
         w%plan_x_fwd = c_null_ptr; w%plan_y_fwd = c_null_ptr
         w%plan_y_bwd = c_null_ptr; w%plan_x_bwd = c_null_ptr
@@ -1099,12 +1189,14 @@ contains
         end do
         !$omp end parallel do
         call fftw_execute_dft_r2c(w%plan_x_fwd, w%rbuf, c)
-        !$omp parallel do default(shared) schedule(static) if(par)
-        do j = ny + 1, w%my
-            c(:, j) = 0
-        end do
-        !$omp end parallel do
-        call fftw_execute_dft(w%plan_y_fwd, c, c)
+        if (w%tw == 0) then
+            !$omp parallel do default(shared) schedule(static) if(par)
+            do j = ny + 1, w%my
+                c(:, j) = 0
+            end do
+            !$omp end parallel do
+        end if
+        call y_pass(w, c, .true., ny, w%my)
     end subroutine transform_forward_to
 
     !> y ← inverse FFT of c (the plan set's cbuf or an array FFTW may use in its place),
@@ -1126,7 +1218,7 @@ contains
         mx = w%mx
         par = size(w%rbuf) > omp_min_elements
         if (conjugated) then
-            call fftw_execute_dft(w%plan_y_fwd, c, c)
+            call y_pass(w, c, .true., w%my, w%ny)
             call fftw_execute_dft_c2r(w%plan_x_bwd, c, w%rbuf)
             !$omp parallel do default(shared) private(i) schedule(static) if(par)
             do j = 1, w%ny
@@ -1137,7 +1229,7 @@ contains
             end do
             !$omp end parallel do
         else
-            call fftw_execute_dft(w%plan_y_bwd, c, c)
+            call y_pass(w, c, .false., w%my, w%ny)
             call fftw_execute_dft_c2r(w%plan_x_bwd, c, w%rbuf)
             !$omp parallel do default(shared) schedule(static) if(par)
             do j = 1, w%ny
@@ -1158,6 +1250,13 @@ contains
         end do
         !$omp end parallel do
     end subroutine copy_spectrum
+
+    !> Whether the products' y passes run on contiguous column chunks (large spectra).
+    logical function bttb_chunked_y(self)
+        class(fc_bttb), intent(in) :: self
+        bttb_chunked_y = .false.
+        if (associated(self%fft)) bttb_chunked_y = self%fft%tw > 0
+    end function bttb_chunked_y
 
     !> y = A x by the direct O(n²) sum over the stored coefficients: the test oracle.
     subroutine bttb_apply_direct(self, x, y)

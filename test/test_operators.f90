@@ -34,7 +34,8 @@ contains
             new_unittest('products_on_slow_fft_sizes', test_products_slow_sizes), &
             new_unittest('toeplitz_inverse_defined_on_doubled_grid', test_inverse_doubled_grid), &
             new_unittest('block_inverse_defined_on_doubled_grid', test_block_inverse_doubled_grid), &
-            new_unittest('final_binding_releases_plans', test_final_binding) ]
+            new_unittest('final_binding_releases_plans', test_final_binding), &
+            new_unittest('large_products_chunked_y_passes', test_chunked_y) ]
     end subroutine collect_operators
 
     !> A 3×3 SPD system with a known solution.
@@ -607,5 +608,47 @@ contains
             call check(error, o%fft%refs == 2, 'local block shares the plans')
         end subroutine scoped_user
     end subroutine test_final_binding
+
+    !> On a 1024² grid (a doubled spectrum of 1025 × 2048 values) the products run their y
+    !! passes on contiguous column chunks (A^zz and BCCG's Toeplitz inverse).  The product
+    !! with A^zz, whose symbol the chunked passes made as well, equals the direct sums over
+    !! the stored coefficients for a load on seven elements spread over the grid (edges and
+    !! corners included), to 1e−12 of the largest value.  A 64² operator keeps the strided
+    !! passes.
+    subroutine test_chunked_y(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_grid) :: grid
+        type(fc_material) :: mat
+        type(fc_normal_operator) :: nop, small
+        real(dp), allocatable :: x(:, :), y(:, :), yd(:, :)
+        integer, parameter :: n = 1024
+        integer :: stat, k, i, j
+        integer, parameter :: px(7) = [1, n, 1, n, 517, 3, 1000], py(7) = [1, 1, n, n, 300, 1020, 12]
+        character(len=256) :: msg
+        mat%g1 = 82000; mat%g2 = 82000; mat%nu1 = 0.28_dp; mat%nu2 = 0.28_dp
+        call combine_material(mat, stat, msg)
+        call make_grid(grid, 64, 64, -1.0_dp, 1.0_dp, -1.0_dp, 1.0_dp, stat, msg)
+        call build_normal_operator(small, mat, grid)
+        call check(error, .not. small%a_zz%chunked_y(), '64 x 64: strided y passes expected')
+        call make_grid(grid, n, n, -1.0_dp, 1.0_dp, -1.0_dp, 1.0_dp, stat, msg)
+        call build_normal_operator(nop, mat, grid)
+        call check(error, nop%a_zz%chunked_y() .and. nop%precond%chunked_y(), '1024 x 1024: chunked y passes expected')
+        if (allocated(error)) return
+        allocate (x(n, n), y(n, n), yd(n, n))
+        x = 0
+        do k = 1, size(px)
+            x(px(k), py(k)) = 1 + 0.1_dp*k
+        end do
+        call nop%a_zz%apply(x, y)
+        yd = 0
+        do k = 1, size(px)
+            do j = 1, n
+                do i = 1, n
+                    yd(i, j) = yd(i, j) + x(px(k), py(k))*nop%a_zz%kernel(i - px(k), j - py(k))
+                end do
+            end do
+        end do
+        call check(error, maxval(abs(y - yd)), 0.0_dp, 'A x, chunked passes vs direct sums', abs=1e-12_dp*maxval(abs(yd)))
+    end subroutine test_chunked_y
 
 end module test_operators
