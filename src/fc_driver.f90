@@ -18,9 +18,11 @@
 !! Exit code: 0 all cases converged; 1 a case had an input error (or the command line /
 !! case file was bad); 2 no input error but a solver did not converge or diverged.
 !!
-!! Size (~630 lines): the case loop with its three outcomes (error, sweep or sequence,
-!! single solve) and the summary it fills; the strip cases and the sequence tables already
-!! live in [[fc_driver_strip]] and [[fc_sequence_csv]].
+!! Size (~680 lines): the case loop with its three outcomes (error, sweep or sequence,
+!! single solve) and the summary it fills, and the helpers the MPI package's distributed
+!! driver shares with it (command line, case errors, output directory, Hertz reference);
+!! the strip cases and the sequence tables already live in [[fc_driver_strip]] and
+!! [[fc_sequence_csv]].
 module fc_driver
     use, intrinsic :: iso_fortran_env, only: output_unit, int64, error_unit_default => error_unit
     use fc_kinds, only: dp, msg_len, FC_CONVERGED, FC_DIVERGED, FC_ERR_IO, status_name
