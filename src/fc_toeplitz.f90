@@ -431,11 +431,14 @@ contains
     !! strided plan over all rows (the caller has zeroed rows beyond rows_in); large ones
     !! ([[transposed_y_min]]) copy chunks of `tw` columns transposed into contiguous
     !! buffers, transform them there and copy back the rows needed.
-    subroutine y_pass(w, c, forward, rows_in, rows_out)
+    !! With `slot`, the chunks run one after the other on the calling thread through buffer
+    !! `slot` (the lanes of [[block_product]], one slot each).
+    subroutine y_pass(w, c, forward, rows_in, rows_out, slot)
         type(fc_fft_plans), intent(inout) :: w
         complex(dp), intent(inout), contiguous :: c(:, :)
         logical, intent(in) :: forward
         integer, intent(in) :: rows_in, rows_out
+        integer, intent(in), optional :: slot
         integer :: k, nb, tid
         type(c_ptr) :: plan
         if (w%tw == 0) then
@@ -449,6 +452,13 @@ contains
         plan = w%plan_yt_fwd
         if (.not. forward) plan = w%plan_yt_bwd
         nb = (size(c, 1) + w%tw - 1)/w%tw
+        if (present(slot)) then
+            do k = 1, nb
+                call y_chunk(plan, c, w%tbuf(:, :, min(slot, w%tthreads)), (k - 1)*w%tw + 1, min(size(c, 1), k*w%tw), &
+                    rows_in, rows_out)
+            end do
+            return
+        end if
         !$omp parallel do default(shared) private(tid) schedule(static) num_threads(w%tthreads)
         do k = 1, nb
             tid = 1
@@ -1059,16 +1069,16 @@ contains
             !$omp parallel num_threads(2) default(shared) firstprivate(tid, nt)
             !$ tid = omp_get_thread_num()
             !$ nt = omp_get_num_threads()   ! 1 if the runtime grants one thread: both on it
-            if (tid == 0) call lane_forward(p, p%rbuf, dx, sx)
-            if (tid == 1 .or. nt == 1) call lane_forward(p, bxx%fft%rbuf2, dy, sy)
+            if (tid == 0) call lane_forward(p, p%rbuf, dx, sx, 1)
+            if (tid == 1 .or. nt == 1) call lane_forward(p, bxx%fft%rbuf2, dy, sy, 2)
             !$omp barrier
             if (tid == 0) then
                 call spectrum_pair_product(bxx, sx, bxy, sy, w, conjugate=.true.)
-                call lane_backward(p, p%rbuf, w, zx)
+                call lane_backward(p, p%rbuf, w, zx, 1)
             end if
             if (tid == 1 .or. nt == 1) then
                 call spectrum_pair_product(bxy, sx, byy, sy, w2, conjugate=.true.)
-                call lane_backward(p, bxx%fft%rbuf2, w2, zy)
+                call lane_backward(p, bxx%fft%rbuf2, w2, zy, 2)
             end if
             !$omp end parallel
             bxx%nproducts = bxx%nproducts + 2
@@ -1122,38 +1132,44 @@ contains
         use_lanes = fc_fftw_alignment_of(c_loc(w%rbuf2)) == fc_fftw_alignment_of(c_loc(q%rbuf)) .and. &
             fftw_compatible(s1, q%cbuf) .and. fftw_compatible(s2, q%cbuf) .and. &
             fftw_compatible(s3, q%cbuf) .and. fftw_compatible(s4, q%cbuf)
+        ! chunked y passes need a buffer per lane (plans made on one thread have one)
+        if (q%tw > 0) use_lanes = use_lanes .and. q%tthreads >= 2
     end function use_lanes
 
     !> s ← FFT of x zero-padded to mx×my by the single-threaded plans of `p` on the real
     !! buffer `rb` (p%rbuf or a buffer of the same alignment); nested loops stay serial.
-    subroutine lane_forward(p, rb, x, s)
+    subroutine lane_forward(p, rb, x, s, slot)
         type(fc_fft_plans), intent(inout) :: p
         real(dp), intent(inout), contiguous :: rb(:, :)
         real(dp), intent(in) :: x(:, :)
         complex(dp), intent(inout), contiguous :: s(:, :)
+        integer, intent(in) :: slot   !! the lane's chunk buffer (large grids)
         integer :: j
         do j = 1, p%ny
             rb(1:p%nx, j) = x(:, j)
             if (p%mx > p%nx) rb(p%nx + 1:, j) = 0
         end do
         call fftw_execute_dft_r2c(p%plan_x_fwd, rb, s)
-        do j = p%ny + 1, p%my
-            s(:, j) = 0
-        end do
-        call fftw_execute_dft(p%plan_y_fwd, s, s)
+        if (p%tw == 0) then
+            do j = p%ny + 1, p%my
+                s(:, j) = 0
+            end do
+        end if
+        call y_pass(p, s, .true., p%ny, p%my, slot)
     end subroutine lane_forward
 
     !> y ← inverse FFT of s restricted to the grid, by the plans of `p` on the real buffer
     !! `rb` (as [[lane_forward]]), s holding the conjugate of the spectrum: the mirrored
     !! inverse of [[transform_backward_from]]; s is destroyed.
-    subroutine lane_backward(p, rb, s, y)
+    subroutine lane_backward(p, rb, s, y, slot)
         type(fc_fft_plans), intent(inout) :: p
         real(dp), intent(inout), contiguous :: rb(:, :)
         complex(dp), intent(inout), contiguous :: s(:, :)
         real(dp), intent(out) :: y(:, :)
+        integer, intent(in) :: slot   !! the lane's chunk buffer (large grids)
         integer :: i, j, mx
         mx = p%mx
-        call fftw_execute_dft(p%plan_y_fwd, s, s)
+        call y_pass(p, s, .true., p%my, p%ny, slot)
         call fftw_execute_dft_c2r(p%plan_x_bwd, s, rb)
         do j = 1, p%ny
             y(1, j) = rb(1, j)

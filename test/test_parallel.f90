@@ -41,6 +41,7 @@ contains
             new_unittest('threads_same_result', test_threads_same), &
             new_unittest('threads_same_result_cattaneo', test_threads_same_cattaneo), &
             new_unittest('threads_block_product_side_by_side', test_lanes), &
+            new_unittest('threads_lanes_chunked_y_passes', test_lanes_chunked), &
             new_unittest('threads_same_result_rolling', test_threads_rolling), &
             new_unittest('threads_concurrent_operator_builds', test_threads_orchestrator), &
             new_unittest('threads_same_result_strip_mg', test_threads_strip), &
@@ -178,6 +179,50 @@ contains
         ! 84×78 and the Strang circulants on a 42×39 period (fc_fftw's circulant_size, friendly_size)
         call lanes_on_grid(41, 37, error)
     end subroutine test_lanes
+
+    !> On a 1024² grid with two threads the block products run on the lanes and take the
+    !! chunked y passes, one buffer per lane; the product equals the direct sums over the
+    !! blocks' coefficients for loads on five elements (edges and corners) to 1e−12.
+    subroutine test_lanes_chunked(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_material) :: mat
+        type(fc_grid) :: grid
+        type(fc_tangential_operator) :: top
+        integer, parameter :: n = 1024
+        integer, parameter :: ix(5) = [1, n, 1, 600, 77], iy(5) = [1, 1, n, 511, 1000]
+        real(dp), allocatable :: px(:, :), py(:, :), ux(:, :), uy(:, :), dx(:, :), dy(:, :)
+        integer :: stat, nt0, k, i, j
+        character(len=256) :: em
+        if (.not. fc_openmp_enabled()) return
+        nt0 = fc_thread_count()
+        mat%g1 = 200; mat%g2 = 200; mat%nu1 = 0.42_dp; mat%nu2 = 0.42_dp
+        call combine_material(mat, stat, em)
+        call make_grid(grid, n, n, -1.0_dp, 1.0_dp, -1.0_dp, 1.0_dp, stat, em)
+        call set_thread_count(2, n*n)
+        call build_tangential_operator(top, mat, grid)
+        allocate (px(n, n), py(n, n), ux(n, n), uy(n, n), dx(n, n), dy(n, n))
+        px = 0; py = 0
+        do k = 1, size(ix)
+            px(ix(k), iy(k)) = 1 + 0.1_dp*k; py(ix(k), iy(k)) = 0.5_dp - 0.2_dp*k
+        end do
+        call top%apply(px, py, ux, uy)
+        call set_thread_count(nt0)
+        call check(error, top%a_xx%lanes_on() .and. top%a_xx%chunked_y(), 'lanes with chunked y passes expected')
+        if (allocated(error)) return
+        dx = 0; dy = 0
+        do k = 1, size(ix)
+            do j = 1, n
+                do i = 1, n
+                    associate (a => px(ix(k), iy(k)), b => py(ix(k), iy(k)), di => i - ix(k), dj => j - iy(k))
+                        dx(i, j) = dx(i, j) + a*top%a_xx%kernel(di, dj) + b*top%a_xy%kernel(di, dj)
+                        dy(i, j) = dy(i, j) + a*top%a_xy%kernel(di, dj) + b*top%a_yy%kernel(di, dj)
+                    end associate
+                end do
+            end do
+        end do
+        call check(error, maxval(abs(ux - dx)), 0.0_dp, 'x, lanes vs direct sums', abs=1e-12_dp*maxval(abs(dx)))
+        call check(error, maxval(abs(uy - dy)), 0.0_dp, 'y, lanes vs direct sums', abs=1e-12_dp*maxval(abs(dy)))
+    end subroutine test_lanes_chunked
 
     subroutine lanes_on_grid(nx, ny, error)
         integer, intent(in) :: nx, ny
