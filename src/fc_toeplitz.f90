@@ -25,7 +25,7 @@
 !! Blocks sharing a plan set must not be applied concurrently (one set of buffers).  Plans
 !! are made and destroyed inside the critical section `fc_fftw_planner` (see fc_threads).
 !!
-!! Size (~1290 lines): construction (Strang circulants and the even circulants' symbols of
+!! Size (~1300 lines): construction (Strang circulants and the even circulants' symbols of
 !! TangCG's block inverse included, which use the plan set's buffers), lifetime, the
 !! products, the large grids' chunked y passes and the block products' lanes (which add a
 !! second plan set and buffer to it) share the plan set and its buffers; splitting them would

@@ -127,7 +127,7 @@ contains
         close (u)
     end function file_lines
 
-    !> The bytes of a file ('' when it cannot be read).
+    !> The whole file, lines of any length included ('' when it cannot be read).
     function file_bytes(path) result(s)
         character(len=*), intent(in) :: path
         character(len=:), allocatable :: s
@@ -138,6 +138,7 @@ contains
         inquire (unit=u, size=n)
         deallocate (s); allocate (character(len=max(0, n)) :: s)
         if (n > 0) read (u, iostat=ios) s
+        if (ios /= 0) s = ''
         close (u)
     end function file_bytes
 

@@ -4,7 +4,7 @@
 !! The driver runs in-process on small grids; files go to a unique directory under /tmp.
 module test_summary
     use fc_kinds, only: dp
-    use fc_testing, only: error_type, unittest_type, new_unittest, check
+    use fc_testing, only: error_type, unittest_type, new_unittest, check, file_bytes
     use fc_driver, only: run_driver
     implicit none
     private
@@ -38,7 +38,7 @@ contains
         call run_case(hertz_case('hz'), code, dir)
         call check(error, code == 0, 'exit code 0 expected')
         if (allocated(error)) return
-        j = read_text(dir//'/hz.json')
+        j = file_bytes(dir//'/hz.json')
         call json_list(j, 'history_normal', h)
         it = nint(json_num(j, 'iterations_normal'))
         call check(error, it > 0, 'iterations_normal > 0: '//j)
@@ -62,7 +62,7 @@ contains
         call run_case(hertz_case('hz0')//'&solver precondition = .false. /'//nl, code, dir)
         call check(error, code == 0, 'exit code 0 expected')
         if (allocated(error)) return
-        j = read_text(dir//'/hz0.json')
+        j = file_bytes(dir//'/hz0.json')
         call check(error, nint(json_num(j, 'precond_applications_normal')) == 0, &
             'precond_applications_normal = 0 without preconditioner: '//j)
         call json_list(j, 'history_normal', h)
@@ -85,7 +85,7 @@ contains
             '&tangential mu = 0.4, xi = 0.0, eta = 0.0015, phi = 0.0012 /'//nl, code, dir)
         call check(error, code == 0, 'exit code 0 expected')
         if (allocated(error)) return
-        j = read_text(dir//'/cat.json')
+        j = file_bytes(dir//'/cat.json')
         call check(error, nint(json_num(j, 'panagiotopoulos_rounds')) == 1, 'one round expected: '//j)
         call json_list(j, 'history_tangential', h)
         call check(error, size(h) == nint(json_num(j, 'iterations_tangential')) .and. size(h) > 0, &
@@ -141,23 +141,6 @@ contains
         character(len=*), intent(in) :: dir
         if (index(dir, '/tmp/fc_test_summary_') == 1) call execute_command_line("rm -rf '"//dir//"'")
     end subroutine cleanup
-
-    !> The whole file (lines of any length).
-    function read_text(path) result(text)
-        character(len=*), intent(in) :: path
-        character(len=:), allocatable :: text
-        integer :: u, ios, n
-        text = ''
-        open (newunit=u, file=path, status='old', action='read', access='stream', form='unformatted', iostat=ios)
-        if (ios /= 0) return
-        inquire (unit=u, size=n)
-        if (n > 0) then
-            deallocate (text); allocate (character(len=n) :: text)
-            read (u, iostat=ios) text
-            if (ios /= 0) text = ''
-        end if
-        close (u)
-    end function read_text
 
     !> Value of a numeric JSON key (huge() when absent or unreadable).
     real(dp) function json_num(text, key)
