@@ -129,7 +129,7 @@ contains
         real(dp), allocatable :: cx(:), cy(:)
         integer(i8) :: state
         integer :: m, n, i, j
-        state = max(1_i8, mod(int(abs(par%seed), i8), rng_m - 1) + 1)
+        state = max(1_i8, mod(abs(int(par%seed, i8)), rng_m - 1) + 1)   ! abs in 64 bits: seed = -2^31 is valid
         do n = 1, par%n_modes
             do m = 1, par%m_modes
                 call next_uniform(state, r); phx(m, n) = 2*pi*r

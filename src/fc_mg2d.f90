@@ -499,7 +499,7 @@ contains
         integer :: i
         p = 0
         if (.not. settings%random_start) return
-        state = max(1_i8, mod(int(abs(settings%seed), i8), 2147483646_i8) + 1)
+        state = max(1_i8, mod(abs(int(settings%seed, i8)), 2147483646_i8) + 1)   ! abs in 64 bits
         do i = 1, size(p, 1)
             state = mod(48271_i8*state, 2147483647_i8)
             p(i) = real(state, dp)/2147483647.0_dp

@@ -119,6 +119,12 @@ contains
         par%seed = 7
         call rough_heights(grid, par, z2)
         call check(error, maxval(abs(z - z2)) > 0.01_dp, 'another seed gives another surface')
+        ! the most negative seed: |seed| is taken in 64 bits (in 32 bits it overflowed, which
+        ! the sanitizer run reports as undefined behaviour)
+        par%seed = -huge(1) - 1
+        call rough_heights(grid, par, z)
+        call check(error, sqrt(sum(z**2)/size(z)), par%sigma, 'seed = -2^31: sampled sigma', rel=1e-12_dp)
+        call check(error, maxval(abs(z - z2)) > 0.01_dp, 'seed = -2^31 gives another surface than seed 7')
     end subroutine test_rough
 
     !> Element centres at xmin + (i−½)dx (doc/conventions.md) and the quadratic profile.
