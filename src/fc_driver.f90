@@ -28,7 +28,7 @@ module fc_driver
     use fc_kinds, only: dp, msg_len, FC_CONVERGED, FC_DIVERGED, FC_ERR_IO, status_name
     use fc_geometry, only: fc_grid
     use fc_influence, only: fc_material
-    use fc_contact, only: fc_contact_operators, FC_PROBLEM_ROLLING
+    use fc_contact, only: fc_contact_operators, FC_PROBLEM_ROLLING, FC_PROBLEM_NORMAL
     use fc_sequence_csv, only: write_sequence_csv, sweep_header, steps_header
     use fc_driver_strip, only: solve_strip_case
     use fc_hertz, only: hertz_from_approach, hertz_from_force
@@ -42,7 +42,9 @@ module fc_driver
         FC_ERR_GRID, FC_ERR_IC_FILE, FC_ERR_MODEL_RANGE, FC_ERR_FFT_WISDOM
     use fc_output, only: fc_case_summary, write_case_json, write_case_csv, write_case_npy, write_case_report
     use fc_auto, only: fc_auto_outcome, solve_case_auto
-    use fc_threads, only: set_thread_count
+    use fc_threads, only: set_thread_count, fc_default_threads
+    use fc_memory, only: available_memory, case_memory_bytes, process_resident_bytes, format_bytes, memory_env, &
+        serial_bytes_per_element
     use fc_version, only: fc_build_info
     implicit none
     private
@@ -198,6 +200,14 @@ contains
             if (strip_model_index(state) > 0) then
                 call run_strip_case(dir, kase, t0, rate, case_status)
                 return
+            end if
+            ! ---- memory: a given grid beyond what this process may use is an input error now,
+            !      not a process killed by the operating system while it builds the operators
+            if (.not. grid_is_auto(state)) then
+                call check_case_memory(kase, stat, errmsg)
+                if (stat /= 0) then
+                    call case_error(); return
+                end if
             end if
             ! ---- solve: model choice, potential area, accuracy target (fc_auto); operators reused;
             !      the outcome goes straight into the summary
@@ -421,6 +431,38 @@ contains
             d = case_output_dir(state, out_dir)
         end function output_dir
     end subroutine run_driver
+
+    !> stat = FC_ERR_ALLOC with a message naming `&grid nx, ny` when the estimated peak memory
+    !! of `kase` (fc_memory: bytes per element of its problem, more with threads) exceeds the
+    !! memory this process may use (available memory plus what it holds already); nothing is
+    !! checked when the available memory is unknown.  stat = FC_ERR_VALUE for an invalid
+    !! `FASTCONTACT_AVAILABLE_MEMORY`.
+    subroutine check_case_memory(kase, stat, errmsg)
+        type(fc_case), intent(in) :: kase
+        integer, intent(out) :: stat
+        character(len=msg_len), intent(out) :: errmsg
+        integer(int64) :: avail, need, held
+        character(len=:), allocatable :: source, kind
+        real(dp) :: bpe
+        integer :: threads
+        call available_memory(avail, source, stat, errmsg)
+        if (stat /= 0 .or. avail < 0) return
+        threads = kase%threads
+        if (threads <= 0) threads = fc_default_threads()
+        kind = 'tangential'
+        if (kase%problem == FC_PROBLEM_NORMAL) kind = 'normal'
+        if (kase%problem == FC_PROBLEM_ROLLING .or. kase%rolling%transient) kind = 'rolling'
+        bpe = serial_bytes_per_element(kind, threads)
+        need = case_memory_bytes(int(kase%nx, int64)*kase%ny, bpe)
+        held = 0
+        if (source /= memory_env) held = max(0_int64, process_resident_bytes())
+        if (need <= avail + held) return
+        stat = FC_ERR_ALLOC
+        errmsg = '&grid nx = '//fmt_int(kase%nx)//', ny = '//fmt_int(kase%ny)//': a '//kind//' case on '// &
+            fmt_int(threads)//' thread(s) needs about '//format_bytes(need)//' ('//fmt_int(nint(bpe))// &
+            ' B per element), more than the '//format_bytes(avail + held)//' this process may use ('//source// &
+            '); use a smaller grid or more memory, or set '//memory_env//' to override'
+    end subroutine check_case_memory
 
     !> The output directory of a case: `out_dir` (the command line's --out) when present,
     !! else the case's `&output dir`.

@@ -31,7 +31,7 @@ module fc_testing
         module procedure check_logical, check_real
     end interface check
 
-    public :: check, new_unittest, run_suite, rel_diff, file_lines, file_bytes, delete_file
+    public :: check, new_unittest, run_suite, rel_diff, file_lines, file_bytes, delete_file, set_env, unset_env
 
 contains
 
@@ -149,5 +149,34 @@ contains
         open (newunit=u, file=path, status='old', iostat=ios)
         if (ios == 0) close (u, status='delete')
     end subroutine delete_file
+
+    !> Set the environment variable `name` to `value` in this process (C `setenv`).
+    subroutine set_env(name, value)
+        use, intrinsic :: iso_c_binding, only: c_char, c_int, c_null_char
+        character(len=*), intent(in) :: name, value
+        interface
+            integer(c_int) function c_setenv(n, v, o) bind(C, name='setenv')
+                import :: c_char, c_int
+                character(kind=c_char), intent(in) :: n(*), v(*)
+                integer(c_int), value :: o
+            end function c_setenv
+        end interface
+        integer(c_int) :: rc
+        rc = c_setenv(name//c_null_char, value//c_null_char, 1_c_int)
+    end subroutine set_env
+
+    !> Remove the environment variable `name` from this process (C `unsetenv`).
+    subroutine unset_env(name)
+        use, intrinsic :: iso_c_binding, only: c_char, c_int, c_null_char
+        character(len=*), intent(in) :: name
+        interface
+            integer(c_int) function c_unsetenv(n) bind(C, name='unsetenv')
+                import :: c_char, c_int
+                character(kind=c_char), intent(in) :: n(*)
+            end function c_unsetenv
+        end interface
+        integer(c_int) :: rc
+        rc = c_unsetenv(name//c_null_char)
+    end subroutine unset_env
 
 end module fc_testing

@@ -8,11 +8,15 @@
 !! * `maxit = 0` rejected by the library and the driver;
 !! * BCCG's and NORM's stagnation guards (tol = 1e-300);
 !! * `contact_on_edge` on all four edges;
-!! * BCCG iteration counts on Hertz where the README advertises them (7–11, bounds 17 and 14).
+!! * BCCG iteration counts on Hertz where the README advertises them (7–11, bounds 17 and 14);
+!! * the memory check of the drivers (fc_memory): sizes, /proc fields, the override, and a
+!!   case too large for the memory given ending as an input error before anything is built.
 module test_reliability
     use, intrinsic :: iso_c_binding, only: c_int
     use fc_kinds, only: dp, pi, msg_len, FC_CONVERGED, FC_NOT_CONVERGED
-    use fc_testing, only: error_type, unittest_type, new_unittest, check, rel_diff
+    use fc_testing, only: error_type, unittest_type, new_unittest, check, rel_diff, set_env, unset_env, file_lines
+    use fc_memory, only: parse_byte_size, kb_field, available_memory, format_bytes, memory_env
+    use fc_kinds, only: i8, FC_ERR_VALUE
     use fc_geometry, only: fc_grid, make_grid, quadratic_gap
     use fc_influence, only: fc_material, combine_material, element_coefficient, ic_kernel, IC_XZ, IC_YZ, IC_ZX, IC_ZY
     use fc_norm, only: fc_normal_operator, fc_normal_settings, fc_normal_result, build_normal_operator, &
@@ -38,7 +42,9 @@ contains
                  new_unittest('stagnation_guards', stagnation_guards), &
                  new_unittest('contact_on_edge_all_edges', contact_on_edge_all_edges), &
                  new_unittest('bccg_iteration_bound_hertz', bccg_iteration_bound_hertz), &
-                 new_unittest('every_key_has_a_value_type', every_key_has_a_value_type)]
+                 new_unittest('every_key_has_a_value_type', every_key_has_a_value_type), &
+                 new_unittest('memory_sizes_and_sources', memory_sizes_and_sources), &
+                 new_unittest('driver_memory_check', driver_memory_check)]
     end subroutine collect_reliability
 
     !> The four coupling blocks far from the loaded element against the point-load solutions,
@@ -377,5 +383,116 @@ contains
         close (e, status='delete')
         call execute_command_line('rm -rf '//base//'_out '//base//'.nml')
     end subroutine driver_on
+
+    !> Byte sizes as users write them, the /proc fields, and where the available memory comes
+    !! from: the environment variable when set (an invalid value is an error naming it), else
+    !! /proc/meminfo on Linux.
+    subroutine memory_sizes_and_sources(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=12), parameter :: good(6) = [character(len=12) :: '24G', '512 M', '1.5e9', '2000000000', &
+                                                   '12kB', '3 TB']
+        integer(i8), parameter :: want(6) = [24000000000_i8, 512000000_i8, 1500000000_i8, 2000000000_i8, 12000_i8, &
+                                             3000000000000_i8]
+        character(len=12), parameter :: bad(8) = [character(len=12) :: '', '2x', 'G', '-5G', 'NaN', '1e30', '0', '1,2']
+        character(len=*), parameter :: info = 'MemTotal:       24684092 kB'//new_line('a')// &
+            'MemFree:          100 kB'//new_line('a')//'MemAvailable:   24139476 kB'//new_line('a')
+        integer(i8) :: b
+        logical :: ok
+        integer :: i, stat
+        character(len=:), allocatable :: source
+        character(len=msg_len) :: msg
+        do i = 1, size(good)
+            call parse_byte_size(good(i), b, ok)
+            call check(error, ok .and. b == want(i), "parse_byte_size('"//trim(good(i))//"')")
+        end do
+        do i = 1, size(bad)
+            call parse_byte_size(bad(i), b, ok)
+            call check(error, .not. ok, "parse_byte_size('"//trim(bad(i))//"') must be refused")
+        end do
+        call check(error, kb_field(info, 'MemAvailable') == 24139476_i8*1024, 'MemAvailable field')
+        call check(error, kb_field(info, 'MemFree') == 102400_i8, 'MemFree field')
+        call check(error, kb_field(info, 'Available') == -1, 'a key inside another is not a field')
+        call check(error, kb_field(info, 'SwapTotal') == -1, 'missing field')
+        call check(error, format_bytes(71450000000_i8) == '71.5 GB' .and. format_bytes(850400000_i8) == '850 MB', &
+            'format_bytes: '//format_bytes(71450000000_i8)//', '//format_bytes(850400000_i8))
+        call set_env(memory_env, '3G')
+        call available_memory(b, source, stat, msg)
+        call check(error, stat == 0 .and. b == 3000000000_i8 .and. source == memory_env, 'override: '//source)
+        call set_env(memory_env, 'lots')
+        call available_memory(b, source, stat, msg)
+        call check(error, stat == FC_ERR_VALUE .and. index(msg, memory_env//" = 'lots'") == 1, 'bad override: '//trim(msg))
+        call unset_env(memory_env)
+        call available_memory(b, source, stat, msg)
+        call check(error, stat == 0 .and. b > 0 .and. (source == 'MemAvailable' .or. source == 'cgroup limit'), &
+            'Linux /proc/meminfo must give the available memory: '//source)
+    end subroutine memory_sizes_and_sources
+
+    !> The drivers' check: with less memory than the case's estimate, the case is an input
+    !! error naming &grid nx, ny, the kind of case, the threads and the sizes, and it writes
+    !! no outputs; with enough, the same case is solved.
+    subroutine driver_memory_check(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: dir = 'build/test_memory_check'
+        character(len=*), parameter :: normal = "&case name = 'm' /"//new_line('a')// &
+            '&material g1 = 82000.0, g2 = 82000.0, nu1 = 0.28, nu2 = 0.28 /'//new_line('a')// &
+            '&grid nx = 200, ny = 100, xmin = -10.0, xmax = 10.0, ymin = -6.0, ymax = 6.0 /'//new_line('a')// &
+            "&geometry kind = 'quadratic', rx = 300.0, ry = 163.0 /"//new_line('a')// &
+            '&normal approach = 0.1091 /'//new_line('a')//'&output table = .false. /'//new_line('a')// &
+            '&solver threads = 1 /'//new_line('a')
+        character(len=:), allocatable :: errs
+        integer :: code
+        ! 10 MB + 270 B × 20 000 = 15.4 MB for the normal case
+        call run_with(normal, '15M', code, errs)
+        call check(error, code /= 0 .and. index(errs, '&grid nx = 200, ny = 100: a normal case on 1 thread(s) '// &
+            'needs about 15 MB (270 B per element), more than the 15 MB this process may use ('//memory_env//')') > 0, &
+            'normal case, 15M: '//errs)
+        call check(error, .not. file_exists(dir//'/m.json'), 'no JSON for a case refused for memory')
+        call run_with(normal, '16M', code, errs)
+        call check(error, code == 0 .and. file_exists(dir//'/m.json'), 'normal case, 16M must be solved: '//errs)
+        ! the kinds of case and the threads (refused before anything is built: cheap)
+        call run_with(replace_first(normal, "name = 'm'", "name = 'm', problem = 'rolling'")// &
+            '&tangential mu = 0.3, xi = 1e-3 /'//new_line('a'), '1M', code, errs)
+        call check(error, code /= 0 .and. index(errs, 'a rolling case on 1 thread(s) needs about 33 MB (1150 B') > 0, &
+            'rolling: '//errs)
+        call run_with(replace_first(normal, "name = 'm'", "name = 'm', problem = 'transient_rolling'")// &
+            '&tangential mu = 0.3, xi = 1e-3, nsteps = 10 /'//new_line('a'), '1M', code, errs)
+        call check(error, code /= 0 .and. index(errs, 'a rolling case') > 0, 'transient rolling: '//errs)
+        call run_with(replace_first(replace_first(normal, "name = 'm'", "name = 'm', problem = 'normal+tangential'"), &
+            'threads = 1', 'threads = 2')//'&tangential mu = 0.3, xi = 1e-3 /'//new_line('a'), '1M', code, errs)
+        call check(error, code /= 0 .and. index(errs, 'a tangential case on 2 thread(s) needs about 30 MB (1020 B') > 0, &
+            'tangential, 2 threads: '//errs)
+        call unset_env(memory_env)
+    contains
+        subroutine run_with(text, avail, code, errs)
+            character(len=*), intent(in) :: text, avail
+            integer, intent(out) :: code
+            character(len=:), allocatable, intent(out) :: errs
+            character(len=256) :: args(3)
+            integer :: u, urep, uerr
+            call execute_command_line('rm -rf '//dir//' && mkdir -p '//dir)
+            open (newunit=u, file=dir//'/cases.nml', status='replace', action='write')
+            write (u, '(a)') text
+            close (u)
+            call set_env(memory_env, avail)
+            open (newunit=urep, file=dir//'/report.txt', status='replace', action='write')
+            open (newunit=uerr, file=dir//'/errors.txt', status='replace', action='write')
+            args(1) = dir//'/cases.nml'; args(2) = '--out'; args(3) = dir
+            call run_driver(args, code, report_unit=urep, error_unit=uerr)
+            close (urep); close (uerr)
+            call unset_env(memory_env)
+            errs = file_lines(dir//'/errors.txt')
+        end subroutine run_with
+        logical function file_exists(path)
+            character(len=*), intent(in) :: path
+            inquire (file=path, exist=file_exists)
+        end function file_exists
+        function replace_first(text, old, new) result(out)
+            character(len=*), intent(in) :: text, old, new
+            character(len=:), allocatable :: out
+            integer :: p
+            p = index(text, old)
+            out = text(1:p - 1)//new//text(p + len(old):)
+        end function replace_first
+    end subroutine driver_memory_check
 
 end module test_reliability

@@ -28,7 +28,7 @@
 !! driver keeps its operators across consecutive cases.
 module fcm_dist_driver
     use mpi
-    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit_default => error_unit
+    use, intrinsic :: iso_fortran_env, only: output_unit, int64, error_unit_default => error_unit
     use fc_kinds, only: dp, msg_len, FC_CONVERGED, status_name
     use fc_strings, only: fmt_int, fmt_real
     use fc_geometry, only: fc_grid, make_grid, h_no_contact
@@ -44,7 +44,9 @@ module fcm_dist_driver
         parse_driver_arguments, write_case_error, case_output_dir, remove_case_outputs, hertz_reference
     use fc_version, only: fc_build_info
     use fc_threads, only: set_thread_count
-    use fcm_norm, only: fcm_normal_operator, build_dist_normal_operator, solve_dist_normal
+    use fcm_norm, only: fcm_normal_operator, build_dist_normal_operator, solve_dist_normal, dist_memory_per_rank
+    use fc_memory, only: available_memory, process_resident_bytes, format_bytes, memory_env
+    use fc_errors, only: FC_ERR_ALLOC
     use fcm_geometry, only: quadratic_gap_rows, wavy_gap_rows, punch_rough_gap_rows
     use fc_norm, only: fc_normal_result
     implicit none
@@ -174,6 +176,10 @@ contains
             reuse = built .and. (kase%periodic .eqv. built_periodic) .and. same_grid(grid, built_grid) .and. &
                 mat%g == built_mat%g .and. mat%nu == built_mat%nu
             if (.not. reuse) then
+                call check_dist_memory(kase, stat, errmsg)
+                if (stat /= 0) then
+                    call case_error(nbefore); return
+                end if
                 built = .false.
                 call build_dist_normal_operator(dop, mat, grid, comm, stat, errmsg, periodic=kase%periodic)
                 if (stat /= 0) then
@@ -311,6 +317,42 @@ contains
             errmsg = ''
             if (stat /= 0) errmsg = "&output table = .true.: cannot write the element table '"//path//"'"
         end subroutine write_table
+
+        !> stat /= 0 on every rank, with rank 0's message naming `&grid nx, ny`, when the
+        !! operator and vectors of `kase` (`dist_memory_per_rank`) would need more memory per
+        !! rank than some rank may use: the available memory of its node (fc_memory) shared by
+        !! the ranks on that node, plus what the rank holds already.  Collective.
+        subroutine check_dist_memory(kase, stat, errmsg)
+            type(fc_case), intent(in) :: kase
+            integer, intent(out) :: stat
+            character(len=msg_len), intent(out) :: errmsg
+            integer(int64) :: avail, need, budget, held
+            character(len=:), allocatable :: source
+            integer :: nodecomm, pernode, ierr2
+            call available_memory(avail, source, stat, errmsg)
+            call mpi_allreduce(MPI_IN_PLACE, stat, 1, MPI_INTEGER, MPI_MAX, comm, ierr2)
+            if (stat /= 0) then
+                if (len_trim(errmsg) == 0) errmsg = memory_env//': not a size in bytes on another rank'
+                return
+            end if
+            call mpi_comm_split_type(comm, MPI_COMM_TYPE_SHARED, rank, MPI_INFO_NULL, nodecomm, ierr2)
+            call mpi_comm_size(nodecomm, pernode, ierr2)
+            call mpi_comm_free(nodecomm, ierr2)
+            budget = huge(budget)                  ! unknown: not checked on this rank
+            if (avail >= 0) then
+                held = 0
+                if (source /= memory_env) held = max(0_int64, process_resident_bytes())
+                budget = avail/pernode + held
+            end if
+            call mpi_allreduce(MPI_IN_PLACE, budget, 1, MPI_INTEGER8, MPI_MIN, comm, ierr2)
+            need = dist_memory_per_rank(kase%nx, kase%ny, nprocs, kase%periodic)
+            if (need <= budget) return
+            stat = FC_ERR_ALLOC
+            errmsg = '&grid nx = '//fmt_int(kase%nx)//', ny = '//fmt_int(kase%ny)//': the distributed solve needs about '// &
+                format_bytes(need)//' per rank on '//fmt_int(nprocs)//' ranks, more than the '//format_bytes(budget)// &
+                ' a rank may use ('//source//' of a node shared by '//fmt_int(pernode)//' ranks); about '// &
+                format_bytes(nprocs*need)//' in all: run on more nodes, or set '//memory_env//' to override'
+        end subroutine check_dist_memory
 
         !> Report an input error of case k (rank 0) and remove its stale outputs; the next case
         !! inherits from the last case without input errors.

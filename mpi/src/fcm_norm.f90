@@ -19,6 +19,7 @@
 !! padding, exact inverse on mean-free vectors).
 module fcm_norm
     use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
+    use, intrinsic :: iso_fortran_env, only: int64
     use mpi
     use fc_kinds, only: dp, msg_len, FC_CONVERGED, FC_NOT_CONVERGED, FC_DIVERGED, FC_ERROR, check_iteration_settings, &
         FC_ERR_NOT_READY, FC_ERR_SHAPE, FC_ERR_VALUE, FC_ERR_UNSUPPORTED, FC_ERR_NO_CONTACT
@@ -42,7 +43,13 @@ module fcm_norm
         real(dp) :: setup_seconds = 0
     end type fcm_normal_operator
 
-    public :: build_dist_normal_operator, solve_dist_normal, gather_rows, scatter_rows
+    !> peak memory of a distributed BCCG solve per rank (measured, doc/parallel.md section 6):
+    !! `dist_base_bytes` + bytes per grid element and rank
+    integer(int64), parameter, public :: dist_base_bytes = 16000000_int64
+    real(dp), parameter, public :: dist_bytes_per_element = 133            !! doubled-grid (Toeplitz) products
+    real(dp), parameter, public :: dist_bytes_per_element_periodic = 103   !! periodic cell (circulant on the grid)
+
+    public :: build_dist_normal_operator, solve_dist_normal, gather_rows, scatter_rows, dist_memory_per_rank
 
 contains
 
@@ -541,5 +548,17 @@ contains
         real(dp) :: a(size(full, 1), dop%lay%nyl)
         a = full(:, dop%lay%y0 + 1:dop%lay%y0 + dop%lay%nyl)
     end function scatter_rows
+
+    !> Estimated peak memory of one rank [bytes] for an nx × ny grid over `nprocs` ranks: the
+    !! model M = 16 MB + 133 B × n/P (103 B for a periodic cell) of doc/parallel.md, with the
+    !! largest slab (rows are split as evenly as FFTW-MPI splits them, at most one row more).
+    pure function dist_memory_per_rank(nx, ny, nprocs, periodic) result(b)
+        integer, intent(in) :: nx, ny, nprocs
+        logical, intent(in) :: periodic
+        integer(int64) :: b
+        real(dp) :: bpe
+        bpe = merge(dist_bytes_per_element_periodic, dist_bytes_per_element, periodic)
+        b = dist_base_bytes + int(bpe*real(nx, dp)*real((ny + max(1, nprocs) - 1)/max(1, nprocs), dp), int64)
+    end function dist_memory_per_rank
 
 end module fcm_norm

@@ -8,7 +8,7 @@ module fcm_dist_tests
     use fc_driver, only: run_driver
     use fcm_dist_driver, only: run_dist_driver
     use fc_strings, only: fmt_int
-    use fcm_test_support, only: run_mpi_test, slurp_file
+    use fcm_test_support, only: run_mpi_test, slurp_file, set_env, unset_env
     implicit none
     private
     public :: dist_driver_tests
@@ -23,7 +23,61 @@ contains
         integer, intent(inout) :: npass, nfail
         call run_mpi_test('dist_driver_equals_serial_driver', only, test_equal, npass, nfail)
         call run_mpi_test('dist_driver_rejects_unsupported', only, test_unsupported, npass, nfail)
+        call run_mpi_test('dist_driver_memory_check', only, test_memory, npass, nfail)
     end subroutine dist_driver_tests
+
+    !> A case whose operator needs more memory per rank than the node's available memory
+    !! (here given by FASTCONTACT_AVAILABLE_MEMORY) shared by its ranks is an input error on
+    !! every rank, naming &grid nx, ny, the ranks and the sizes, with no outputs; with
+    !! enough memory the same case is solved.
+    subroutine test_memory(msg)
+        character(len=:), allocatable, intent(out) :: msg
+        integer :: rank, nprocs, ierr, code, urep, uerr, u
+        character(len=4096), allocatable :: args(:)
+        character(len=:), allocatable :: e, want
+        logical :: there
+        call mpi_comm_rank(MPI_COMM_WORLD, rank, ierr)
+        call mpi_comm_size(MPI_COMM_WORLD, nprocs, ierr)
+        if (rank == 0) then
+            call execute_command_line('rm -rf '//dir//'/mem && mkdir -p '//dir//'/mem')
+            open (newunit=u, file=dir//'/mem.nml', status='replace', action='write')
+            write (u, '(a)') "&case name = 'mem' /"
+            write (u, '(a)') "&material g1 = 82000.0, g2 = 82000.0, nu1 = 0.28, nu2 = 0.28 /"
+            write (u, '(a)') "&grid nx = 24, ny = 20, xmin = -1.2, xmax = 1.2, ymin = -1.0, ymax = 1.0 /"
+            write (u, '(a)') "&geometry kind = 'quadratic', rx = 40.0, ry = 30.0 /"
+            write (u, '(a)') "&normal approach = 0.004 /"
+            close (u)
+        end if
+        call mpi_barrier(MPI_COMM_WORLD, ierr)
+        args = [character(len=4096) :: dir//'/mem.nml', '--out', dir//'/mem']
+        ! 16 MB + 133 B × 24 × ⌈20/P⌉ per rank against at most 10 MB
+        call set_env('FASTCONTACT_AVAILABLE_MEMORY', '10M')
+        open (newunit=urep, file=dir//'/mem.rep'//rank_suffix(rank), status='replace')
+        open (newunit=uerr, file=dir//'/mem.err'//rank_suffix(rank), status='replace')
+        call run_dist_driver(args, MPI_COMM_WORLD, code, urep, uerr)
+        close (urep); close (uerr)
+        if (code /= 1) then
+            msg = 'too little memory: exit status '//fmt_int(code)//' (expected 1: input error)'; return
+        end if
+        if (rank == 0) then
+            e = slurp_file(dir//'/mem.err0')
+            want = '&grid nx = 24, ny = 20: the distributed solve needs about 16 MB per rank on '//fmt_int(nprocs)//' ranks'
+            if (index(e, want) == 0 .or. index(e, 'FASTCONTACT_AVAILABLE_MEMORY of a node shared by') == 0) then
+                msg = 'no error naming the grid and the sizes in: '//e; return
+            end if
+            inquire (file=dir//'/mem/mem.json', exist=there)
+            if (there) then
+                msg = 'a summary was written for a case refused for memory'; return
+            end if
+        end if
+        call set_env('FASTCONTACT_AVAILABLE_MEMORY', '100G')
+        open (newunit=urep, file=dir//'/mem2.rep'//rank_suffix(rank), status='replace')
+        open (newunit=uerr, file=dir//'/mem2.err'//rank_suffix(rank), status='replace')
+        call run_dist_driver(args, MPI_COMM_WORLD, code, urep, uerr)
+        close (urep); close (uerr)
+        call unset_env('FASTCONTACT_AVAILABLE_MEMORY')
+        if (code /= 0) msg = 'enough memory: exit status '//fmt_int(code)//' (expected 0)'
+    end subroutine test_memory
 
     !> Three cases (Hertz with prescribed approach, then force — inherited grid and
     !! material, the operator reused —, a periodic wavy cell with prescribed force), tol

@@ -1,5 +1,6 @@
 !> What the MPI test suites share: running one test on every rank (it passes when it passes
-!! on all of them; rank 0 prints PASS, each failing rank its message) and reading a file.
+!! on all of them; rank 0 prints PASS, each failing rank its message), reading a file, and
+!! setting environment variables (the serial suites' fc_testing is not part of the library).
 module fcm_test_support
     use mpi
     implicit none
@@ -12,7 +13,7 @@ module fcm_test_support
         end subroutine mpi_test_procedure
     end interface
 
-    public :: mpi_test_procedure, run_mpi_test, slurp_file
+    public :: mpi_test_procedure, run_mpi_test, slurp_file, set_env, unset_env
 
 contains
 
@@ -52,5 +53,34 @@ contains
         if (sz > 0) read (u) text
         close (u)
     end function slurp_file
+
+    !> Set the environment variable `name` to `value` in this process (C `setenv`).
+    subroutine set_env(name, value)
+        use, intrinsic :: iso_c_binding, only: c_char, c_int, c_null_char
+        character(len=*), intent(in) :: name, value
+        interface
+            integer(c_int) function c_setenv(n, v, o) bind(C, name='setenv')
+                import :: c_char, c_int
+                character(kind=c_char), intent(in) :: n(*), v(*)
+                integer(c_int), value :: o
+            end function c_setenv
+        end interface
+        integer(c_int) :: rc
+        rc = c_setenv(name//c_null_char, value//c_null_char, 1_c_int)
+    end subroutine set_env
+
+    !> Remove the environment variable `name` from this process (C `unsetenv`).
+    subroutine unset_env(name)
+        use, intrinsic :: iso_c_binding, only: c_char, c_int, c_null_char
+        character(len=*), intent(in) :: name
+        interface
+            integer(c_int) function c_unsetenv(n) bind(C, name='unsetenv')
+                import :: c_char, c_int
+                character(kind=c_char), intent(in) :: n(*)
+            end function c_unsetenv
+        end interface
+        integer(c_int) :: rc
+        rc = c_unsetenv(name//c_null_char)
+    end subroutine unset_env
 
 end module fcm_test_support

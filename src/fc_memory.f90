@@ -1,0 +1,249 @@
+!> Memory a case will need, and memory this process may use: the drivers compare the two
+!! before they build operators, so that a grid too large for the machine (or for the
+!! job's share of it) ends as an input error with the numbers, not as a process killed by
+!! the operating system halfway through (doc/reliability.md, "Memory").
+!!
+!! Available memory is the smallest of
+!! * `MemAvailable` of `/proc/meminfo` (memory the kernel can give without swapping),
+!! * the limit minus the usage of every memory cgroup of the process and its parents
+!!   (cgroup v2 `memory.max`, `memory.current`; v1 `memory.limit_in_bytes`,
+!!   `memory.usage_in_bytes`): a batch system (Slurm) confines a job there,
+!! or, when it is set, the environment variable `FASTCONTACT_AVAILABLE_MEMORY` (bytes, with
+!! an optional decimal suffix k, M, G, T), which replaces them (to check on another machine's
+!! terms, or to switch the check off with a large value).  Where none can be read the size
+!! is unknown and nothing is checked.
+!!
+!! Sizes are bytes; messages print decimal units (1 GB = 10⁹ bytes).
+module fc_memory
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+    use fc_kinds, only: dp, i8, msg_len, FC_ERR_VALUE
+    implicit none
+    private
+
+    !> environment variable that replaces the detected available memory
+    character(len=*), parameter, public :: memory_env = 'FASTCONTACT_AVAILABLE_MEMORY'
+    !> peak memory of the serial driver per grid element [bytes] (measured, doc/reliability.md:
+    !! peak resident memory of 256² … 1024² cases, fitted), one thread / two or more threads
+    !! (own plan sets of the side-by-side builds, the lanes' buffers); the process itself and
+    !! FFTW add `memory_base_bytes`
+    real(dp), parameter, public :: bytes_per_element_normal = 270          !! BCCG, NORM, FMG
+    real(dp), parameter, public :: bytes_per_element_tangential = 800      !! normal + shift (TangCG)
+    real(dp), parameter, public :: bytes_per_element_tangential_mt = 1020
+    real(dp), parameter, public :: bytes_per_element_rolling = 1150        !! steady and transient rolling, sweeps
+    real(dp), parameter, public :: bytes_per_element_rolling_mt = 1250
+    integer(i8), parameter, public :: memory_base_bytes = 10000000_i8    !! process, libraries, FFTW
+    integer(i8), parameter :: unlimited = 2_i8**60                       !! cgroup v1 "no limit" is ~2^63
+
+    public :: available_memory, case_memory_bytes, serial_bytes_per_element, parse_byte_size, format_bytes
+    public :: kb_field, process_resident_bytes
+
+contains
+
+    !> Memory this process may still use [bytes], −1 when unknown, and where the number comes
+    !! from ('MemAvailable', 'cgroup limit', or the environment variable).  stat =
+    !! FC_ERR_VALUE when `FASTCONTACT_AVAILABLE_MEMORY` is set but not a size.
+    subroutine available_memory(bytes, source, stat, errmsg)
+        integer(i8), intent(out) :: bytes
+        character(len=:), allocatable, intent(out) :: source
+        integer, intent(out) :: stat
+        character(len=msg_len), intent(out) :: errmsg
+        character(len=256) :: env
+        integer :: n, st
+        integer(i8) :: b
+        logical :: ok
+        stat = 0; errmsg = ''
+        bytes = -1; source = 'unknown'
+        call get_environment_variable(memory_env, env, n, st)
+        if (st == 0 .and. n > 0) then
+            call parse_byte_size(env(1:n), bytes, ok)
+            if (.not. ok) then
+                bytes = -1
+                stat = FC_ERR_VALUE
+                errmsg = memory_env//" = '"//env(1:min(n, 64))//"': not a size in bytes (e.g. 24G, 512M or 1.5e9)"
+                return
+            end if
+            source = memory_env
+            return
+        end if
+        b = kb_field(read_text('/proc/meminfo'), 'MemAvailable')
+        if (b >= 0) then
+            bytes = b; source = 'MemAvailable'
+        end if
+        b = cgroup_headroom()
+        if (b >= 0 .and. (bytes < 0 .or. b < bytes)) then
+            bytes = b; source = 'cgroup limit'
+        end if
+    end subroutine available_memory
+
+    !> Bytes per grid element of a serial solve of `kind` ('normal', 'tangential', 'rolling')
+    !! on `threads` threads (the constants above).
+    pure real(dp) function serial_bytes_per_element(kind, threads) result(b)
+        character(len=*), intent(in) :: kind
+        integer, intent(in) :: threads
+        select case (kind)
+        case ('tangential'); b = merge(bytes_per_element_tangential_mt, bytes_per_element_tangential, threads > 1)
+        case ('rolling'); b = merge(bytes_per_element_rolling_mt, bytes_per_element_rolling, threads > 1)
+        case default; b = bytes_per_element_normal
+        end select
+    end function serial_bytes_per_element
+
+    !> Estimated peak memory of a serial solve [bytes]: `memory_base_bytes` plus
+    !! `bytes_per_element` for each of `nelements` grid elements.
+    pure integer(i8) function case_memory_bytes(nelements, bytes_per_element) result(b)
+        integer(i8), intent(in) :: nelements
+        real(dp), intent(in) :: bytes_per_element
+        b = memory_base_bytes + int(bytes_per_element*real(nelements, dp), i8)
+    end function case_memory_bytes
+
+    !> Bytes of a size such as '24G', '512 M', '1.5e9', '2000000000' (decimal suffixes k, M,
+    !! G, T, an optional 'B'); ok = .false. unless it is a finite number in [1, 1e18].
+    subroutine parse_byte_size(text, bytes, ok)
+        character(len=*), intent(in) :: text
+        integer(i8), intent(out) :: bytes
+        logical, intent(out) :: ok
+        character(len=:), allocatable :: t
+        real(dp) :: x, scale
+        integer :: n, ios
+        ok = .false.; bytes = -1
+        t = trim(adjustl(text))
+        n = len(t)
+        if (n == 0 .or. n > 64) return
+        if (t(n:n) == 'B' .or. t(n:n) == 'b') n = n - 1
+        if (n == 0) return
+        scale = 1
+        select case (t(n:n))
+        case ('k', 'K'); scale = 1.0e3_dp
+        case ('m', 'M'); scale = 1.0e6_dp
+        case ('g', 'G'); scale = 1.0e9_dp
+        case ('t', 'T'); scale = 1.0e12_dp
+        end select
+        if (scale > 1) n = n - 1
+        if (n == 0) return
+        if (verify(t(1:n), '0123456789.eE+- ') /= 0) return   ! no list-directed separators or names
+        read (t(1:n), *, iostat=ios) x
+        if (ios /= 0) return
+        if (.not. ieee_is_finite(x)) return
+        x = x*scale
+        if (x < 1 .or. x > 1.0e18_dp) return
+        bytes = int(x, i8); ok = .true.
+    end subroutine parse_byte_size
+
+    !> '71.5 GB', '850 MB', '12 kB' (decimal units).
+    function format_bytes(bytes) result(s)
+        integer(i8), intent(in) :: bytes
+        character(len=:), allocatable :: s
+        character(len=32) :: buf
+        real(dp) :: x
+        x = real(bytes, dp)
+        if (x >= 1.0e9_dp) then
+            write (buf, '(f0.1,a)') x/1.0e9_dp, ' GB'
+        else if (x >= 1.0e6_dp) then
+            write (buf, '(i0,a)') nint(x/1.0e6_dp), ' MB'
+        else
+            write (buf, '(i0,a)') nint(x/1.0e3_dp), ' kB'
+        end if
+        s = trim(buf)
+    end function format_bytes
+
+    !> The value of a `key:  N kB` line of /proc/meminfo or /proc/self/status text [bytes],
+    !! −1 when absent (e.g. `key = 'MemAvailable'`).
+    pure integer(i8) function kb_field(text, key) result(b)
+        character(len=*), intent(in) :: text, key
+        integer :: i, j, ios
+        integer(i8) :: kb
+        b = -1
+        i = index(new_line('a')//text, new_line('a')//key//':')
+        if (i == 0) return
+        i = i + len(key) + 1
+        j = index(text(i:), new_line('a'))
+        if (j == 0) then
+            j = len(text)
+        else
+            j = i + j - 2
+        end if
+        j = index(text(i:j), 'kB') + i - 2
+        if (j < i) return
+        read (text(i:j), *, iostat=ios) kb
+        if (ios /= 0 .or. kb < 0) return
+        b = 1024*kb
+    end function kb_field
+
+    !> Resident memory of this process [bytes] (`VmRSS`), −1 when unknown.  What the process
+    !! holds already (operators kept from an earlier case) counts towards what it may use.
+    function process_resident_bytes() result(b)
+        integer(i8) :: b
+        b = kb_field(read_text('/proc/self/status'), 'VmRSS')
+    end function process_resident_bytes
+
+    !> The least limit − usage over the memory cgroups of this process and their parents
+    !! [bytes], −1 when no cgroup sets a limit.
+    function cgroup_headroom() result(b)
+        integer(i8) :: b
+        character(len=:), allocatable :: text, line, path, base, fmax, fcur
+        integer :: i, k
+        integer(i8) :: lim, use
+        b = -1
+        text = read_text('/proc/self/cgroup')
+        do while (len(text) > 0)
+            i = index(text, new_line('a'))
+            if (i == 0) i = len(text) + 1
+            line = text(1:i - 1)
+            text = text(min(i + 1, len(text) + 1):)
+            k = index(line, ':', back=.true.)
+            if (k == 0) cycle
+            path = line(k + 1:)
+            if (line(1:k) == '0::') then                          ! cgroup v2
+                base = '/sys/fs/cgroup'; fmax = 'memory.max'; fcur = 'memory.current'
+            else if (index(','//line(index(line, ':') + 1:k - 1)//',', ',memory,') > 0) then   ! v1
+                base = '/sys/fs/cgroup/memory'; fmax = 'memory.limit_in_bytes'; fcur = 'memory.usage_in_bytes'
+            else
+                cycle
+            end if
+            do
+                lim = read_number(base//trim(path)//'/'//fmax)
+                use = read_number(base//trim(path)//'/'//fcur)
+                if (lim > 0 .and. lim < unlimited .and. use >= 0) then
+                    if (b < 0 .or. lim - use < b) b = max(0_i8, lim - use)
+                end if
+                if (len_trim(path) <= 1) exit
+                k = index(trim(path), '/', back=.true.)
+                path = path(1:max(1, k - 1))
+            end do
+        end do
+    end function cgroup_headroom
+
+    !> The integer in a one-line file, −1 when the file is missing or holds no integer ('max').
+    function read_number(file) result(x)
+        character(len=*), intent(in) :: file
+        integer(i8) :: x
+        character(len=:), allocatable :: t
+        integer :: ios
+        x = -1
+        t = read_text(file)
+        t = trim(adjustl(t(1:index(t//new_line('a'), new_line('a')) - 1)))   ! first line
+        if (len(t) == 0 .or. len(t) > 19) return
+        if (verify(t, '0123456789') /= 0) return
+        read (t, *, iostat=ios) x
+        if (ios /= 0) x = -1
+    end function read_number
+
+    !> The text of a small file (pseudo-files of /proc and /sys report size 0, so it is read
+    !! line by line), '' when it cannot be read; at most 64 kB.
+    function read_text(file) result(text)
+        character(len=*), intent(in) :: file
+        character(len=:), allocatable :: text
+        character(len=1024) :: line
+        integer :: u, ios
+        text = ''
+        open (newunit=u, file=file, status='old', action='read', iostat=ios)
+        if (ios /= 0) return
+        do
+            read (u, '(a)', iostat=ios) line
+            if (ios /= 0) exit
+            text = text//trim(line)//new_line('a')
+            if (len(text) > 65536) exit
+        end do
+        close (u)
+    end function read_text
+
+end module fc_memory
