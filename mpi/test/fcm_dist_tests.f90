@@ -9,6 +9,10 @@ module fcm_dist_tests
     use fcm_dist_driver, only: run_dist_driver
     use fc_strings, only: fmt_int
     use fcm_test_support, only: run_mpi_test, slurp_file, set_env, unset_env
+    use, intrinsic :: iso_c_binding, only: c_null_char
+    use fcm_fftw_mpi, only: c_ptr, c_int, c_size_t, c_associated, c_f_pointer, fftw_forget_wisdom, &
+        fftw_import_wisdom_from_filename, fftw_plan_dft_r2c_1d, fftw_destroy_plan, fftw_alloc_real, fftw_alloc_complex, &
+        fftw_free, FFTW_MEASURE, FFTW_WISDOM_ONLY
     implicit none
     private
     public :: dist_driver_tests
@@ -24,7 +28,112 @@ contains
         call run_mpi_test('dist_driver_equals_serial_driver', only, test_equal, npass, nfail)
         call run_mpi_test('dist_driver_rejects_unsupported', only, test_unsupported, npass, nfail)
         call run_mpi_test('dist_driver_memory_check', only, test_memory, npass, nfail)
+        call run_mpi_test('dist_driver_fft_wisdom', only, test_wisdom, npass, nfail)
     end subroutine dist_driver_tests
+
+    !> `&solver fft_wisdom`: the first case measures its plans and writes the file (rank 0,
+    !! the wisdom of both ranks gathered), a second case of the same grid reuses nothing
+    !! built on estimated plans and gives the same force as the estimated case to 1e−9; a
+    !! second run reads the file; a file that is not wisdom is an input error naming the key.
+    subroutine test_wisdom(msg)
+        character(len=:), allocatable, intent(out) :: msg
+        integer :: rank, ierr, code, urep, uerr, u, k
+        character(len=4096), allocatable :: args(:)
+        character(len=:), allocatable :: e, w1, w2, j
+        real(dp) :: f(3)
+        type(c_ptr) :: pr, pc, plan
+        real(dp), pointer :: rb(:)
+        complex(dp), pointer :: cb(:)
+        logical :: there
+        call mpi_comm_rank(MPI_COMM_WORLD, rank, ierr)
+        if (rank == 0) then
+            call execute_command_line('rm -rf '//dir//'/wis && mkdir -p '//dir//'/wis')
+            open (newunit=u, file=dir//'/wis.nml', status='replace', action='write')
+            write (u, '(a)') "&case name = 'est' /"
+            write (u, '(a)') "&material g1 = 82000.0, g2 = 82000.0, nu1 = 0.28, nu2 = 0.28 /"
+            write (u, '(a)') "&grid nx = 48, ny = 40, xmin = -1.2, xmax = 1.2, ymin = -1.0, ymax = 1.0 /"
+            write (u, '(a)') "&geometry kind = 'quadratic', rx = 40.0, ry = 30.0 /"
+            write (u, '(a)') "&normal approach = 0.004 /"
+            write (u, '(a)') "&solver tol = 1e-12 /"
+            write (u, '(a)') "&case name = 'mea' /"
+            write (u, '(a)') "&solver tol = 1e-12, fft_wisdom = '"//dir//"/wis/w.wis' /"
+            close (u)
+            open (newunit=u, file=dir//'/wis/bad.wis', status='replace', action='write')
+            write (u, '(a)') 'not wisdom'
+            close (u)
+            open (newunit=u, file=dir//'/wisbad.nml', status='replace', action='write')
+            write (u, '(a)') "&case name = 'bad' /"
+            write (u, '(a)') "&material g1 = 82000.0, g2 = 82000.0, nu1 = 0.28, nu2 = 0.28 /"
+            write (u, '(a)') "&grid nx = 48, ny = 40, xmin = -1.2, xmax = 1.2, ymin = -1.0, ymax = 1.0 /"
+            write (u, '(a)') "&geometry kind = 'quadratic', rx = 40.0, ry = 30.0 /"
+            write (u, '(a)') "&normal approach = 0.004 /"
+            write (u, '(a)') "&solver fft_wisdom = '"//dir//"/wis/bad.wis' /"
+            close (u)
+        end if
+        call mpi_barrier(MPI_COMM_WORLD, ierr)
+        do k = 1, 2      ! the second run reads the file the first wrote
+            args = [character(len=4096) :: dir//'/wis.nml', '--out', dir//'/wis/out'//fmt_int(k)]
+            open (newunit=urep, file=dir//'/wis.rep'//rank_suffix(rank), status='replace')
+            open (newunit=uerr, file=dir//'/wis.err'//rank_suffix(rank), status='replace')
+            call run_dist_driver(args, MPI_COMM_WORLD, code, urep, uerr)
+            close (urep); close (uerr)
+            if (code /= 0) then
+                msg = 'run '//fmt_int(k)//': exit status '//fmt_int(code)//' (expected 0)'; return
+            end if
+            if (rank == 0) then
+                w1 = slurp_file(dir//'/wis/w.wis')
+                ! measured plans leave entries, the transposes' among them (estimated ones none)
+                if (index(w1, '(fftw-3') == 0 .or. index(w1, '(fftw_mpi_transpose') == 0) then
+                    msg = 'run '//fmt_int(k)//': no measured transposes in w.wis: '//w1(1:min(200, len(w1))); return
+                end if
+                if (k == 1) w2 = w1
+                j = slurp_file(dir//'/wis/out'//fmt_int(k)//'/mea.json')
+                if (index(j, '"status": "converged"') == 0 .or. index(j, 'not used') > 0) then
+                    msg = 'run '//fmt_int(k)//': measured case: '//j(1:min(400, len(j))); return
+                end if
+                f(k) = json_num(j, 'fn')
+                if (k == 1) f(3) = json_num(slurp_file(dir//'/wis/out1/est.json'), 'fn')
+                if (.not. close_to(f(k), f(3), 1.0e-9_dp)) then
+                    msg = 'run '//fmt_int(k)//': fn with measured plans differs from the estimated one'; return
+                end if
+            end if
+        end do
+        if (rank == 0) then
+            if (len(w1) < len(w2)) then
+                msg = 'the second run lost wisdom of the first'; return
+            end if
+            ! the file holds *measured* plans: the x transform of the doubled grid (96 points)
+            ! plans from it alone with FFTW_MEASURE (estimated plans would not satisfy that)
+            call fftw_forget_wisdom()
+            if (fftw_import_wisdom_from_filename(dir//'/wis/w.wis'//c_null_char) == 0) then
+                msg = 'w.wis cannot be read back'; return
+            end if
+            pr = fftw_alloc_real(96_c_size_t); pc = fftw_alloc_complex(49_c_size_t)
+            call c_f_pointer(pr, rb, [96]); call c_f_pointer(pc, cb, [49])
+            plan = fftw_plan_dft_r2c_1d(96_c_int, rb, cb, ior(FFTW_MEASURE, FFTW_WISDOM_ONLY))
+            there = c_associated(plan)
+            if (there) call fftw_destroy_plan(plan)
+            call fftw_free(pr); call fftw_free(pc)
+            if (.not. there) then
+                msg = 'w.wis has no measured plan of the x transform'; return
+            end if
+        end if
+        args = [character(len=4096) :: dir//'/wisbad.nml', '--out', dir//'/wis/bad']
+        open (newunit=urep, file=dir//'/wisbad.rep'//rank_suffix(rank), status='replace')
+        open (newunit=uerr, file=dir//'/wisbad.err'//rank_suffix(rank), status='replace')
+        call run_dist_driver(args, MPI_COMM_WORLD, code, urep, uerr)
+        close (urep); close (uerr)
+        if (code /= 1) then
+            msg = 'not wisdom: exit status '//fmt_int(code)//' (expected 1)'; return
+        end if
+        if (rank == 0) then
+            e = slurp_file(dir//'/wisbad.err0')
+            if (index(e, "&solver fft_wisdom = '"//dir//"/wis/bad.wis': the file exists but FFTW cannot read it") == 0) then
+                msg = 'no error naming the wisdom file in: '//e; return
+            end if
+        end if
+    end subroutine test_wisdom
+
 
     !> A case whose operator needs more memory per rank than the node's available memory
     !! (here given by FASTCONTACT_AVAILABLE_MEMORY) shared by its ranks is an input error on
