@@ -79,7 +79,8 @@ contains
     !! for what case k inherits; cases k … `last_case` (default k) are solved and written, their
     !! statuses (0 converged, 1 input error, 2 solver failure) returned in `statuses`; no
     !! closing summary line.
-    subroutine run_driver(args, exit_code, report_unit, error_unit, only_case, last_case, statuses, operators)
+    subroutine run_driver(args, exit_code, report_unit, error_unit, only_case, last_case, statuses, operators, &
+                          memory_share)
         character(len=*), intent(in) :: args(:)
         integer, intent(out) :: exit_code
         integer, intent(in), optional :: report_unit   !! report (default: stdout)
@@ -90,7 +91,10 @@ contains
         !> operators kept by the caller across calls (the MPI batch: one set per rank); a call
         !! reuses them while grid and material match, exactly as consecutive cases of one file do
         type(fc_contact_operators), intent(inout), optional :: operators
-        integer :: rep, err, k, stat, ncase_err, ncase_fail
+        !> processes sharing this machine's available memory (the MPI batch: the ranks on the
+        !! node); the memory check gives each its share (default 1)
+        integer, intent(in), optional :: memory_share
+        integer :: rep, err, k, stat, ncase_err, ncase_fail, share
         character(len=:), allocatable :: case_file, out_dir, action, errtext
         type(fc_case_chunk), allocatable :: cases(:)
         type(fc_case_input) :: state, saved_state
@@ -103,6 +107,8 @@ contains
         rep = output_unit; err = error_unit_default
         if (present(report_unit)) rep = report_unit
         if (present(error_unit)) err = error_unit
+        share = 1
+        if (present(memory_share)) share = max(1, memory_share)
         exit_code = EXIT_OK
         ! ---- command line
         call parse_driver_arguments(args, 'fastcontact', driver_usage(), case_file, out_dir, action, errtext)
@@ -204,7 +210,7 @@ contains
             ! ---- memory: a given grid beyond what this process may use is an input error now,
             !      not a process killed by the operating system while it builds the operators
             if (.not. grid_is_auto(state)) then
-                call check_case_memory(kase, stat, errmsg)
+                call check_case_memory(kase, share, stat, errmsg)
                 if (stat /= 0) then
                     call case_error(); return
                 end if
@@ -434,11 +440,12 @@ contains
 
     !> stat = FC_ERR_ALLOC with a message naming `&grid nx, ny` when the estimated peak memory
     !! of `kase` (fc_memory: bytes per element of its problem, more with threads) exceeds the
-    !! memory this process may use (available memory plus what it holds already); nothing is
-    !! checked when the available memory is unknown.  stat = FC_ERR_VALUE for an invalid
-    !! `FASTCONTACT_AVAILABLE_MEMORY`.
-    subroutine check_case_memory(kase, stat, errmsg)
+    !! memory this process may use (its `share` of the available memory, plus what it holds
+    !! already); nothing is checked when the available memory is unknown.  stat =
+    !! FC_ERR_VALUE for an invalid `FASTCONTACT_AVAILABLE_MEMORY`.
+    subroutine check_case_memory(kase, share, stat, errmsg)
         type(fc_case), intent(in) :: kase
+        integer, intent(in) :: share   !! processes sharing the available memory
         integer, intent(out) :: stat
         character(len=msg_len), intent(out) :: errmsg
         integer(int64) :: avail, need, held
@@ -456,6 +463,8 @@ contains
         need = case_memory_bytes(int(kase%nx, int64)*kase%ny, bpe)
         held = 0
         if (source /= memory_env) held = max(0_int64, process_resident_bytes())
+        avail = avail/share
+        if (share > 1) source = source//' of a node shared by '//fmt_int(share)//' processes'
         if (need <= avail + held) return
         stat = FC_ERR_ALLOC
         errmsg = '&grid nx = '//fmt_int(kase%nx)//', ny = '//fmt_int(kase%ny)//': a '//kind//' case on '// &

@@ -449,6 +449,10 @@ contains
         call check(error, .not. file_exists(dir//'/m.json'), 'no JSON for a case refused for memory')
         call run_with(normal, '16M', code, errs)
         call check(error, code == 0 .and. file_exists(dir//'/m.json'), 'normal case, 16M must be solved: '//errs)
+        ! two processes on the node (the MPI batch's ranks): 30 MB give each 15 MB
+        call run_with(normal, '30M', code, errs, share=2)
+        call check(error, code /= 0 .and. index(errs, 'more than the 15 MB this process may use ('//memory_env// &
+            ' of a node shared by 2 processes)') > 0, 'normal case, 30M shared by 2: '//errs)
         ! the kinds of case and the threads (refused before anything is built: cheap)
         call run_with(replace_first(normal, "name = 'm'", "name = 'm', problem = 'rolling'")// &
             '&tangential mu = 0.3, xi = 1e-3 /'//new_line('a'), '1M', code, errs)
@@ -463,10 +467,11 @@ contains
             'tangential, 2 threads: '//errs)
         call unset_env(memory_env)
     contains
-        subroutine run_with(text, avail, code, errs)
+        subroutine run_with(text, avail, code, errs, share)
             character(len=*), intent(in) :: text, avail
             integer, intent(out) :: code
             character(len=:), allocatable, intent(out) :: errs
+            integer, intent(in), optional :: share   !! processes sharing the memory
             character(len=256) :: args(3)
             integer :: u, urep, uerr
             call execute_command_line('rm -rf '//dir//' && mkdir -p '//dir)
@@ -477,7 +482,7 @@ contains
             open (newunit=urep, file=dir//'/report.txt', status='replace', action='write')
             open (newunit=uerr, file=dir//'/errors.txt', status='replace', action='write')
             args(1) = dir//'/cases.nml'; args(2) = '--out'; args(3) = dir
-            call run_driver(args, code, report_unit=urep, error_unit=uerr)
+            call run_driver(args, code, report_unit=urep, error_unit=uerr, memory_share=share)
             close (urep); close (uerr)
             call unset_env(memory_env)
             errs = file_lines(dir//'/errors.txt')

@@ -88,10 +88,14 @@ contains
         character(len=msg_len) :: errmsg
         character(len=:), allocatable :: case_file
         integer, allocatable :: last(:), mine(:)
-        integer :: stat, nmine, zero, req
+        integer :: stat, nmine, zero, req, nodecomm, pernode
         integer(MPI_ADDRESS_KIND) :: base, wsize
         call mpi_comm_rank(comm, rank, ierr)
         call mpi_comm_size(comm, nprocs, ierr)
+        ! the ranks on one node share its memory: each case is checked against a rank's share
+        call mpi_comm_split_type(comm, MPI_COMM_TYPE_SHARED, rank, MPI_INFO_NULL, nodecomm, ierr)
+        call mpi_comm_size(nodecomm, pernode, ierr)
+        call mpi_comm_free(nodecomm, ierr)
         rep = output_unit; err = error_unit
         if (present(report_unit)) rep = report_unit
         if (present(err_unit)) err = err_unit
@@ -199,7 +203,7 @@ contains
             open (newunit=ur, status='scratch', action='readwrite', form='formatted')
             open (newunit=ue, status='scratch', action='readwrite', form='formatted')
             call run_driver(args, code, report_unit=ur, error_unit=ue, only_case=first_case(k), &
-                last_case=last(k), statuses=o%statuses, operators=ops)
+                last_case=last(k), statuses=o%statuses, operators=ops, memory_share=pernode)
             o%report = slurp(ur)
             o%errors = slurp(ue)
             close (ur); close (ue)

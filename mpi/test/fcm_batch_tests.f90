@@ -6,7 +6,7 @@ module fcm_batch_tests
     use mpi
     use fc_driver, only: run_driver
     use fcm_batch, only: run_mpi_batch, guided_chunks
-    use fcm_test_support, only: run_mpi_test, slurp_file
+    use fcm_test_support, only: run_mpi_test, slurp_file, set_env, unset_env
     implicit none
     private
     public :: batch_tests
@@ -24,7 +24,56 @@ contains
         call run_mpi_test('batch_bad_command_line', only, test_bad_args, npass, nfail)
         call run_mpi_test('batch_guided_chunks', only, test_guided, npass, nfail)
         call run_mpi_test('batch_shared_wisdom_file', only, test_shared_wisdom, npass, nfail)
+        call run_mpi_test('batch_memory_share', only, test_memory_share, npass, nfail)
     end subroutine batch_tests
+
+    !> The ranks of a batch on one node share its memory: with 30 MB available (given by
+    !! FASTCONTACT_AVAILABLE_MEMORY) a normal case of 15.4 MB (10 MB + 270 B × 20 000),
+    !! which one process alone could solve, is an input error on each of two ranks of a node.
+    subroutine test_memory_share(msg)
+        character(len=:), allocatable, intent(out) :: msg
+        integer :: code, u, urep, uerr, rank, nprocs, ierr
+        character(len=256) :: args(3)
+        character(len=:), allocatable :: e
+        call mpi_comm_rank(MPI_COMM_WORLD, rank, ierr)
+        call mpi_comm_size(MPI_COMM_WORLD, nprocs, ierr)
+        if (rank == 0) then
+            call execute_command_line('mkdir -p '//dir//'/mem')
+            open (newunit=u, file=dir//'/mem.nml', status='replace', action='write')
+            write (u, '(a)') "&case name = 'm' /"
+            write (u, '(a)') "&material g1 = 82000.0, g2 = 82000.0, nu1 = 0.28, nu2 = 0.28 /"
+            write (u, '(a)') "&grid nx = 200, ny = 100, xmin = -10.0, xmax = 10.0, ymin = -6.0, ymax = 6.0 /"
+            write (u, '(a)') "&geometry kind = 'quadratic', rx = 300.0, ry = 163.0 /"
+            write (u, '(a)') "&normal approach = 0.1091 /"
+            write (u, '(a)') "&output table = .false. /"
+            close (u)
+        end if
+        call mpi_barrier(MPI_COMM_WORLD, ierr)
+        call set_env('FASTCONTACT_AVAILABLE_MEMORY', '30M')
+        args(1) = dir//'/mem.nml'; args(2) = '--out'; args(3) = dir//'/mem'
+        open (newunit=urep, file=dir//'/mem.rep'//fmt_rank(rank), status='replace')
+        open (newunit=uerr, file=dir//'/mem.err'//fmt_rank(rank), status='replace')
+        call run_mpi_batch(args, MPI_COMM_WORLD, code, urep, uerr)
+        close (urep); close (uerr)
+        call unset_env('FASTCONTACT_AVAILABLE_MEMORY')
+        if (nprocs < 2) return          ! one process has the whole node
+        if (code /= 1) then
+            msg = 'exit status of a case beyond its share of the node (expected 1)'; return
+        end if
+        if (rank == 0) then
+            e = slurp_file(dir//'/mem.err0')
+            if (index(e, 'more than the 15 MB this process may use (FASTCONTACT_AVAILABLE_MEMORY of a node shared by 2') &
+                == 0) msg = 'no error naming the share in: '//e
+        end if
+    contains
+        function fmt_rank(r) result(t)
+            integer, intent(in) :: r
+            character(len=:), allocatable :: t
+            character(len=12) :: b
+            write (b, '(i0)') r
+            t = trim(b)
+        end function fmt_rank
+    end subroutine test_memory_share
 
     subroutine write_cases(path)
         character(len=*), intent(in) :: path
