@@ -7,7 +7,8 @@
 !! * `MemAvailable` of `/proc/meminfo` (memory the kernel can give without swapping),
 !! * the limit minus the usage of every memory cgroup of the process and its parents
 !!   (cgroup v2 `memory.max`, `memory.current`; v1 `memory.limit_in_bytes`,
-!!   `memory.usage_in_bytes`): a batch system (Slurm) confines a job there,
+!!   `memory.usage_in_bytes`), the reclaimable page cache not counted as used: a batch
+!!   system (Slurm) confines a job there,
 !! or, when it is set, the environment variable `FASTCONTACT_AVAILABLE_MEMORY` (bytes, with
 !! an optional decimal suffix k, M, G, T), which replaces them (to check on another machine's
 !! terms, or to switch the check off with a large value).  Where none can be read the size
@@ -35,7 +36,7 @@ module fc_memory
     integer(i8), parameter :: unlimited = 2_i8**60                       !! cgroup v1 "no limit" is ~2^63
 
     public :: available_memory, case_memory_bytes, serial_bytes_per_element, parse_byte_size, format_bytes
-    public :: kb_field, process_resident_bytes
+    public :: kb_field, process_resident_bytes, cgroup_headroom
 
 contains
 
@@ -69,7 +70,7 @@ contains
         if (b >= 0) then
             bytes = b; source = 'MemAvailable'
         end if
-        b = cgroup_headroom()
+        b = cgroup_headroom(read_text('/proc/self/cgroup'), '')
         if (b >= 0 .and. (bytes < 0 .or. b < bytes)) then
             bytes = b; source = 'cgroup limit'
         end if
@@ -175,42 +176,69 @@ contains
         b = kb_field(read_text('/proc/self/status'), 'VmRSS')
     end function process_resident_bytes
 
-    !> The least limit − usage over the memory cgroups of this process and their parents
-    !! [bytes], −1 when no cgroup sets a limit.
-    function cgroup_headroom() result(b)
+    !> The least headroom over the memory cgroups named in `text` (the text of
+    !! /proc/self/cgroup) and their parents [bytes], −1 when no cgroup sets a limit.  The
+    !! headroom of a cgroup is its limit minus its usage, where the usage leaves out the page
+    !! cache that the kernel reclaims before it fails an allocation (`active_file`,
+    !! `inactive_file` of memory.stat; a batch job that has read large files would else look
+    !! full).  `root` prefixes /sys/fs/cgroup (tests build a tree elsewhere; '' in use).
+    function cgroup_headroom(text, root) result(b)
+        character(len=*), intent(in) :: text, root
         integer(i8) :: b
-        character(len=:), allocatable :: text, line, path, base, fmax, fcur
+        character(len=:), allocatable :: rest, line, path, base, fmax, fcur, pre
         integer :: i, k
-        integer(i8) :: lim, use
+        integer(i8) :: lim, use, cache, room
         b = -1
-        text = read_text('/proc/self/cgroup')
-        do while (len(text) > 0)
-            i = index(text, new_line('a'))
-            if (i == 0) i = len(text) + 1
-            line = text(1:i - 1)
-            text = text(min(i + 1, len(text) + 1):)
+        rest = text
+        do while (len(rest) > 0)
+            i = index(rest, new_line('a'))
+            if (i == 0) i = len(rest) + 1
+            line = rest(1:i - 1)
+            rest = rest(min(i + 1, len(rest) + 1):)
             k = index(line, ':', back=.true.)
             if (k == 0) cycle
-            path = line(k + 1:)
+            path = trim(line(k + 1:))
             if (line(1:k) == '0::') then                          ! cgroup v2
-                base = '/sys/fs/cgroup'; fmax = 'memory.max'; fcur = 'memory.current'
+                base = root//'/sys/fs/cgroup'; fmax = 'memory.max'; fcur = 'memory.current'; pre = ''
             else if (index(','//line(index(line, ':') + 1:k - 1)//',', ',memory,') > 0) then   ! v1
-                base = '/sys/fs/cgroup/memory'; fmax = 'memory.limit_in_bytes'; fcur = 'memory.usage_in_bytes'
+                base = root//'/sys/fs/cgroup/memory'; fmax = 'memory.limit_in_bytes'; fcur = 'memory.usage_in_bytes'
+                pre = 'total_'                                     ! hierarchical counters
             else
                 cycle
             end if
             do
-                lim = read_number(base//trim(path)//'/'//fmax)
-                use = read_number(base//trim(path)//'/'//fcur)
+                lim = read_number(base//path//'/'//fmax)
+                use = read_number(base//path//'/'//fcur)
                 if (lim > 0 .and. lim < unlimited .and. use >= 0) then
-                    if (b < 0 .or. lim - use < b) b = max(0_i8, lim - use)
+                    cache = reclaimable(read_text(base//path//'/memory.stat'), pre)
+                    room = max(0_i8, lim - max(0_i8, use - cache))
+                    if (b < 0 .or. room < b) b = room
                 end if
-                if (len_trim(path) <= 1) exit
-                k = index(trim(path), '/', back=.true.)
+                if (len(path) <= 1) exit
+                k = index(path, '/', back=.true.)
                 path = path(1:max(1, k - 1))
             end do
         end do
+    contains
+        !> active_file + inactive_file of a memory.stat text (with the v1 prefix), 0 if absent.
+        pure integer(i8) function reclaimable(stat, prefix) result(r)
+            character(len=*), intent(in) :: stat, prefix
+            r = max(0_i8, stat_field(stat, prefix//'active_file')) + max(0_i8, stat_field(stat, prefix//'inactive_file'))
+        end function reclaimable
     end function cgroup_headroom
+
+    !> The value of a `key value` line of a memory.stat text [bytes], −1 when absent.
+    pure integer(i8) function stat_field(text, key) result(v)
+        character(len=*), intent(in) :: text, key
+        integer :: i, j, ios
+        v = -1
+        i = index(new_line('a')//text, new_line('a')//key//' ')
+        if (i == 0) return
+        i = i + len(key) + 1
+        j = index(text(i:)//new_line('a'), new_line('a'))
+        read (text(i:i + j - 2), *, iostat=ios) v
+        if (ios /= 0) v = -1
+    end function stat_field
 
     !> The integer in a one-line file, −1 when the file is missing or holds no integer ('max').
     function read_number(file) result(x)

@@ -15,7 +15,7 @@ module test_reliability
     use, intrinsic :: iso_c_binding, only: c_int
     use fc_kinds, only: dp, pi, msg_len, FC_CONVERGED, FC_NOT_CONVERGED
     use fc_testing, only: error_type, unittest_type, new_unittest, check, rel_diff, set_env, unset_env, file_lines
-    use fc_memory, only: parse_byte_size, kb_field, available_memory, format_bytes, memory_env
+    use fc_memory, only: parse_byte_size, kb_field, available_memory, format_bytes, memory_env, cgroup_headroom
     use fc_kinds, only: i8, FC_ERR_VALUE
     use fc_geometry, only: fc_grid, make_grid, quadratic_gap
     use fc_influence, only: fc_material, combine_material, element_coefficient, ic_kernel, IC_XZ, IC_YZ, IC_ZX, IC_ZY
@@ -44,7 +44,8 @@ contains
                  new_unittest('bccg_iteration_bound_hertz', bccg_iteration_bound_hertz), &
                  new_unittest('every_key_has_a_value_type', every_key_has_a_value_type), &
                  new_unittest('memory_sizes_and_sources', memory_sizes_and_sources), &
-                 new_unittest('driver_memory_check', driver_memory_check)]
+                 new_unittest('driver_memory_check', driver_memory_check), &
+                 new_unittest('memory_cgroup_limits', memory_cgroup_limits)]
     end subroutine collect_reliability
 
     !> The four coupling blocks far from the loaded element against the point-load solutions,
@@ -499,5 +500,51 @@ contains
             out = text(1:p - 1)//new//text(p + len(old):)
         end function replace_first
     end subroutine driver_memory_check
+
+    !> The cgroup limits a batch system (Slurm) sets, on a tree of files built like
+    !! /sys/fs/cgroup: v2 (memory.max, memory.current; 'max' is no limit) and v1
+    !! (memory.limit_in_bytes, memory.usage_in_bytes; ~2^63 is no limit) with the controller
+    !! in a list; the least headroom over the cgroup and its parents; reclaimable page cache
+    !! (active_file + inactive_file, v1 hierarchical total_*) not counted as used.
+    subroutine memory_cgroup_limits(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: root = 'build/test_cgroup'
+        character(len=*), parameter :: nl = new_line('a')
+        integer(i8) :: b
+        call execute_command_line('rm -rf '//root//' && mkdir -p '//root//'/sys/fs/cgroup/job_1/step_0 '// &
+                                  root//'/sys/fs/cgroup/memory/slurm/job_5')
+        ! v2: the job's limit 4 GB, 1.5 GB used of which 0.5 GB page cache; the step unlimited
+        call put(root//'/sys/fs/cgroup/job_1/memory.max', '4000000000')
+        call put(root//'/sys/fs/cgroup/job_1/memory.current', '1500000000')
+        call put(root//'/sys/fs/cgroup/job_1/memory.stat', 'anon 900000000'//nl//'file 600000000'//nl// &
+                 'active_file 200000000'//nl//'inactive_file 300000000')
+        call put(root//'/sys/fs/cgroup/job_1/step_0/memory.max', 'max')
+        call put(root//'/sys/fs/cgroup/job_1/step_0/memory.current', '1200000000')
+        b = cgroup_headroom('0::/job_1/step_0'//nl, root)
+        call check(error, b == 3000000000_i8, 'v2, job limit: '//format_bytes(b))
+        ! a tighter limit on the step wins (no memory.stat: nothing reclaimable)
+        call put(root//'/sys/fs/cgroup/job_1/step_0/memory.max', '2000000000')
+        b = cgroup_headroom('0::/job_1/step_0'//nl, root)
+        call check(error, b == 800000000_i8, 'v2, step limit: '//format_bytes(b))
+        ! v1 with the controller in a list; the job unlimited, its parent at 8 GB
+        call put(root//'/sys/fs/cgroup/memory/slurm/job_5/memory.limit_in_bytes', '9223372036854771712')
+        call put(root//'/sys/fs/cgroup/memory/slurm/job_5/memory.usage_in_bytes', '100')
+        call put(root//'/sys/fs/cgroup/memory/slurm/memory.limit_in_bytes', '8000000000')
+        call put(root//'/sys/fs/cgroup/memory/slurm/memory.usage_in_bytes', '3000000000')
+        call put(root//'/sys/fs/cgroup/memory/slurm/memory.stat', 'cache 7'//nl//'active_file 5'//nl// &
+                 'total_active_file 1000000000'//nl//'total_inactive_file 0')
+        b = cgroup_headroom('12:cpuset:/'//nl//'4:cpu,memory:/slurm/job_5'//nl, root)
+        call check(error, b == 6000000000_i8, 'v1: '//format_bytes(b))
+        b = cgroup_headroom('3:cpu:/slurm'//nl//'0::/nowhere'//nl, root)
+        call check(error, b == -1, 'no memory limit must give -1')
+    contains
+        subroutine put(path, text)
+            character(len=*), intent(in) :: path, text
+            integer :: u
+            open (newunit=u, file=path, status='replace', action='write')
+            write (u, '(a)') text
+            close (u)
+        end subroutine put
+    end subroutine memory_cgroup_limits
 
 end module test_reliability
