@@ -47,7 +47,8 @@
 !! [[fc_auto_area]], the answers without a grid (analytic Hertz, FASTSIM) in
 !! [[fc_auto_answers]], the error estimate in [[fc_auto_estimate]].
 module fc_auto
-    use fc_kinds, only: dp, i8, FC_CONVERGED, status_name
+    use fc_kinds, only: dp, i8, msg_len, FC_CONVERGED, status_name
+    use fc_memory, only: available_memory, process_resident_bytes, format_bytes, memory_env
     use fc_influence, only: fc_material, combine_material
     use fc_norm, only: fc_normal_result
     use fc_tangcg_types, only: fc_tangential_result, fc_tangential_loading
@@ -59,7 +60,7 @@ module fc_auto
     use fc_icfile_load, only: load_influence_source
     use fc_errors, only: FC_ERR_UNSUPPORTED, FC_ERR_IC_FILE
     use fc_strings, only: fmt_int, fmt_real, append_line
-    use fc_scene, only: fc_case, case_setup, is_tangential, is_line_contact, is_rolling_sequence
+    use fc_scene, only: fc_case, case_setup, is_tangential, is_line_contact, is_rolling_sequence, case_memory
     use fc_case_result, only: fc_level, fc_auto_outcome
     use fc_auto_estimate, only: richardson_estimate, level_estimate, certify_coarsest, target_quantities, &
         estimate_safety, estimate_safety_h2, h2_ratio_low, h2_ratio_high
@@ -238,6 +239,11 @@ contains
         real(dp) :: est, ratio, noise
         logical :: monotone, probe
         character(len=64) :: qname
+        integer(i8) :: avail, need
+        character(len=:), allocatable :: source, kind
+        character(len=msg_len) :: merr
+        real(dp) :: bpe
+        integer :: mstat, threads
         nlev = 1
         if (s%target > 0) nlev = s%max_levels
         call refinement_factors(s, s%nx, s%ny, fx, fy)
@@ -268,6 +274,21 @@ contains
             if (real(sl%nx, dp)*sl%ny > 4096.0_dp**2) then
                 call append_line(out%warnings, 'accuracy target: the next grid would exceed 4096^2 elements; stopped')
                 exit
+            end if
+            ! a refinement the process has no memory for ends the sequence with the grids
+            ! solved so far (the first grid is the caller's to check)
+            if (k > 1) then
+                call available_memory(avail, source, mstat, merr)
+                if (mstat == 0 .and. avail >= 0) then
+                    call case_memory(s, sl%nx, sl%ny, need, kind, bpe, threads)
+                    if (source /= memory_env) avail = avail + max(0_i8, process_resident_bytes())
+                    if (need > avail) then
+                        call append_line(out%warnings, 'accuracy target: the next grid ('//fmt_int(sl%nx)//' x '// &
+                            fmt_int(sl%ny)//') would need about '//format_bytes(need)//', more than the '// &
+                            format_bytes(avail)//' this process may use ('//source//'); stopped')
+                        exit
+                    end if
+                end if
             end if
             call solve_one(sl, tang, ops, out, p0, px0, py0, stat, errmsg)
             if (stat /= 0) return

@@ -28,7 +28,7 @@ module fc_driver
     use fc_kinds, only: dp, msg_len, FC_CONVERGED, FC_DIVERGED, FC_ERR_IO, status_name
     use fc_geometry, only: fc_grid
     use fc_influence, only: fc_material
-    use fc_contact, only: fc_contact_operators, FC_PROBLEM_ROLLING, FC_PROBLEM_NORMAL
+    use fc_contact, only: fc_contact_operators, FC_PROBLEM_ROLLING
     use fc_sequence_csv, only: write_sequence_csv, sweep_header, steps_header
     use fc_driver_strip, only: solve_strip_case
     use fc_hertz, only: hertz_from_approach, hertz_from_force
@@ -36,15 +36,14 @@ module fc_driver
     use fc_input, only: fc_case_input, apply_case, strip_model_index, grid_is_auto
     use fc_input_validate, only: validate_case
     use fc_input_scene, only: build_case, case_notes
-    use fc_scene, only: fc_case
+    use fc_scene, only: fc_case, case_memory
     use fc_strings, only: fmt_int, fmt_real
     use fc_errors, only: FC_ERR_FRICTION_BOUND, FC_ERR_NO_CONTACT, FC_ERR_GEOMETRY, FC_ERR_IO, FC_ERR_ALLOC, &
         FC_ERR_GRID, FC_ERR_IC_FILE, FC_ERR_MODEL_RANGE, FC_ERR_FFT_WISDOM
     use fc_output, only: fc_case_summary, write_case_json, write_case_csv, write_case_npy, write_case_report
     use fc_auto, only: fc_auto_outcome, solve_case_auto
-    use fc_threads, only: set_thread_count, fc_default_threads
-    use fc_memory, only: available_memory, case_memory_bytes, process_resident_bytes, format_bytes, memory_env, &
-        serial_bytes_per_element
+    use fc_threads, only: set_thread_count
+    use fc_memory, only: available_memory, process_resident_bytes, format_bytes, memory_env
     use fc_version, only: fc_build_info
     implicit none
     private
@@ -454,13 +453,7 @@ contains
         integer :: threads
         call available_memory(avail, source, stat, errmsg)
         if (stat /= 0 .or. avail < 0) return
-        threads = kase%threads
-        if (threads <= 0) threads = fc_default_threads()
-        kind = 'tangential'
-        if (kase%problem == FC_PROBLEM_NORMAL) kind = 'normal'
-        if (kase%problem == FC_PROBLEM_ROLLING .or. kase%rolling%transient) kind = 'rolling'
-        bpe = serial_bytes_per_element(kind, threads)
-        need = case_memory_bytes(int(kase%nx, int64)*kase%ny, bpe)
+        call case_memory(kase, kase%nx, kase%ny, need, kind, bpe, threads)
         held = 0
         if (source /= memory_env) held = max(0_int64, process_resident_bytes())
         avail = avail/share

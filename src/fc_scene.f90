@@ -5,7 +5,9 @@
 !!
 !! [[case_setup]] turns it into the material, grid and undeformed distance of one solve.
 module fc_scene
-    use fc_kinds, only: dp, msg_len
+    use fc_kinds, only: dp, i8, msg_len
+    use fc_memory, only: serial_bytes_per_element, case_memory_bytes
+    use fc_threads, only: fc_default_threads
     use fc_errors, only: FC_ERR_ALLOC, FC_ERR_IO, FC_ERR_GEOMETRY, FC_ERR_NO_CONTACT
     use fc_strings, only: fmt_int, fmt_real
     use fc_geometry, only: fc_grid, fc_rough_params, make_grid, quadratic_gap, punch_rough_gap, wavy_gap, &
@@ -58,7 +60,7 @@ module fc_scene
         character(len=path_len) :: fft_wisdom = ''   !! FFTW wisdom file ('': FFTW_ESTIMATE plans only)
     end type fc_case
 
-    public :: case_setup, is_line_contact, is_tangential, is_rolling_sequence
+    public :: case_setup, is_line_contact, is_tangential, is_rolling_sequence, case_memory
 
 contains
 
@@ -67,6 +69,25 @@ contains
         type(fc_case), intent(in) :: c
         is_rolling_sequence = c%rolling%transient .or. (c%problem == FC_PROBLEM_ROLLING .and. len_trim(c%rolling%sweep) > 0)
     end function is_rolling_sequence
+
+    !> Estimated peak memory of a solve of `c` on an nx × ny grid [bytes] (fc_memory: bytes per
+    !! element of its kind of problem, more with two or more threads), with the kind
+    !! ('normal', 'tangential', 'rolling'), the bytes per element and the threads it assumed.
+    subroutine case_memory(c, nx, ny, need, kind, bpe, threads)
+        type(fc_case), intent(in) :: c
+        integer, intent(in) :: nx, ny
+        integer(i8), intent(out) :: need
+        character(len=:), allocatable, intent(out) :: kind
+        real(dp), intent(out) :: bpe
+        integer, intent(out) :: threads
+        threads = c%threads
+        if (threads <= 0) threads = fc_default_threads()
+        kind = 'tangential'
+        if (c%problem == FC_PROBLEM_NORMAL) kind = 'normal'
+        if (c%problem == FC_PROBLEM_ROLLING .or. c%rolling%transient) kind = 'rolling'
+        bpe = serial_bytes_per_element(kind, threads)
+        need = case_memory_bytes(int(nx, i8)*ny, bpe)
+    end subroutine case_memory
 
     !> Whether the case solves the tangential problem too.
     pure logical function is_tangential(c)

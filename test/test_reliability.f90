@@ -466,6 +466,13 @@ contains
             'threads = 1', 'threads = 2')//'&tangential mu = 0.3, xi = 1e-3 /'//new_line('a'), '1M', code, errs)
         call check(error, code /= 0 .and. index(errs, 'a tangential case on 2 thread(s) needs about 30 MB (1020 B') > 0, &
             'tangential, 2 threads: '//errs)
+        ! an accuracy target refines until the next grid would not fit: 64², 128² (10 MB +
+        ! 270 B × 16 384 = 14.4 MB), not 256² (27.7 MB), within 20 MB
+        call run_with(replace_first(replace_first(normal, 'nx = 200, ny = 100', 'nx = 128, ny = 128'), &
+            'threads = 1', 'threads = 1, target = 1e-9'), '20M', code, errs)
+        call check(error, index(file_lines(dir//'/m.json'), 'accuracy target: the next grid (256 x 256) would need '// &
+            'about 28 MB, more than the 20 MB this process may use ('//memory_env//'); stopped') > 0, &
+            'target: '//errs//file_lines(dir//'/m.json'))
         call unset_env(memory_env)
     contains
         subroutine run_with(text, avail, code, errs, share)
