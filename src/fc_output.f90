@@ -3,7 +3,7 @@
 !! in the style of Kalker's CONTACT.  It writes results only: the summary of a case and the
 !! outcome of the automatic layer ([[fc_case_result]]), never computing them.
 !!
-!! Size (~600 lines): the 60-field summary type and its three writers (JSON, report with
+!! Size (~640 lines): the 60-field summary type and its three writers (JSON, report with
 !! the contact map, tables through [[fc_table_io]]), which share the summary's fields.
 module fc_output
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite

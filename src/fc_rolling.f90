@@ -34,7 +34,7 @@
 !! Stopping criterion as TangCG's (thesis eq. 4.49): relative RMS traction change of the last
 !! Newton step / sweep below `tol` with an unchanged subdivision.
 !!
-!! Size (~730 lines): the Newton–GMRES loop keeps its GMRES, preconditioner and Jacobian
+!! Size (~760 lines): the Newton–GMRES loop keeps its GMRES, preconditioner and Jacobian
 !! product as contained procedures on the loop's work arrays (no allocation per Krylov step);
 !! the reference solvers live in [[fc_rolling_refsolvers]].
 module fc_rolling

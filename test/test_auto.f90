@@ -5,7 +5,7 @@
 !! the library's [[fc_case]] and solved
 !! by [[solve_case_auto]] in-process.
 !!
-!! Size (~780 lines, 22 tests): one file per suite.
+!! Size (~820 lines, 22 tests): one file per suite.
 module test_auto
     use fc_kinds, only: dp, msg_len, pi
     use fc_testing, only: error_type, unittest_type, new_unittest, check, read_all => file_lines

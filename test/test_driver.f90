@@ -2,7 +2,7 @@
 !! input giving a non-zero exit code, a message naming group and key, and no outputs.
 !! The driver runs in-process on small grids; files go to a unique directory under /tmp.
 !!
-!! Size (~950 lines, 58 tests): one file per suite; most tests are a namelist text and the
+!! Size (~1100 lines, 62 tests): one file per suite; most tests are a namelist text and the
 !! message or outputs it must give.
 module test_driver
     use fc_kinds, only: dp

@@ -3,7 +3,7 @@
 !! the row-slab generation of rough surfaces used by distributed runs.  The distributed
 !! solver itself is tested in mpi/test (run under mpirun).
 !!
-!! Size (~670 lines, 16 tests): one file per suite; each thread test solves the same
+!! Size (~750 lines, 16 tests): one file per suite; each thread test solves the same
 !! problem on one and on two threads, so its set-up is written out twice in one place.
 module test_parallel
     use fc_kinds, only: dp, pi, FC_CONVERGED
