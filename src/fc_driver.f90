@@ -62,6 +62,7 @@ contains
         character(len=:), allocatable :: text
         character(len=*), parameter :: nl = new_line('a')
         text = 'usage: fastcontact CASES.nml [--out DIR]'//nl// &
+            '       fastcontact CASES.nml --check   (check every case, estimate its memory; solve nothing)'//nl// &
             '       fastcontact --help | --version'//nl//nl// &
             'Solves every case of the namelist file CASES.nml in order: groups &case, &material,'//nl// &
             '&grid, &geometry, &normal, &tangential, &solver, &output; a later case repeats only'//nl// &
@@ -132,6 +133,10 @@ contains
             allocate (statuses(max(0, min(last_solved(), size(cases)) - only_case + 1)))
             statuses = -1
         end if
+        if (action == 'check') then
+            call check_cases()
+            return
+        end if
         do k = 1, size(cases)
             if (present(only_case)) then
                 if (k > last_solved()) exit
@@ -157,6 +162,78 @@ contains
             exit_code = EXIT_NOT_CONVERGED
         end if
     contains
+
+        !> `--check`: every case read, inherited and checked as for a run, and its estimated
+        !! peak memory printed against the memory the process may use; nothing is solved or
+        !! written.  Exit status 1 when a case has an input error or would not fit.
+        subroutine check_cases()
+            integer :: nfit, nbig, nerr, status
+            nfit = 0; nbig = 0; nerr = 0
+            do k = 1, size(cases)
+                call check_one_case(k, status)
+                select case (status)
+                case (0); nfit = nfit + 1
+                case (1); nerr = nerr + 1
+                case default; nbig = nbig + 1
+                end select
+            end do
+            write (rep, '(a,i0,a,i0,a,i0,a,i0,a)') 'fastcontact --check: ', size(cases), ' case(s): ', nfit, &
+                ' to solve, ', nbig, ' too large for the memory, ', nerr, ' with input errors'
+            if (nerr + nbig > 0) exit_code = EXIT_INPUT_ERROR
+        end subroutine check_cases
+
+        !> Case k of `--check`: status 0 fits (or has no grid to estimate), 1 input error, 2 too
+        !! large.
+        subroutine check_one_case(k, status)
+            integer, intent(in) :: k
+            integer, intent(out) :: status
+            type(fc_case) :: kase
+            integer(int64) :: avail, need
+            character(len=:), allocatable :: source, kind, line
+            real(dp) :: bpe
+            integer :: threads
+            status = 1
+            saved_state = state
+            call apply_case(cases(k), k, state, name, stat, errmsg)
+            if (stat == 0 .and. any(used == state%name)) then
+                errmsg = "&case name = '"//trim(state%name)//"': already used in this file (outputs would be overwritten)"
+                stat = 1
+            end if
+            if (stat == 0) call validate_case(state, stat, errmsg)
+            if (stat == 0) call available_memory(avail, source, stat, errmsg)
+            if (stat /= 0) then
+                call write_case_error(rep, err, 'fastcontact', k, cases(k)%line, name, errmsg)
+                state = saved_state; return
+            end if
+            used = [character(len=64) :: used, name]
+            used_case = [used_case, k]
+            status = 0
+            line = ' case '//trim(state%name)//': '
+            if (strip_model_index(state) > 0) then
+                line = line//'strip model problem: not estimated'
+            else if (state%problem == 'hertz') then
+                line = line//'analytic Hertz solution: no grid'
+            else if (grid_is_auto(state)) then
+                line = line//'automatic area: the grid is chosen while solving; not estimated'
+            else
+                kase = build_case(state)
+                call case_memory(kase, kase%nx, kase%ny, need, kind, bpe, threads)
+                line = line//kind//', '//fmt_int(kase%nx)//' x '//fmt_int(kase%ny)//', '//fmt_int(threads)// &
+                    ' thread(s): about '//format_bytes(need)
+                if (avail < 0) then
+                    line = line//' (the available memory is unknown)'
+                else
+                    avail = avail/share
+                    if (share > 1) source = source//' of a node shared by '//fmt_int(share)//' processes'
+                    line = line//' of '//format_bytes(avail)//' available ('//source//')'
+                    if (need > avail) then
+                        line = line//': TOO LARGE'; status = 2
+                    end if
+                end if
+                if (kase%target > 0) line = line//'; the accuracy target refines further, as memory allows'
+            end if
+            write (rep, '(a)') line
+        end subroutine check_one_case
 
         !> Solve case k; case_status 0 converged, 1 input error, 2 solver failure.
         subroutine run_one_case(k, case_status)
@@ -640,6 +717,8 @@ contains
                 action = 'help'; return
             case ('-V', '--version')
                 action = 'version'; return
+            case ('--check')
+                action = 'check'
             case ('--out', '-o')
                 if (i == size(args)) then
                     call fail(prog//': --out needs a directory'//new_line('a')//usage); return

@@ -473,8 +473,41 @@ contains
         call check(error, index(file_lines(dir//'/m.json'), 'accuracy target: the next grid (256 x 256) would need '// &
             'about 28 MB, more than the 20 MB this process may use ('//memory_env//'); stopped') > 0, &
             'target: '//errs//file_lines(dir//'/m.json'))
+        call check_mode()
         call unset_env(memory_env)
     contains
+        !> `--check`: each case's estimate against the memory, input errors as in a run, the
+        !! counts, exit status 1, and nothing solved or written.
+        subroutine check_mode()
+            character(len=256) :: args(4)
+            character(len=:), allocatable :: rep
+            integer :: u, urep, uerr
+            call execute_command_line('rm -rf '//dir//' && mkdir -p '//dir)
+            open (newunit=u, file=dir//'/cases.nml', status='replace', action='write')
+            write (u, '(a)') replace_first(replace_first(normal, 'nx = 200, ny = 100', 'nx = 128, ny = 128'), &
+                "name = 'm'", "name = 'a'")
+            write (u, '(a)') "&case name = 'b', problem = 'rolling' /"//new_line('a')//'&grid nx = 200, ny = 100 /'// &
+                new_line('a')//'&tangential mu = 0.3, xi = 1e-3 /'
+            write (u, '(a)') "&case name = 'c' /"//new_line('a')//'&material nu1 = 0.7 /'
+            close (u)
+            call set_env(memory_env, '20M')
+            open (newunit=urep, file=dir//'/report.txt', status='replace', action='write')
+            open (newunit=uerr, file=dir//'/errors.txt', status='replace', action='write')
+            args(1) = dir//'/cases.nml'; args(2) = '--check'; args(3) = '--out'; args(4) = dir
+            call run_driver(args, code, report_unit=urep, error_unit=uerr)
+            close (urep); close (uerr)
+            rep = file_lines(dir//'/report.txt')
+            call check(error, code == 1, '--check: exit status 1 expected (a case too large, one with an input error)')
+            call check(error, index(rep, ' case a: normal, 128 x 128, 1 thread(s): about 14 MB of 20 MB available ('// &
+                memory_env//')'//new_line('a')) > 0, '--check, case a: '//rep)
+            call check(error, index(rep, ' case b: rolling, 200 x 100, 1 thread(s): about 33 MB of 20 MB available ('// &
+                memory_env//'): TOO LARGE') > 0, '--check, case b: '//rep)
+            call check(error, index(rep, '&material nu1') > 0 .and. index(rep, 'fastcontact --check: 3 case(s): 1 to '// &
+                'solve, 1 too large for the memory, 1 with input errors') > 0, '--check, case c and counts: '//rep)
+            call check(error, .not. file_exists(dir//'/a.json') .and. .not. file_exists(dir//'/b.json'), &
+                '--check must not solve or write')
+        end subroutine check_mode
+
         subroutine run_with(text, avail, code, errs, share)
             character(len=*), intent(in) :: text, avail
             integer, intent(out) :: code

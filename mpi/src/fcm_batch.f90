@@ -102,7 +102,7 @@ contains
         ! ---- rank 0 checks the command line and the file exactly as the serial driver does
         ncases = -1
         if (rank == 0) then
-            call run_driver(args, exit_code, report_unit=rep, error_unit=err, only_case=0)
+            call run_driver(args, exit_code, report_unit=rep, error_unit=err, only_case=0, memory_share=pernode)
             case_file = case_file_argument(args)
             if (exit_code == EXIT_OK .and. len(case_file) > 0 .and. .not. asks_help(args)) then
                 call read_case_file(case_file, cases, stat, errmsg)
@@ -336,10 +336,12 @@ contains
         end do
     end function case_file_argument
 
-    !> --help or --version: the driver has printed its text and nothing is solved.
+    !> --help, --version or --check: rank 0's driver call has printed its text (for --check:
+    !! each case's memory against a rank's share of the node) and nothing is solved.
     logical function asks_help(args)
         character(len=*), intent(in) :: args(:)
-        asks_help = any(args == '-h') .or. any(args == '--help') .or. any(args == '-V') .or. any(args == '--version')
+        asks_help = any(args == '-h') .or. any(args == '--help') .or. any(args == '-V') .or. any(args == '--version') &
+            .or. any(args == '--check')
     end function asks_help
 
 end module fcm_batch

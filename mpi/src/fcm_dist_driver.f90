@@ -83,6 +83,7 @@ contains
         type(fc_grid) :: built_grid
         type(fc_material) :: built_mat
         logical :: built_periodic, built_measured
+        logical :: check_only   !! --check: check every case and estimate its memory per rank; solve nothing
         rep = output_unit; err = error_unit_default
         if (present(report_unit)) rep = report_unit
         if (present(err_unit)) err = err_unit
@@ -103,6 +104,7 @@ contains
             if (rank == 0) write (err, '(a)') errtext
             exit_code = EXIT_INPUT_ERROR; return
         end select
+        check_only = action == 'check'
         call read_case_file(case_file, cases, stat, errmsg)
         if (stat /= 0) then
             if (rank == 0) write (err, '(a)') 'fastcontact-mpi: '//trim(case_file)//': '//trim(errmsg)
@@ -118,9 +120,15 @@ contains
             case default; ncase_fail = ncase_fail + 1
             end select
         end do
-        if (rank == 0) write (rep, '(a,i0,a,i0,a,i0,a,i0,a,i0,a)') 'fastcontact-mpi: ', size(cases), &
-            ' case(s) on ', nprocs, ' ranks: ', size(cases) - ncase_err - ncase_fail, ' converged, ', ncase_fail, &
-            ' not converged, ', ncase_err, ' with input errors'
+        if (rank == 0 .and. check_only) then
+            write (rep, '(a,i0,a,i0,a,i0,a,i0,a)') 'fastcontact-mpi --distributed --check: ', size(cases), &
+                ' case(s) on ', nprocs, ' ranks: ', size(cases) - ncase_err, ' to solve, ', ncase_err, &
+                ' with input errors or too large for the memory'
+        else if (rank == 0) then
+            write (rep, '(a,i0,a,i0,a,i0,a,i0,a,i0,a)') 'fastcontact-mpi: ', size(cases), &
+                ' case(s) on ', nprocs, ' ranks: ', size(cases) - ncase_err - ncase_fail, ' converged, ', ncase_fail, &
+                ' not converged, ', ncase_err, ' with input errors'
+        end if
         if (ncase_err > 0) then
             exit_code = EXIT_INPUT_ERROR
         else if (ncase_fail > 0) then
@@ -164,6 +172,14 @@ contains
             errmsg = dist_case_unsupported(state, kase)
             if (len_trim(errmsg) > 0) then
                 call case_error(nbefore); return
+            end if
+            if (check_only) then
+                call check_dist_memory(kase, stat, errmsg, report=.true.)
+                if (stat /= 0) then
+                    call case_error(nbefore, clean=.false.); return
+                end if
+                case_status = 0
+                return
             end if
             call make_directory(dir, stat)
             if (stat /= 0) then
@@ -340,10 +356,11 @@ contains
         !! operator and vectors of `kase` (`dist_memory_per_rank`) would need more memory per
         !! rank than some rank may use: the available memory of its node (fc_memory) shared by
         !! the ranks on that node, plus what the rank holds already.  Collective.
-        subroutine check_dist_memory(kase, stat, errmsg)
+        subroutine check_dist_memory(kase, stat, errmsg, report)
             type(fc_case), intent(in) :: kase
             integer, intent(out) :: stat
             character(len=msg_len), intent(out) :: errmsg
+            logical, intent(in), optional :: report   !! --check: rank 0 prints the estimate of a case that fits
             integer(int64) :: avail, need, budget, held
             character(len=:), allocatable :: source
             integer :: nodecomm, pernode, ierr2
@@ -364,7 +381,21 @@ contains
             end if
             call mpi_allreduce(MPI_IN_PLACE, budget, 1, MPI_INTEGER8, MPI_MIN, comm, ierr2)
             need = dist_memory_per_rank(kase%nx, kase%ny, nprocs, kase%periodic)
-            if (need <= budget) return
+            if (need <= budget) then
+                if (present(report) .and. rank == 0) then
+                    if (budget == huge(budget)) then
+                        write (rep, '(a)') ' case '//trim(state%name)//': '//fmt_int(kase%nx)//' x '//fmt_int(kase%ny)// &
+                            ' on '//fmt_int(nprocs)//' ranks: about '//format_bytes(need)// &
+                            ' per rank (the available memory is unknown)'
+                    else
+                        write (rep, '(a)') ' case '//trim(state%name)//': '//fmt_int(kase%nx)//' x '//fmt_int(kase%ny)// &
+                            ' on '//fmt_int(nprocs)//' ranks: about '//format_bytes(need)//' per rank of '// &
+                            format_bytes(budget)//' a rank may use ('//source//' of a node shared by '// &
+                            fmt_int(pernode)//' ranks)'
+                    end if
+                end if
+                return
+            end if
             stat = FC_ERR_ALLOC
             errmsg = '&grid nx = '//fmt_int(kase%nx)//', ny = '//fmt_int(kase%ny)//': the distributed solve needs about '// &
                 format_bytes(need)//' per rank on '//fmt_int(nprocs)//' ranks, more than the '//format_bytes(budget)// &
@@ -492,9 +523,10 @@ contains
     function dist_usage() result(text)
         character(len=:), allocatable :: text
         character(len=1), parameter :: nl = achar(10)
-        text = 'usage: mpirun -np P fastcontact-mpi CASES.nml --distributed [--out DIR]'//nl// &
+        text = 'usage: mpirun -np P fastcontact-mpi CASES.nml --distributed [--out DIR] [--check]'//nl// &
             '  every case solved by all P ranks together (normal problems, BCCG, grids generated'//nl// &
-            '  row by row); without --distributed the cases are spread over the ranks'
+            '  row by row); without --distributed the cases are spread over the ranks.  --check:'//nl// &
+            '  check every case and estimate its memory per rank against the nodes; solve nothing'
     end function dist_usage
 
 end module fcm_dist_driver

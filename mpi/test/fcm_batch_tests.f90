@@ -6,7 +6,7 @@ module fcm_batch_tests
     use mpi
     use fc_driver, only: run_driver
     use fcm_batch, only: run_mpi_batch, guided_chunks
-    use fcm_test_support, only: run_mpi_test, slurp_file, set_env, unset_env
+    use fcm_test_support, only: run_mpi_test, slurp_file, set_env, unset_env, rank0_failed
     implicit none
     private
     public :: batch_tests
@@ -34,7 +34,9 @@ contains
         character(len=:), allocatable, intent(out) :: msg
         integer :: code, u, urep, uerr, rank, nprocs, ierr
         character(len=256) :: args(3)
+        character(len=256), allocatable :: args2(:)
         character(len=:), allocatable :: e
+        logical :: there
         call mpi_comm_rank(MPI_COMM_WORLD, rank, ierr)
         call mpi_comm_size(MPI_COMM_WORLD, nprocs, ierr)
         if (rank == 0) then
@@ -46,6 +48,7 @@ contains
             write (u, '(a)') "&geometry kind = 'quadratic', rx = 300.0, ry = 163.0 /"
             write (u, '(a)') "&normal approach = 0.1091 /"
             write (u, '(a)') "&output table = .false. /"
+            write (u, '(a)') "&solver threads = 1 /"
             close (u)
         end if
         call mpi_barrier(MPI_COMM_WORLD, ierr)
@@ -61,10 +64,51 @@ contains
             msg = 'exit status of a case beyond its share of the node (expected 1)'; return
         end if
         if (rank == 0) then
-            e = slurp_file(dir//'/mem.err0')
-            if (index(e, 'more than the 15 MB this process may use (FASTCONTACT_AVAILABLE_MEMORY of a node shared by 2') &
-                == 0) msg = 'no error naming the share in: '//e
+            r0_6: block
+                e = slurp_file(dir//'/mem.err0')
+                if (index(e, 'more than the 15 MB this process may use (FASTCONTACT_AVAILABLE_MEMORY of a node shared by 2') &
+                    == 0) then
+                    msg = 'no error naming the share in: '//e; exit r0_6
+                end if
+            end block r0_6
         end if
+        if (rank0_failed(msg)) return
+        ! --check: rank 0 estimates against a rank's share; nothing is solved
+        call set_env('FASTCONTACT_AVAILABLE_MEMORY', '30M')
+        args2 = [character(len=256) :: dir//'/mem.nml', '--check', '--out', dir//'/memc']
+        open (newunit=urep, file=dir//'/memc.rep'//fmt_rank(rank), status='replace')
+        open (newunit=uerr, file=dir//'/memc.err'//fmt_rank(rank), status='replace')
+        call run_mpi_batch(args2, MPI_COMM_WORLD, code, urep, uerr)
+        close (urep); close (uerr)
+        call unset_env('FASTCONTACT_AVAILABLE_MEMORY')
+        if (code /= 1) then
+            msg = '--check: exit status of a case beyond its share (expected 1)'; return
+        end if
+        if (rank == 0) then
+            r0_7: block
+                e = slurp_file(dir//'/memc.rep0')
+                if (index(e, ' case m: normal, 200 x 100, 1 thread(s): about 15 MB of 15 MB available '// &
+                    '(FASTCONTACT_AVAILABLE_MEMORY of a node shared by 2 processes): TOO LARGE') == 0) then
+                    msg = '--check: '//e; exit r0_7
+                end if
+            end block r0_7
+        end if
+        if (rank0_failed(msg)) return
+        ! --check of a file whose cases fit: exit status 0 and still nothing solved
+        call set_env('FASTCONTACT_AVAILABLE_MEMORY', '100G')
+        open (newunit=urep, file=dir//'/memc2.rep'//fmt_rank(rank), status='replace')
+        open (newunit=uerr, file=dir//'/memc2.err'//fmt_rank(rank), status='replace')
+        call run_mpi_batch(args2, MPI_COMM_WORLD, code, urep, uerr)
+        close (urep); close (uerr)
+        call unset_env('FASTCONTACT_AVAILABLE_MEMORY')
+        if (code /= 0) then
+            msg = '--check of cases that fit: exit status (expected 0)'; return
+        end if
+        if (rank == 0) then
+            inquire (file=dir//'/memc/m.json', exist=there)
+            if (there) msg = '--check solved the case'
+        end if
+        if (rank0_failed(msg)) return
     contains
         function fmt_rank(r) result(t)
             integer, intent(in) :: r

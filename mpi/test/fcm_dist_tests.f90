@@ -8,7 +8,7 @@ module fcm_dist_tests
     use fc_driver, only: run_driver
     use fcm_dist_driver, only: run_dist_driver
     use fc_strings, only: fmt_int
-    use fcm_test_support, only: run_mpi_test, slurp_file, set_env, unset_env
+    use fcm_test_support, only: run_mpi_test, slurp_file, set_env, unset_env, rank0_failed
     use, intrinsic :: iso_c_binding, only: c_null_char
     use fcm_fftw_mpi, only: c_ptr, c_int, c_size_t, c_associated, c_f_pointer, fftw_forget_wisdom, &
         fftw_import_wisdom_from_filename, fftw_plan_dft_r2c_1d, fftw_destroy_plan, fftw_alloc_real, fftw_alloc_complex, &
@@ -81,43 +81,49 @@ contains
                 msg = 'run '//fmt_int(k)//': exit status '//fmt_int(code)//' (expected 0)'; return
             end if
             if (rank == 0) then
-                w1 = slurp_file(dir//'/wis/w.wis')
-                ! measured plans leave entries, the transposes' among them (estimated ones none)
-                if (index(w1, '(fftw-3') == 0 .or. index(w1, '(fftw_mpi_transpose') == 0) then
-                    msg = 'run '//fmt_int(k)//': no measured transposes in w.wis: '//w1(1:min(200, len(w1))); return
-                end if
-                if (k == 1) w2 = w1
-                j = slurp_file(dir//'/wis/out'//fmt_int(k)//'/mea.json')
-                if (index(j, '"status": "converged"') == 0 .or. index(j, 'not used') > 0) then
-                    msg = 'run '//fmt_int(k)//': measured case: '//j(1:min(400, len(j))); return
-                end if
-                f(k) = json_num(j, 'fn')
-                if (k == 1) f(3) = json_num(slurp_file(dir//'/wis/out1/est.json'), 'fn')
-                if (.not. close_to(f(k), f(3), 1.0e-9_dp)) then
-                    msg = 'run '//fmt_int(k)//': fn with measured plans differs from the estimated one'; return
-                end if
+                r0_1: block
+                    w1 = slurp_file(dir//'/wis/w.wis')
+                    ! measured plans leave entries, the transposes' among them (estimated ones none)
+                    if (index(w1, '(fftw-3') == 0 .or. index(w1, '(fftw_mpi_transpose') == 0) then
+                        msg = 'run '//fmt_int(k)//': no measured transposes in w.wis: '//w1(1:min(200, len(w1))); exit r0_1
+                    end if
+                    if (k == 1) w2 = w1
+                    j = slurp_file(dir//'/wis/out'//fmt_int(k)//'/mea.json')
+                    if (index(j, '"status": "converged"') == 0 .or. index(j, 'not used') > 0) then
+                        msg = 'run '//fmt_int(k)//': measured case: '//j(1:min(400, len(j))); exit r0_1
+                    end if
+                    f(k) = json_num(j, 'fn')
+                    if (k == 1) f(3) = json_num(slurp_file(dir//'/wis/out1/est.json'), 'fn')
+                    if (.not. close_to(f(k), f(3), 1.0e-9_dp)) then
+                        msg = 'run '//fmt_int(k)//': fn with measured plans differs from the estimated one'; exit r0_1
+                    end if
+                end block r0_1
             end if
+            if (rank0_failed(msg)) return
         end do
         if (rank == 0) then
-            if (len(w1) < len(w2)) then
-                msg = 'the second run lost wisdom of the first'; return
-            end if
-            ! the file holds *measured* plans: the x transform of the doubled grid (96 points)
-            ! plans from it alone with FFTW_MEASURE (estimated plans would not satisfy that)
-            call fftw_forget_wisdom()
-            if (fftw_import_wisdom_from_filename(dir//'/wis/w.wis'//c_null_char) == 0) then
-                msg = 'w.wis cannot be read back'; return
-            end if
-            pr = fftw_alloc_real(96_c_size_t); pc = fftw_alloc_complex(49_c_size_t)
-            call c_f_pointer(pr, rb, [96]); call c_f_pointer(pc, cb, [49])
-            plan = fftw_plan_dft_r2c_1d(96_c_int, rb, cb, ior(FFTW_MEASURE, FFTW_WISDOM_ONLY))
-            there = c_associated(plan)
-            if (there) call fftw_destroy_plan(plan)
-            call fftw_free(pr); call fftw_free(pc)
-            if (.not. there) then
-                msg = 'w.wis has no measured plan of the x transform'; return
-            end if
+            r0_2: block
+                if (len(w1) < len(w2)) then
+                    msg = 'the second run lost wisdom of the first'; exit r0_2
+                end if
+                ! the file holds *measured* plans: the x transform of the doubled grid (96 points)
+                ! plans from it alone with FFTW_MEASURE (estimated plans would not satisfy that)
+                call fftw_forget_wisdom()
+                if (fftw_import_wisdom_from_filename(dir//'/wis/w.wis'//c_null_char) == 0) then
+                    msg = 'w.wis cannot be read back'; exit r0_2
+                end if
+                pr = fftw_alloc_real(96_c_size_t); pc = fftw_alloc_complex(49_c_size_t)
+                call c_f_pointer(pr, rb, [96]); call c_f_pointer(pc, cb, [49])
+                plan = fftw_plan_dft_r2c_1d(96_c_int, rb, cb, ior(FFTW_MEASURE, FFTW_WISDOM_ONLY))
+                there = c_associated(plan)
+                if (there) call fftw_destroy_plan(plan)
+                call fftw_free(pr); call fftw_free(pc)
+                if (.not. there) then
+                    msg = 'w.wis has no measured plan of the x transform'; exit r0_2
+                end if
+            end block r0_2
         end if
+        if (rank0_failed(msg)) return
         args = [character(len=4096) :: dir//'/wisbad.nml', '--out', dir//'/wis/bad']
         open (newunit=urep, file=dir//'/wisbad.rep'//rank_suffix(rank), status='replace')
         open (newunit=uerr, file=dir//'/wisbad.err'//rank_suffix(rank), status='replace')
@@ -127,11 +133,14 @@ contains
             msg = 'not wisdom: exit status '//fmt_int(code)//' (expected 1)'; return
         end if
         if (rank == 0) then
-            e = slurp_file(dir//'/wisbad.err0')
-            if (index(e, "&solver fft_wisdom = '"//dir//"/wis/bad.wis': the file exists but FFTW cannot read it") == 0) then
-                msg = 'no error naming the wisdom file in: '//e; return
-            end if
+            r0_3: block
+                e = slurp_file(dir//'/wisbad.err0')
+                if (index(e, "&solver fft_wisdom = '"//dir//"/wis/bad.wis': the file exists but FFTW cannot read it") == 0) then
+                    msg = 'no error naming the wisdom file in: '//e; exit r0_3
+                end if
+            end block r0_3
         end if
+        if (rank0_failed(msg)) return
     end subroutine test_wisdom
 
 
@@ -169,17 +178,45 @@ contains
             msg = 'too little memory: exit status '//fmt_int(code)//' (expected 1: input error)'; return
         end if
         if (rank == 0) then
-            e = slurp_file(dir//'/mem.err0')
-            want = '&grid nx = 24, ny = 20: the distributed solve needs about 16 MB per rank on '//fmt_int(nprocs)//' ranks'
-            if (index(e, want) == 0 .or. index(e, 'FASTCONTACT_AVAILABLE_MEMORY of a node shared by') == 0) then
-                msg = 'no error naming the grid and the sizes in: '//e; return
-            end if
-            inquire (file=dir//'/mem/mem.json', exist=there)
-            if (there) then
-                msg = 'a summary was written for a case refused for memory'; return
-            end if
+            r0_4: block
+                e = slurp_file(dir//'/mem.err0')
+                want = '&grid nx = 24, ny = 20: the distributed solve needs about 16 MB per rank on '//fmt_int(nprocs)//' ranks'
+                if (index(e, want) == 0 .or. index(e, 'FASTCONTACT_AVAILABLE_MEMORY of a node shared by') == 0) then
+                    msg = 'no error naming the grid and the sizes in: '//e; exit r0_4
+                end if
+                inquire (file=dir//'/mem/mem.json', exist=there)
+                if (there) then
+                    msg = 'a summary was written for a case refused for memory'; exit r0_4
+                end if
+            end block r0_4
         end if
+        if (rank0_failed(msg)) return
+        ! --check: the estimate per rank, nothing solved
         call set_env('FASTCONTACT_AVAILABLE_MEMORY', '100G')
+        args = [character(len=4096) :: dir//'/mem.nml', '--out', dir//'/mem', '--check']
+        open (newunit=urep, file=dir//'/mem3.rep'//rank_suffix(rank), status='replace')
+        open (newunit=uerr, file=dir//'/mem3.err'//rank_suffix(rank), status='replace')
+        call run_dist_driver(args, MPI_COMM_WORLD, code, urep, uerr)
+        close (urep); close (uerr)
+        if (code /= 0) then
+            msg = '--check: exit status '//fmt_int(code)//' (expected 0)'; return
+        end if
+        if (rank == 0) then
+            r0_5: block
+                e = slurp_file(dir//'/mem3.rep0')
+                if (index(e, ' case mem: 24 x 20 on '//fmt_int(nprocs)//' ranks: about 16 MB per rank of ') == 0 .or. &
+                    index(e, 'fastcontact-mpi --distributed --check: 1 case(s) on '//fmt_int(nprocs)//' ranks: 1 to solve') == 0) &
+                    then
+                    msg = '--check report: '//e; exit r0_5
+                end if
+                inquire (file=dir//'/mem/mem.json', exist=there)
+                if (there) then
+                    msg = '--check wrote a summary'; exit r0_5
+                end if
+            end block r0_5
+        end if
+        if (rank0_failed(msg)) return
+        args = [character(len=4096) :: dir//'/mem.nml', '--out', dir//'/mem']
         open (newunit=urep, file=dir//'/mem2.rep'//rank_suffix(rank), status='replace')
         open (newunit=uerr, file=dir//'/mem2.err'//rank_suffix(rank), status='replace')
         call run_dist_driver(args, MPI_COMM_WORLD, code, urep, uerr)

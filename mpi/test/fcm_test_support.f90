@@ -13,7 +13,7 @@ module fcm_test_support
         end subroutine mpi_test_procedure
     end interface
 
-    public :: mpi_test_procedure, run_mpi_test, slurp_file, set_env, unset_env
+    public :: mpi_test_procedure, run_mpi_test, slurp_file, set_env, unset_env, rank0_failed
 
 contains
 
@@ -82,5 +82,17 @@ contains
         integer(c_int) :: rc
         rc = c_unsetenv(name//c_null_char)
     end subroutine unset_env
+
+    !> After checks that only rank 0 makes: whether they failed, on every rank (collective), so
+    !! that all ranks leave a test together instead of the others waiting in its next
+    !! collective call; the other ranks' `msg` then names rank 0.
+    logical function rank0_failed(msg) result(failed)
+        character(len=:), allocatable, intent(inout) :: msg
+        integer :: rank, ierr
+        call mpi_comm_rank(MPI_COMM_WORLD, rank, ierr)
+        failed = allocated(msg)
+        call mpi_bcast(failed, 1, MPI_LOGICAL, 0, MPI_COMM_WORLD, ierr)
+        if (failed .and. .not. allocated(msg)) msg = 'rank 0 failed (its message above)'
+    end function rank0_failed
 
 end module fcm_test_support
