@@ -54,10 +54,7 @@ contains
         call mpi_barrier(MPI_COMM_WORLD, ierr)
         call set_env('FASTCONTACT_AVAILABLE_MEMORY', '30M')
         args(1) = dir//'/mem.nml'; args(2) = '--out'; args(3) = dir//'/mem'
-        open (newunit=urep, file=dir//'/mem.rep'//fmt_rank(rank), status='replace')
-        open (newunit=uerr, file=dir//'/mem.err'//fmt_rank(rank), status='replace')
-        call run_mpi_batch(args, MPI_COMM_WORLD, code, urep, uerr)
-        close (urep); close (uerr)
+        call run_batch(args, 'mem', rank, code)
         call unset_env('FASTCONTACT_AVAILABLE_MEMORY')
         if (nprocs < 2) return          ! one process has the whole node
         if (code /= 1) then
@@ -76,10 +73,7 @@ contains
         ! --check: rank 0 estimates against a rank's share; nothing is solved
         call set_env('FASTCONTACT_AVAILABLE_MEMORY', '30M')
         args2 = [character(len=256) :: dir//'/mem.nml', '--check', '--out', dir//'/memc']
-        open (newunit=urep, file=dir//'/memc.rep'//fmt_rank(rank), status='replace')
-        open (newunit=uerr, file=dir//'/memc.err'//fmt_rank(rank), status='replace')
-        call run_mpi_batch(args2, MPI_COMM_WORLD, code, urep, uerr)
-        close (urep); close (uerr)
+        call run_batch(args2, 'memc', rank, code)
         call unset_env('FASTCONTACT_AVAILABLE_MEMORY')
         if (code /= 1) then
             msg = '--check: exit status of a case beyond its share (expected 1)'; return
@@ -96,10 +90,7 @@ contains
         if (rank0_failed(msg)) return
         ! --check of a file whose cases fit: exit status 0 and still nothing solved
         call set_env('FASTCONTACT_AVAILABLE_MEMORY', '100G')
-        open (newunit=urep, file=dir//'/memc2.rep'//fmt_rank(rank), status='replace')
-        open (newunit=uerr, file=dir//'/memc2.err'//fmt_rank(rank), status='replace')
-        call run_mpi_batch(args2, MPI_COMM_WORLD, code, urep, uerr)
-        close (urep); close (uerr)
+        call run_batch(args2, 'memc2', rank, code)
         call unset_env('FASTCONTACT_AVAILABLE_MEMORY')
         if (code /= 0) then
             msg = '--check of cases that fit: exit status (expected 0)'; return
@@ -110,6 +101,16 @@ contains
         end if
         if (rank0_failed(msg)) return
     contains
+        subroutine run_batch(a, tag, r, c)
+            character(len=*), intent(in) :: a(:), tag
+            integer, intent(in) :: r
+            integer, intent(out) :: c
+            integer :: ur, ue
+            open (newunit=ur, file=dir//'/'//tag//'.rep'//fmt_rank(r), status='replace')
+            open (newunit=ue, file=dir//'/'//tag//'.err'//fmt_rank(r), status='replace')
+            call run_mpi_batch(a, MPI_COMM_WORLD, c, ur, ue)
+            close (ur); close (ue)
+        end subroutine run_batch
         function fmt_rank(r) result(t)
             integer, intent(in) :: r
             character(len=:), allocatable :: t

@@ -73,10 +73,7 @@ contains
         call mpi_barrier(MPI_COMM_WORLD, ierr)
         do k = 1, 2      ! the second run reads the file the first wrote
             args = [character(len=4096) :: dir//'/wis.nml', '--out', dir//'/wis/out'//fmt_int(k)]
-            open (newunit=urep, file=dir//'/wis.rep'//rank_suffix(rank), status='replace')
-            open (newunit=uerr, file=dir//'/wis.err'//rank_suffix(rank), status='replace')
-            call run_dist_driver(args, MPI_COMM_WORLD, code, urep, uerr)
-            close (urep); close (uerr)
+            call run_dist(args, 'wis', code)
             if (code /= 0) then
                 msg = 'run '//fmt_int(k)//': exit status '//fmt_int(code)//' (expected 0)'; return
             end if
@@ -125,10 +122,7 @@ contains
         end if
         if (rank0_failed(msg)) return
         args = [character(len=4096) :: dir//'/wisbad.nml', '--out', dir//'/wis/bad']
-        open (newunit=urep, file=dir//'/wisbad.rep'//rank_suffix(rank), status='replace')
-        open (newunit=uerr, file=dir//'/wisbad.err'//rank_suffix(rank), status='replace')
-        call run_dist_driver(args, MPI_COMM_WORLD, code, urep, uerr)
-        close (urep); close (uerr)
+        call run_dist(args, 'wisbad', code)
         if (code /= 1) then
             msg = 'not wisdom: exit status '//fmt_int(code)//' (expected 1)'; return
         end if
@@ -170,10 +164,7 @@ contains
         args = [character(len=4096) :: dir//'/mem.nml', '--out', dir//'/mem']
         ! 16 MB + 133 B × 24 × ⌈20/P⌉ per rank against at most 10 MB
         call set_env('FASTCONTACT_AVAILABLE_MEMORY', '10M')
-        open (newunit=urep, file=dir//'/mem.rep'//rank_suffix(rank), status='replace')
-        open (newunit=uerr, file=dir//'/mem.err'//rank_suffix(rank), status='replace')
-        call run_dist_driver(args, MPI_COMM_WORLD, code, urep, uerr)
-        close (urep); close (uerr)
+        call run_dist(args, 'mem', code)
         if (code /= 1) then
             msg = 'too little memory: exit status '//fmt_int(code)//' (expected 1: input error)'; return
         end if
@@ -194,10 +185,7 @@ contains
         ! --check: the estimate per rank, nothing solved
         call set_env('FASTCONTACT_AVAILABLE_MEMORY', '100G')
         args = [character(len=4096) :: dir//'/mem.nml', '--out', dir//'/mem', '--check']
-        open (newunit=urep, file=dir//'/mem3.rep'//rank_suffix(rank), status='replace')
-        open (newunit=uerr, file=dir//'/mem3.err'//rank_suffix(rank), status='replace')
-        call run_dist_driver(args, MPI_COMM_WORLD, code, urep, uerr)
-        close (urep); close (uerr)
+        call run_dist(args, 'mem3', code)
         if (code /= 0) then
             msg = '--check: exit status '//fmt_int(code)//' (expected 0)'; return
         end if
@@ -217,10 +205,7 @@ contains
         end if
         if (rank0_failed(msg)) return
         args = [character(len=4096) :: dir//'/mem.nml', '--out', dir//'/mem']
-        open (newunit=urep, file=dir//'/mem2.rep'//rank_suffix(rank), status='replace')
-        open (newunit=uerr, file=dir//'/mem2.err'//rank_suffix(rank), status='replace')
-        call run_dist_driver(args, MPI_COMM_WORLD, code, urep, uerr)
-        close (urep); close (uerr)
+        call run_dist(args, 'mem2', code)
         call unset_env('FASTCONTACT_AVAILABLE_MEMORY')
         if (code /= 0) msg = 'enough memory: exit status '//fmt_int(code)//' (expected 0)'
     end subroutine test_memory
@@ -501,5 +486,18 @@ contains
         character(len=:), allocatable :: s
         s = fmt_int(rank)
     end function rank_suffix
+
+    !> The distributed driver on `args` (collective), its report and errors in
+    !! dir/TAG.rep<rank> and dir/TAG.err<rank>.
+    subroutine run_dist(args, tag, code)
+        character(len=*), intent(in) :: args(:), tag
+        integer, intent(out) :: code
+        integer :: rank, ierr, urep, uerr
+        call mpi_comm_rank(MPI_COMM_WORLD, rank, ierr)
+        open (newunit=urep, file=dir//'/'//tag//'.rep'//rank_suffix(rank), status='replace')
+        open (newunit=uerr, file=dir//'/'//tag//'.err'//rank_suffix(rank), status='replace')
+        call run_dist_driver(args, MPI_COMM_WORLD, code, urep, uerr)
+        close (urep); close (uerr)
+    end subroutine run_dist
 
 end module fcm_dist_tests
