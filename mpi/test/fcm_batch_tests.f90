@@ -6,6 +6,7 @@ module fcm_batch_tests
     use mpi
     use fc_driver, only: run_driver
     use fcm_batch, only: run_mpi_batch, guided_chunks
+    use fc_strings, only: fmt_int
     use fcm_test_support, only: run_mpi_test, slurp_file, set_env, unset_env, rank0_failed
     implicit none
     private
@@ -106,18 +107,11 @@ contains
             integer, intent(in) :: r
             integer, intent(out) :: c
             integer :: ur, ue
-            open (newunit=ur, file=dir//'/'//tag//'.rep'//fmt_rank(r), status='replace')
-            open (newunit=ue, file=dir//'/'//tag//'.err'//fmt_rank(r), status='replace')
+            open (newunit=ur, file=dir//'/'//tag//'.rep'//fmt_int(r), status='replace')
+            open (newunit=ue, file=dir//'/'//tag//'.err'//fmt_int(r), status='replace')
             call run_mpi_batch(a, MPI_COMM_WORLD, c, ur, ue)
             close (ur); close (ue)
         end subroutine run_batch
-        function fmt_rank(r) result(t)
-            integer, intent(in) :: r
-            character(len=:), allocatable :: t
-            character(len=12) :: b
-            write (b, '(i0)') r
-            t = trim(b)
-        end function fmt_rank
     end subroutine test_memory_share
 
     subroutine write_cases(path)
