@@ -60,7 +60,8 @@ contains
             if (.not. ok) then
                 bytes = -1
                 stat = FC_ERR_VALUE
-                errmsg = memory_env//" = '"//env(1:min(n, 64))//"': not a size in bytes (e.g. 24G, 512M or 1.5e9)"
+                errmsg = memory_env//" = '"//env(1:min(n, 64))//"': not a size in bytes from 1 to 1e18 "// &
+                    '(e.g. 24G, 512M or 1.5e9)'
                 return
             end if
             source = memory_env
