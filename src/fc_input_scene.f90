@@ -98,6 +98,13 @@ contains
             is_given(s, 'solver', 'beta') .or. is_given(s, 'solver', 'smoother'))) &
             notes = notes//"&solver cycle, omega, beta, smoother: used only by normal = 'fmg' (not by '"// &
             trim(s%normal_solver)//"'). "
+        ! FMG's Gauss–Seidel sweeps are O(n²) (dense influence coefficients): say so where it costs
+        if (s%normal_solver == 'fmg' .and. s%smoother /= 'fft-rsm' .and. .not. grid_is_auto(s)) then
+            if (real(s%nx, dp)*s%ny > 128.0_dp**2) notes = notes//"normal = 'fmg' with smoother = '"// &
+                trim(s%smoother)//"' costs O(n^2) per sweep: a prescribed-force Hertz case took 12.6 s on 256^2 "// &
+                "and 340 s on 512^2, where BCCG took 0.08 s and 0.25 s (doc/multigrid.md); smoother = 'fft-rsm' "// &
+                "is O(n log n). "
+        end if
         if (s%periodic) notes = notes//'periodic half-space: the grid is one cell of a surface repeated in x and y; '// &
             'mean pressure fn/area = '//fmt_real(s%fn/((s%xmax - s%xmin)*(s%ymax - s%ymin)))//' N/mm2. '
         ! a sequence writes every point to its table; the summary holds the last solve

@@ -9,6 +9,9 @@ module test_fmg
     use fc_fmg_diagnostics, only: smoother_eigenvalues
     use fc_hertz
     use fc_testing
+    use fc_namelist, only: fc_case_chunk, read_case_file
+    use fc_input, only: fc_case_input, apply_case
+    use fc_input_scene, only: case_notes
     implicit none
     private
     public :: collect_fmg
@@ -33,7 +36,8 @@ contains
             new_unittest('jacobi_smoother_failure_reported', test_jacobi_fmg), &
             new_unittest('norm_truncated_cg_table28', test_truncated_norm), &
             new_unittest('fft_rsm_smoother_in_fmg', test_fft_rsm), &
-            new_unittest('errors_reported', test_errors) ]
+            new_unittest('errors_reported', test_errors), &
+            new_unittest('large_grid_cost_note', test_cost_note) ]
     end subroutine collect_fmg
 
     ! ---- set-up helpers ------------------------------------------------------------------
@@ -571,5 +575,44 @@ contains
         call fmg_cycle_from_name('V(0,0)', nu1, nu2, stat, msg)
         call check(error, stat /= 0, 'V(0,0) rejected')
     end subroutine test_errors
+
+    !> A case that asks FMG with the Gauss–Seidel smoother (O(n²) per sweep) on a grid above
+    !! 128² says in its notes what that costs; at 128², with the FFT smoother, or with another
+    !! solver it does not.
+    subroutine test_cost_note(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=*), parameter :: path = 'build/test_fmg_cost_note.nml'
+        type(fc_case_chunk), allocatable :: cases(:)
+        type(fc_case_input) :: state
+        character(len=64) :: name
+        character(len=512) :: msg
+        integer :: u, stat, k
+        logical, parameter :: want(4) = [.true., .false., .false., .false.]
+        open (newunit=u, file=path, status='replace', action='write')
+        write (u, '(a)') "&case name = 'big' /"
+        write (u, '(a)') "&material g1 = 82000.0, g2 = 82000.0, nu1 = 0.28, nu2 = 0.28 /"
+        write (u, '(a)') "&grid nx = 256, ny = 256, xmin = -10.0, xmax = 10.0, ymin = -6.0, ymax = 6.0 /"
+        write (u, '(a)') "&geometry kind = 'quadratic', rx = 300.0, ry = 163.0 /"
+        write (u, '(a)') "&normal approach = 0.1091 /"
+        write (u, '(a)') "&solver normal = 'fmg' /"
+        write (u, '(a)') "&case name = 'small' /"
+        write (u, '(a)') "&grid nx = 128, ny = 128 /"
+        write (u, '(a)') "&case name = 'fft' /"
+        write (u, '(a)') "&grid nx = 256, ny = 256 /"
+        write (u, '(a)') "&solver normal = 'fmg', smoother = 'fft-rsm' /"
+        write (u, '(a)') "&case name = 'bccg' /"
+        write (u, '(a)') "&solver normal = 'bccg', smoother = 'gs' /"
+        close (u)
+        call read_case_file(path, cases, stat, msg)
+        call check(error, stat == 0 .and. size(cases) == 4, 'read: '//trim(msg))
+        if (allocated(error)) return
+        do k = 1, 4
+            call apply_case(cases(k), k, state, name, stat, msg)
+            call check(error, stat == 0, 'apply: '//trim(msg))
+            if (allocated(error)) return
+            call check(error, (index(case_notes(state), 'costs O(n^2) per sweep') > 0) .eqv. want(k), &
+                'case '//trim(name)//': '//case_notes(state))
+        end do
+    end subroutine test_cost_note
 
 end module test_fmg
