@@ -362,7 +362,7 @@ contains
             character(len=msg_len), intent(out) :: errmsg
             logical, intent(in), optional :: report   !! --check: rank 0 prints the estimate of a case that fits
             integer(int64) :: avail, need, budget, held
-            character(len=:), allocatable :: source
+            character(len=:), allocatable :: source, line
             integer :: nodecomm, pernode, ierr2
             call available_memory(avail, source, stat, errmsg)
             call mpi_allreduce(MPI_IN_PLACE, stat, 1, MPI_INTEGER, MPI_MAX, comm, ierr2)
@@ -383,16 +383,15 @@ contains
             need = dist_memory_per_rank(kase%nx, kase%ny, nprocs, kase%periodic)
             if (need <= budget) then
                 if (present(report) .and. rank == 0) then
+                    line = ' case '//trim(state%name)//': '//fmt_int(kase%nx)//' x '//fmt_int(kase%ny)//' on '// &
+                        fmt_int(nprocs)//' ranks: about '//format_bytes(need)//' per rank'
                     if (budget == huge(budget)) then
-                        write (rep, '(a)') ' case '//trim(state%name)//': '//fmt_int(kase%nx)//' x '//fmt_int(kase%ny)// &
-                            ' on '//fmt_int(nprocs)//' ranks: about '//format_bytes(need)// &
-                            ' per rank (the available memory is unknown)'
+                        line = line//' (the available memory is unknown)'
                     else
-                        write (rep, '(a)') ' case '//trim(state%name)//': '//fmt_int(kase%nx)//' x '//fmt_int(kase%ny)// &
-                            ' on '//fmt_int(nprocs)//' ranks: about '//format_bytes(need)//' per rank of '// &
-                            format_bytes(budget)//' a rank may use ('//source//' of a node shared by '// &
+                        line = line//' of '//format_bytes(budget)//' a rank may use ('//source//' of a node shared by '// &
                             fmt_int(pernode)//' ranks)'
                     end if
+                    write (rep, '(a)') line
                 end if
                 return
             end if
