@@ -48,7 +48,6 @@
 !! [[fc_auto_answers]], the error estimate in [[fc_auto_estimate]].
 module fc_auto
     use fc_kinds, only: dp, i8, msg_len, FC_CONVERGED, status_name
-    use fc_memory, only: available_memory, process_resident_bytes, format_bytes, memory_env
     use fc_influence, only: fc_material, combine_material
     use fc_norm, only: fc_normal_result
     use fc_tangcg_types, only: fc_tangential_result, fc_tangential_loading
@@ -58,9 +57,10 @@ module fc_auto
     use fc_fmg, only: fc_quadratic_surface, fc_punch_rough_surface, fc_wavy_surface
     use fc_icfile, only: fc_ic_set
     use fc_icfile_load, only: load_influence_source
-    use fc_errors, only: FC_ERR_UNSUPPORTED, FC_ERR_IC_FILE
+    use fc_errors, only: FC_ERR_UNSUPPORTED, FC_ERR_IC_FILE, FC_ERR_ALLOC
+    use fc_limits, only: max_grid_elements
     use fc_strings, only: fmt_int, fmt_real, append_line
-    use fc_scene, only: fc_case, case_setup, is_tangential, is_line_contact, is_rolling_sequence, case_memory
+    use fc_scene, only: fc_case, case_setup, is_tangential, is_line_contact, is_rolling_sequence, case_fits_memory
     use fc_case_result, only: fc_level, fc_auto_outcome
     use fc_auto_estimate, only: richardson_estimate, level_estimate, certify_coarsest, target_quantities, &
         estimate_safety, estimate_safety_h2, h2_ratio_low, h2_ratio_high
@@ -93,7 +93,9 @@ contains
         character(len=*), intent(out) :: errmsg
         type(fc_case) :: s
         logical :: tang, line
-        integer :: attempt, nx_old, ny_old
+        integer :: attempt, nx_old, ny_old, nx_new, ny_new
+        logical :: fits
+        character(len=:), allocatable :: what
         real(dp) :: cx, cy, hx, hy
         s = s_in
         stat = 0; errmsg = ''
@@ -183,6 +185,21 @@ contains
         if (out%grid_auto) then
             call auto_area(s, out%material, stat, errmsg)
             if (stat /= 0) return
+            ! the automatic grid is checked here, before anything is built (a given grid is
+            ! the caller's to check)
+            if (int(s%nx, i8)*s%ny > max_grid_elements) then
+                stat = FC_ERR_ALLOC
+                errmsg = 'automatic potential contact area of '//fmt_int(s%nx)//' x '//fmt_int(s%ny)// &
+                    ' elements: more than the 4096^2 elements of a grid'
+                return
+            end if
+            call case_fits_memory(s, s%nx, s%ny, fits, what, stat, errmsg)
+            if (stat /= 0) return
+            if (.not. fits) then
+                stat = FC_ERR_ALLOC
+                errmsg = 'automatic potential contact area of '//fmt_int(s%nx)//' x '//fmt_int(s%ny)//' elements: '//what
+                return
+            end if
         end if
         if (s%target > 0 .and. s%settings%normal%tol > 0.01_dp*s%target) then
             s%settings%normal%tol = 0.01_dp*s%target
@@ -209,15 +226,32 @@ contains
                 end if
                 exit
             end if
-            ! enlarge ×1.5 about the centre, same element size
+            ! enlarge ×1.5 about the centre, same element size; an enlarged grid beyond the
+            ! grid bound or the memory leaves the clipped solution, with a warning
+            nx_old = s%nx; ny_old = s%ny
+            nx_new = even_up(s%nx*enlarge_factor); ny_new = s%ny
+            if (s%ny > 1 .and. .not. (s%kind == 'cylinder')) ny_new = even_up(s%ny*enlarge_factor)
+            if (int(nx_new, i8)*ny_new > max_grid_elements) then
+                call append_line(out%warnings, 'contact reaches the boundary of the automatic potential contact area, '// &
+                    'and its enlargement to '//fmt_int(nx_new)//' x '//fmt_int(ny_new)//' elements would exceed 4096^2: '// &
+                    'the solution is clipped')
+                exit
+            end if
+            call case_fits_memory(s, nx_new, ny_new, fits, what, stat, errmsg)
+            if (stat /= 0) return
+            if (.not. fits) then
+                call append_line(out%warnings, 'contact reaches the boundary of the automatic potential contact area, '// &
+                    'and its enlargement to '//fmt_int(nx_new)//' x '//fmt_int(ny_new)//' elements does not fit in '// &
+                    'memory ('//what//'): the solution is clipped')
+                exit
+            end if
             out%enlargements = out%enlargements + 1
             cx = 0.5_dp*(s%xmin + s%xmax); hx = 0.5_dp*(s%xmax - s%xmin)
             cy = 0.5_dp*(s%ymin + s%ymax); hy = 0.5_dp*(s%ymax - s%ymin)
-            nx_old = s%nx; ny_old = s%ny
-            s%nx = even_up(s%nx*enlarge_factor)
+            s%nx = nx_new
             s%xmin = cx - hx*s%nx/nx_old; s%xmax = cx + hx*s%nx/nx_old
-            if (s%ny > 1 .and. .not. (s%kind == 'cylinder')) then
-                s%ny = even_up(s%ny*enlarge_factor)
+            if (ny_new /= ny_old) then
+                s%ny = ny_new
                 s%ymin = cy - hy*s%ny/ny_old; s%ymax = cy + hy*s%ny/ny_old
             end if
             call append_line(out%reductions, 'automatic area enlarged x1.5: contact reached its boundary')
@@ -239,11 +273,10 @@ contains
         real(dp) :: est, ratio, noise
         logical :: monotone, probe
         character(len=64) :: qname
-        integer(i8) :: avail, need
-        character(len=:), allocatable :: source, kind
+        character(len=:), allocatable :: what
         character(len=msg_len) :: merr
-        real(dp) :: bpe
-        integer :: mstat, threads
+        integer :: mstat
+        logical :: fits
         nlev = 1
         if (s%target > 0) nlev = s%max_levels
         call refinement_factors(s, s%nx, s%ny, fx, fy)
@@ -271,23 +304,18 @@ contains
                     call prolong_copy(out%result%tangential%py, fx, fy, py0)
                 end if
             end if
-            if (real(sl%nx, dp)*sl%ny > 4096.0_dp**2) then
+            if (int(sl%nx, i8)*sl%ny > max_grid_elements) then
                 call append_line(out%warnings, 'accuracy target: the next grid would exceed 4096^2 elements; stopped')
                 exit
             end if
             ! a refinement the process has no memory for ends the sequence with the grids
-            ! solved so far (the first grid is the caller's to check)
+            ! solved so far (the first grid is the caller's to check, or solve_case_auto's)
             if (k > 1) then
-                call available_memory(avail, source, mstat, merr)
-                if (mstat == 0 .and. avail >= 0) then
-                    call case_memory(s, sl%nx, sl%ny, need, kind, bpe, threads)
-                    if (source /= memory_env) avail = avail + max(0_i8, process_resident_bytes())
-                    if (need > avail) then
-                        call append_line(out%warnings, 'accuracy target: the next grid ('//fmt_int(sl%nx)//' x '// &
-                            fmt_int(sl%ny)//') would need about '//format_bytes(need)//', more than the '// &
-                            format_bytes(avail)//' this process may use ('//source//'); stopped')
-                        exit
-                    end if
+                call case_fits_memory(s, sl%nx, sl%ny, fits, what, mstat, merr)
+                if (.not. fits) then
+                    call append_line(out%warnings, 'accuracy target: the next grid ('//fmt_int(sl%nx)//' x '// &
+                        fmt_int(sl%ny)//') does not fit in memory ('//what//'); stopped')
+                    exit
                 end if
             end if
             call solve_one(sl, tang, ops, out, p0, px0, py0, stat, errmsg)

@@ -36,14 +36,14 @@ module fc_driver
     use fc_input, only: fc_case_input, apply_case, strip_model_index, grid_is_auto
     use fc_input_validate, only: validate_case
     use fc_input_scene, only: build_case, case_notes
-    use fc_scene, only: fc_case, case_memory
+    use fc_scene, only: fc_case, case_memory, case_fits_memory
     use fc_strings, only: fmt_int, fmt_real
     use fc_errors, only: FC_ERR_FRICTION_BOUND, FC_ERR_NO_CONTACT, FC_ERR_GEOMETRY, FC_ERR_IO, FC_ERR_ALLOC, &
         FC_ERR_GRID, FC_ERR_IC_FILE, FC_ERR_MODEL_RANGE, FC_ERR_FFT_WISDOM
     use fc_output, only: fc_case_summary, write_case_json, write_case_csv, write_case_npy, write_case_report
     use fc_auto, only: fc_auto_outcome, solve_case_auto
     use fc_threads, only: set_thread_count
-    use fc_memory, only: available_memory, process_resident_bytes, format_bytes, memory_env
+    use fc_memory, only: available_memory, memory_fits, format_bytes, memory_env
     use fc_version, only: fc_build_info
     implicit none
     private
@@ -188,10 +188,11 @@ contains
             integer, intent(in) :: k
             integer, intent(out) :: status
             type(fc_case) :: kase
-            integer(int64) :: avail, need
+            integer(int64) :: avail, need, limit
             character(len=:), allocatable :: source, kind, line
             real(dp) :: bpe
             integer :: threads
+            logical :: fits
             status = 1
             saved_state = state
             call apply_case(cases(k), k, state, name, stat, errmsg)
@@ -220,13 +221,13 @@ contains
                 call case_memory(kase, kase%nx, kase%ny, need, kind, bpe, threads)
                 line = line//kind//', '//fmt_int(kase%nx)//' x '//fmt_int(kase%ny)//', '//fmt_int(threads)// &
                     ' thread(s): about '//format_bytes(need)
-                if (avail < 0) then
+                ! a run adds what its process holds then; this pass holds nothing yet
+                call memory_fits(need, share, 0_int64, .false., fits, limit, source, stat, errmsg)
+                if (limit < 0) then
                     line = line//' (the available memory is unknown)'
                 else
-                    avail = avail/share
-                    if (share > 1) source = source//' of a node shared by '//fmt_int(share)//' processes'
-                    line = line//' of '//format_bytes(avail)//' available ('//source//')'
-                    if (need > avail) then
+                    line = line//' of '//format_bytes(limit)//' available ('//source//')'
+                    if (.not. fits) then
                         line = line//': TOO LARGE'; status = 2
                     end if
                 end if
@@ -285,8 +286,9 @@ contains
             end if
             ! ---- memory: a given grid beyond what this process may use is an input error now,
             !      not a process killed by the operating system while it builds the operators
+            kase%memory_share = share
             if (.not. grid_is_auto(state)) then
-                call check_case_memory(kase, share, stat, errmsg)
+                call check_case_memory(kase, stat, errmsg)
                 if (stat /= 0) then
                     call case_error(); return
                 end if
@@ -515,32 +517,21 @@ contains
     end subroutine run_driver
 
     !> stat = FC_ERR_ALLOC with a message naming `&grid nx, ny` when the estimated peak memory
-    !! of `kase` (fc_memory: bytes per element of its problem, more with threads) exceeds the
-    !! memory this process may use (its `share` of the available memory, plus what it holds
-    !! already); nothing is checked when the available memory is unknown.  stat =
-    !! FC_ERR_VALUE for an invalid `FASTCONTACT_AVAILABLE_MEMORY`.
-    subroutine check_case_memory(kase, share, stat, errmsg)
+    !! of `kase` exceeds the memory this process may use ([[case_fits_memory]]: its share of
+    !! the available memory, plus what it holds already); nothing is checked when the
+    !! available memory is unknown.  stat = FC_ERR_VALUE for an invalid
+    !! `FASTCONTACT_AVAILABLE_MEMORY`.
+    subroutine check_case_memory(kase, stat, errmsg)
         type(fc_case), intent(in) :: kase
-        integer, intent(in) :: share   !! processes sharing the available memory
         integer, intent(out) :: stat
         character(len=msg_len), intent(out) :: errmsg
-        integer(int64) :: avail, need, held
-        character(len=:), allocatable :: source, kind
-        real(dp) :: bpe
-        integer :: threads
-        call available_memory(avail, source, stat, errmsg)
-        if (stat /= 0 .or. avail < 0) return
-        call case_memory(kase, kase%nx, kase%ny, need, kind, bpe, threads)
-        held = 0
-        if (source /= memory_env) held = max(0_int64, process_resident_bytes())
-        avail = avail/share
-        if (share > 1) source = source//' of a node shared by '//fmt_int(share)//' processes'
-        if (need <= avail + held) return
+        character(len=:), allocatable :: what
+        logical :: fits
+        call case_fits_memory(kase, kase%nx, kase%ny, fits, what, stat, errmsg)
+        if (stat /= 0 .or. fits) return
         stat = FC_ERR_ALLOC
-        errmsg = '&grid nx = '//fmt_int(kase%nx)//', ny = '//fmt_int(kase%ny)//': a '//kind//' case on '// &
-            fmt_int(threads)//' thread(s) needs about '//format_bytes(need)//' ('//fmt_int(nint(bpe))// &
-            ' B per element), more than the '//format_bytes(avail + held)//' this process may use ('//source// &
-            '); use a smaller grid or more memory, or set '//memory_env//' to override'
+        errmsg = '&grid nx = '//fmt_int(kase%nx)//', ny = '//fmt_int(kase%ny)//': '//what// &
+            '; use a smaller grid or more memory, or set '//memory_env//' to override'
     end subroutine check_case_memory
 
     !> The output directory of a case: `out_dir` (the command line's --out) when present,
@@ -670,7 +661,13 @@ contains
         case (FC_ERR_GEOMETRY, FC_ERR_IO)
             errmsg = '&geometry '//trim(errmsg)
         case (FC_ERR_ALLOC)
-            errmsg = '&grid '//trim(errmsg)
+            if (grid_is_auto(state)) then
+                errmsg = '&grid auto = .true., n_across = '//fmt_int(state%n_across)//', margin = '// &
+                    fmt_real(state%margin)//': '//trim(errmsg)//'; use fewer elements across the contact (n_across), '// &
+                    'or set '//memory_env//' to override'
+            else
+                errmsg = '&grid '//trim(errmsg)
+            end if
         case (FC_ERR_IC_FILE)
             if (len_trim(state%ic_file2) > 0) then
                 errmsg = "&material ic_file = '"//trim(state%ic_file)//"', ic_file2 = '"//trim(state%ic_file2)// &

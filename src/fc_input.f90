@@ -65,13 +65,13 @@ module fc_input
     use fc_geometry, only: fc_rough_params
     use fc_namelist, only: fc_nml_group, fc_case_chunk, key_len, val_len
     use fc_input_check, only: check_value
+    use fc_limits, only: max_grid_elements
     implicit none
     private
 
     integer, parameter, public :: path_len = 256  !! file and directory names
 
-    !> Largest grid accepted (nx·ny).
-    integer(i8), parameter, public :: max_grid_elements = 4096_i8*4096_i8
+    public :: max_grid_elements   !! largest grid accepted (nx·ny; fc_limits)
     !> Largest grid of a distributed solve (`fastcontact-mpi --distributed`, every rank holding
     !! a slab of rows): the largest size projected in doc/parallel.md (≈ 0.57 GB per rank on
     !! 256 ranks).

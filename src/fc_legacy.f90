@@ -21,10 +21,11 @@
 !! grid size/spacing and the material are unchanged; the previous solution warm-starts the
 !! next call and, in the transient modes, is the previous state (u', p') of the step.
 !!
-!! Size (~1045 lines): one bind(C) routine with its argument checks per entry of the
+!! Size (~1100 lines): one bind(C) routine with its argument checks per entry of the
 !! documented API (39 entries), kept together so that this module, include/fc_legacy.h and
 !! doc/legacy_api.md list the same surface (.ci/run checks the header and the F77 aliases), plus the start predicted across calls
-!! ([[rolling_start]], [[rolling_advance]], ~80 lines), which needs both the handle's state
+!! ([[rolling_start]], [[rolling_advance]], ~80 lines) and the memory check before a build
+!! ([[check_memory]], ~40 lines), which need both the handle's state
 !! and the orchestrator: in a module of its own it would add a layer to the module graph
 !! (doc/architecture.md).  The handles live in [[fc_legacy_registry]]; every calculation goes
 !! through the library's orchestrator [[solve_contact]].
@@ -45,7 +46,9 @@ module fc_legacy
     use fc_limits
     use fc_icfile, only: fc_ic_set
     use fc_icfile_load, only: load_influence_source
-    use fc_threads, only: set_thread_count, max_threads_allowed
+    use fc_threads, only: set_thread_count, max_threads_allowed, fc_thread_count
+    use fc_memory, only: memory_fits, serial_bytes_per_element, case_memory_bytes, format_bytes, memory_env, &
+        memory_base_bytes
     use fc_fft_effort, only: prime_fft_plans, use_fft_wisdom
     implicit none
     private
@@ -61,7 +64,7 @@ module fc_legacy
     public :: fc_set_periodic, fc_set_threads, fc_set_fft_effort, fc_set_fft_wisdom
     public :: shift_along_x
     public :: FCL_OK, FCL_INVALID_HANDLE, FCL_ORDER, FCL_INVALID_VALUE, FCL_NOT_CONVERGED, FCL_DIVERGED
-    public :: FCL_ARRAY_SIZE, FCL_INTERNAL, FCL_FROM_REST, FCL_CONTINUE, FCL_ROLLING
+    public :: FCL_ARRAY_SIZE, FCL_INTERNAL, FCL_MEMORY, FCL_FROM_REST, FCL_CONTINUE, FCL_ROLLING
 
 contains
 
@@ -660,6 +663,10 @@ contains
         end if
         s%has_result = .false.
         call set_thread_count(s%threads)
+        call check_memory(s, stat, msg)
+        if (stat /= 0) then
+            call fail(s, ierr, flat_code(stat), 'fc_calculate: '//trim(msg)); return
+        end if
         if (allocated(s%fft_wisdom)) then
             call wisdom_plans(s, stat, msg)
             if (stat /= 0) then
@@ -700,6 +707,43 @@ contains
                 trim(s%result%tangential%message))
         end if
     end subroutine calculate
+
+    !> Before operators are built for a new grid (or a first tangential solve): the
+    !! estimated peak memory of the solve (doc/reliability.md, "Memory": bytes per element of
+    !! the problem kind and thread count) against the memory this process may still use plus
+    !! what the handle's current operators hold, which the rebuild releases.  stat =
+    !! FC_ERR_ALLOC when it does not fit (nothing is built; the handle keeps its state),
+    !! FC_ERR_VALUE for an invalid `FASTCONTACT_AVAILABLE_MEMORY`.  Unknown available memory
+    !! checks nothing.  A multibody code sets its grids once, so this runs once per handle.
+    subroutine check_memory(s, stat, msg)
+        type(legacy_state), intent(in) :: s
+        integer, intent(out) :: stat
+        character(len=msg_len), intent(out) :: msg
+        integer(i8) :: need, held, limit
+        character(len=:), allocatable :: source, kind
+        real(dp) :: bpe
+        logical :: tangential, fits
+        stat = 0; msg = ''
+        tangential = s%load%problem /= FC_PROBLEM_NORMAL
+        if (s%ops%normal%matches(s%grid, s%mat) .and. &
+            (.not. tangential .or. s%ops%tangential%matches(s%grid, s%mat))) return
+        kind = 'tangential'
+        if (.not. tangential) kind = 'normal'
+        if (s%load%problem == FC_PROBLEM_ROLLING .or. s%load%transient /= FC_FROM_REST) kind = 'rolling'
+        bpe = serial_bytes_per_element(kind, fc_thread_count())
+        need = case_memory_bytes(int(s%grid%nx, i8)*s%grid%ny, bpe)
+        held = 0
+        if (s%ops%normal%a_zz%built()) held = case_memory_bytes(int(s%ops%normal%grid%nx, i8)*s%ops%normal%grid%ny, &
+            bpe) - memory_base_bytes
+        ! the host's own memory is not the library's to release: no resident size added
+        call memory_fits(need, 1, held, .false., fits, limit, source, stat, msg)
+        if (stat /= 0 .or. fits) return
+        stat = FC_ERR_ALLOC
+        msg = 'grid nx = '//fmt_int(s%grid%nx)//', ny = '//fmt_int(s%grid%ny)//': the '//kind//' solve on '// &
+            fmt_int(fc_thread_count())//' thread(s) needs about '//format_bytes(need)//', more than the '// &
+            format_bytes(limit)//' this process may use ('//source//'); use a coarser grid, or set '// &
+            memory_env//' to override'
+    end subroutine check_memory
 
     !> Steady rolling with prescribed creepages, or the shift problem with prescribed shifts
     !! (from rest), warm-started: when the two converged calls before this one moved the

@@ -30,6 +30,9 @@ module fc_legacy_registry
     integer(c_int), parameter, public :: FCL_DIVERGED = 5        !! solver diverged / non-physical state
     integer(c_int), parameter, public :: FCL_ARRAY_SIZE = 6      !! caller's array smaller than nx·ny
     integer(c_int), parameter, public :: FCL_INTERNAL = 7        !! unexpected internal error
+    !> not enough memory for the grid (the estimate of the solve exceeds the memory the
+    !! process may still use; the message gives both)
+    integer(c_int), parameter, public :: FCL_MEMORY = 8
 
     !> Transient modes of [[fc_set_transient]].
     integer(c_int), parameter, public :: FCL_FROM_REST = 0   !! u' = 0: every call is a steady (static) problem
@@ -235,7 +238,8 @@ contains
         select case (stat)
         case (FC_OK); flat_code = FCL_OK
         case (FC_ERR_NOT_READY); flat_code = FCL_ORDER
-        case (FC_ERR_SHAPE, FC_ERR_ALLOC, FC_ERR_INTERNAL); flat_code = FCL_INTERNAL
+        case (FC_ERR_ALLOC); flat_code = FCL_MEMORY
+        case (FC_ERR_SHAPE, FC_ERR_INTERNAL); flat_code = FCL_INTERNAL
         case default; flat_code = FCL_INVALID_VALUE
         end select
     end function flat_code

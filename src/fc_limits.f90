@@ -30,6 +30,7 @@ module fc_limits
     !! (slip without friction has no traction direction); as the smallest positive μ accepted
     real(dp), parameter, public :: min_mu_kinetic = 1.0e-12_dp
     integer, parameter, public :: max_cases = 10000              !! cases in one namelist file
+    integer(i8), parameter, public :: max_grid_elements = 4096_i8*4096_i8  !! nx·ny of a serial grid (given or automatic)
     integer, parameter, public :: max_modes = 4096               !! m_modes, n_modes of a rough surface
     integer, parameter, public :: max_mode_pairs = 65536         !! m_modes·n_modes (mode tables: 24 bytes each)
     integer(i8), parameter, public :: max_mode_work = 2_i8**32   !! m_modes·n_modes·(nx + ny) (rough-surface cost)

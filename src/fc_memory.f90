@@ -35,7 +35,7 @@ module fc_memory
     integer(i8), parameter, public :: memory_base_bytes = 10000000_i8    !! process, libraries, FFTW
     integer(i8), parameter :: unlimited = 2_i8**60                       !! cgroup v1 "no limit" is ~2^63
 
-    public :: available_memory, case_memory_bytes, serial_bytes_per_element, parse_byte_size, format_bytes
+    public :: available_memory, case_memory_bytes, serial_bytes_per_element, parse_byte_size, format_bytes, memory_fits
     public :: kb_field, process_resident_bytes, cgroup_headroom
 
 contains
@@ -76,6 +76,36 @@ contains
             bytes = b; source = 'cgroup limit'
         end if
     end subroutine available_memory
+
+    !> Whether `need` bytes fit in what this process may use: the available memory
+    !! ([[available_memory]]) divided by `share` (processes sharing it), plus `held` bytes
+    !! the caller releases before it allocates, plus — with `resident` and unless the
+    !! environment variable gives the size — what the process holds now (VmRSS: a driver's
+    !! operators of the case before).  Unknown available memory fits.  `limit` is the
+    !! compared size [bytes] and `source` where it comes from, for the caller's message.
+    !! stat = FC_ERR_VALUE (errmsg) for an invalid `FASTCONTACT_AVAILABLE_MEMORY`.
+    subroutine memory_fits(need, share, held, resident, fits, limit, source, stat, errmsg)
+        integer(i8), intent(in) :: need, held
+        integer, intent(in) :: share
+        logical, intent(in) :: resident
+        logical, intent(out) :: fits
+        integer(i8), intent(out) :: limit
+        character(len=:), allocatable, intent(out) :: source
+        integer, intent(out) :: stat
+        character(len=msg_len), intent(out) :: errmsg
+        integer(i8) :: avail
+        character(len=16) :: nbuf
+        fits = .true.; limit = -1
+        call available_memory(avail, source, stat, errmsg)
+        if (stat /= 0 .or. avail < 0) return
+        limit = avail/max(1, share) + max(0_i8, held)
+        if (resident .and. source /= memory_env) limit = limit + max(0_i8, process_resident_bytes())
+        if (share > 1) then
+            write (nbuf, '(i0)') share
+            source = source//' of a node shared by '//trim(nbuf)//' processes'
+        end if
+        fits = need <= limit
+    end subroutine memory_fits
 
     !> Bytes per grid element of a serial solve of `kind` ('normal', 'tangential', 'rolling')
     !! on `threads` threads (the constants above).

@@ -6,7 +6,7 @@
 !! [[case_setup]] turns it into the material, grid and undeformed distance of one solve.
 module fc_scene
     use fc_kinds, only: dp, i8, msg_len
-    use fc_memory, only: serial_bytes_per_element, case_memory_bytes
+    use fc_memory, only: serial_bytes_per_element, case_memory_bytes, memory_fits, format_bytes
     use fc_threads, only: fc_default_threads
     use fc_errors, only: FC_ERR_ALLOC, FC_ERR_IO, FC_ERR_GEOMETRY, FC_ERR_NO_CONTACT
     use fc_strings, only: fmt_int, fmt_real
@@ -58,9 +58,12 @@ module fc_scene
         logical :: reduce = .true.                   !! model reductions allowed
         integer :: threads = 0                       !! threads of the solve (0: OMP_NUM_THREADS, else 1)
         character(len=path_len) :: fft_wisdom = ''   !! FFTW wisdom file ('': FFTW_ESTIMATE plans only)
+        !> processes sharing the available memory (the ranks of an MPI batch on one node):
+        !! each may use its share ([[case_fits_memory]])
+        integer :: memory_share = 1
     end type fc_case
 
-    public :: case_setup, is_line_contact, is_tangential, is_rolling_sequence, case_memory
+    public :: case_setup, is_line_contact, is_tangential, is_rolling_sequence, case_memory, case_fits_memory
 
 contains
 
@@ -88,6 +91,35 @@ contains
         bpe = serial_bytes_per_element(kind, threads)
         need = case_memory_bytes(int(nx, i8)*ny, bpe)
     end subroutine case_memory
+
+    !> Whether a solve of `c` on an nx × ny grid fits in the memory this process may use: the
+    !! estimate of [[case_memory]] against the available memory (fc_memory) divided by
+    !! `c%memory_share`, plus what the process holds already (not when the environment
+    !! variable gives the size).  Unknown available memory fits.  When it does not fit,
+    !! `what` says so in library terms ('a KIND case on T thread(s) needs about …, more than
+    !! the … this process may use (SOURCE)'); the callers add the grid and the remedy.
+    !! stat = FC_ERR_VALUE (errmsg) for an invalid `FASTCONTACT_AVAILABLE_MEMORY`.
+    subroutine case_fits_memory(c, nx, ny, fits, what, stat, errmsg)
+        type(fc_case), intent(in) :: c
+        integer, intent(in) :: nx, ny
+        logical, intent(out) :: fits
+        character(len=:), allocatable, intent(out) :: what
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        integer(i8) :: need, limit
+        character(len=:), allocatable :: source, kind
+        character(len=msg_len) :: m
+        real(dp) :: bpe
+        integer :: threads
+        what = ''
+        call case_memory(c, nx, ny, need, kind, bpe, threads)
+        call memory_fits(need, c%memory_share, 0_i8, .true., fits, limit, source, stat, m)
+        errmsg = m
+        if (fits) return
+        what = 'a '//kind//' case on '//fmt_int(threads)//' thread(s) needs about '//format_bytes(need)//' ('// &
+            fmt_int(nint(bpe))//' B per element), more than the '//format_bytes(limit)// &
+            ' this process may use ('//source//')'
+    end subroutine case_fits_memory
 
     !> Whether the case solves the tangential problem too.
     pure logical function is_tangential(c)

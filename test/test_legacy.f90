@@ -16,6 +16,7 @@ module test_legacy
     use fc_testing
     use fc_fftw, only: fftw_forget_wisdom
     use fc_version, only: fc_version_string
+    use fc_memory, only: memory_env
     implicit none
     private
     public :: collect_legacy
@@ -47,8 +48,54 @@ contains
             new_unittest('continue_zero_increment_keeps_state', test_continue_still), &
             new_unittest('rolling_shift_and_steady_state', test_rolling), &
             new_unittest('errors_and_handles', test_errors), &
-            new_unittest('edge_contact_reported', test_edge_contact) ]
+            new_unittest('edge_contact_reported', test_edge_contact), &
+            new_unittest('memory_check_before_build', test_memory_check) ]
     end subroutine collect_legacy
+
+    !> FCL_MEMORY before a grid the process has no memory for is built (here an available
+    !! memory of 20 MB given by the environment: 32² needs about 11 MB for a normal +
+    !! tangential solve, 512² about 220 MB): nothing is built, the message gives both sizes,
+    !! and the same handle solves again on the small grid, with the same forces.  An invalid
+    !! override is FCL_INVALID_VALUE naming the variable.
+    subroutine test_memory_check(error)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: h, ierr, builds(3), builds2(3)
+        real(dp) :: fn, fx, fy, mz, fx0, fy0
+        character(len=:), allocatable :: msg
+        call set_env(memory_env, '20M')
+        call cattaneo_handle(h, 32, 32, 1e-8_dp)
+        call fc_set_threads(h, 1, ierr)
+        call fc_set_shifts(h, case_xi(4), case_eta(4), case_phi(4), ierr)
+        call fc_calculate(h, ierr)
+        call check(error, ierr == FCL_OK, '32^2 fits in 20 MB: '//last_message(h))
+        if (allocated(error)) goto 9
+        call fc_get_forces(h, fn, fx0, fy0, mz, ierr)
+        call fc_get_rebuilds(h, builds(1), builds(2), builds(3), ierr)
+        call fc_set_grid(h, 512, 512, -l_cat, l_cat, -l_cat, l_cat, ierr)
+        call fc_calculate(h, ierr)
+        msg = last_message(h)
+        call check(error, ierr == FCL_MEMORY, '512^2 in 20 MB -> FCL_MEMORY: '//msg)
+        if (allocated(error)) goto 9
+        call check(error, index(msg, 'nx = 512, ny = 512') > 0 .and. index(msg, '20 MB') > 0 .and. &
+            index(msg, memory_env) > 0 .and. index(msg, 'tangential') > 0, 'message names grid, sizes, override: '//msg)
+        if (allocated(error)) goto 9
+        call fc_get_rebuilds(h, builds2(1), builds2(2), builds2(3), ierr)
+        call check(error, all(builds2 == builds), 'nothing built or calculated for the refused grid')
+        if (allocated(error)) goto 9
+        call fc_set_grid(h, 32, 32, -l_cat, l_cat, -l_cat, l_cat, ierr)
+        call fc_calculate(h, ierr)
+        call fc_get_forces(h, fn, fx, fy, mz, ierr)
+        call check(error, ierr == FCL_OK .and. abs(fx - fx0) <= 1e-9_dp*abs(fx0) .and. abs(fy - fy0) <= 1e-9_dp*abs(fy0), &
+            'the same handle solves 32^2 again, same forces')
+        if (allocated(error)) goto 9
+        call set_env(memory_env, 'lots')
+        call fc_set_grid(h, 40, 40, -l_cat, l_cat, -l_cat, l_cat, ierr)
+        call fc_calculate(h, ierr)
+        call check(error, ierr == FCL_INVALID_VALUE .and. index(last_message(h), memory_env) > 0, &
+            'invalid override: '//last_message(h))
+9       call unset_env(memory_env)
+        call fc_finalize(h, ierr)
+    end subroutine test_memory_check
 
     !> Handle with the Cattaneo scene of doc/conventions.md (no tangential loading yet).
     subroutine cattaneo_handle(h, nx, ny, tol)

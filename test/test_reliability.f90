@@ -470,9 +470,30 @@ contains
         ! 270 B × 16 384 = 14.4 MB), not 256² (27.7 MB), within 20 MB
         call run_with(replace_first(replace_first(normal, 'nx = 200, ny = 100', 'nx = 128, ny = 128'), &
             'threads = 1', 'threads = 1, target = 1e-9'), '20M', code, errs)
-        call check(error, index(file_lines(dir//'/m.json'), 'accuracy target: the next grid (256 x 256) would need '// &
-            'about 28 MB, more than the 20 MB this process may use ('//memory_env//'); stopped') > 0, &
+        call check(error, index(file_lines(dir//'/m.json'), 'accuracy target: the next grid (256 x 256) does not fit '// &
+            'in memory (a normal case on 1 thread(s) needs about 28 MB (270 B per element), more than the 20 MB this '// &
+            'process may use ('//memory_env//')); stopped') > 0, &
             'target: '//errs//file_lines(dir//'/m.json'))
+        ! automatic areas: the first grid is checked before it is built (an input error
+        ! naming &grid auto and n_across), an enlargement that would not fit leaves the
+        ! clipped solution with a warning: margin 0 gives 32 x 32 elements (10.28 MB), the
+        ! enlargement 48 x 48 (10.62 MB) does not fit in 10.4 MB
+        call run_with(replace_first(normal, '&grid nx = 200, ny = 100, xmin = -10.0, xmax = 10.0, ymin = -6.0, '// &
+            'ymax = 6.0 /', '&grid auto = .true., n_across = 1000 /'), '100M', code, errs)
+        call check(error, code /= 0 .and. index(errs, '&grid auto = .true., n_across = 1000, margin = 0.25: automatic '// &
+            'potential contact area of 1250 x 1250 elements: a normal case on 1 thread(s) needs about 432 MB') > 0 .and. &
+            index(errs, 'more than the 100 MB this process may use') > 0, 'automatic area, 100M: '//errs)
+        call check(error, .not. file_exists(dir//'/m.json'), 'no JSON for an automatic area refused for memory')
+        call run_with(replace_first(normal, '&grid nx = 200, ny = 100, xmin = -10.0, xmax = 10.0, ymin = -6.0, '// &
+            'ymax = 6.0 /', '&grid auto = .true., margin = 0.0 /'), '10.4M', code, errs)
+        call check(error, code == 0 .and. index(file_lines(dir//'/m.json'), 'its enlargement to 48 x 48 elements does '// &
+            'not fit in memory (a normal case on 1 thread(s) needs about 11 MB (270 B per element), more than the 10 MB '// &
+            'this process may use ('//memory_env//')): the solution is clipped') > 0, &
+            'enlargement refused: '//errs//file_lines(dir//'/m.json'))
+        call run_with(replace_first(normal, '&grid nx = 200, ny = 100, xmin = -10.0, xmax = 10.0, ymin = -6.0, '// &
+            'ymax = 6.0 /', '&grid auto = .true., margin = 0.0 /'), '11M', code, errs)
+        call check(error, code == 0 .and. index(file_lines(dir//'/m.json'), 'enlarged x1.5') > 0 .and. &
+            index(file_lines(dir//'/m.json'), 'clipped') == 0, 'enlargement within 11M: '//file_lines(dir//'/m.json'))
         call check_mode()
         call unset_env(memory_env)
     contains
