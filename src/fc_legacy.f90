@@ -722,19 +722,26 @@ contains
         integer(i8) :: need, held, limit
         character(len=:), allocatable :: source, kind
         real(dp) :: bpe
-        logical :: tangential, fits
+        logical :: tangential, fits, coupled, fmg_rsm
         stat = 0; msg = ''
         tangential = s%load%problem /= FC_PROBLEM_NORMAL
         if (s%ops%normal%matches(s%grid, s%mat) .and. &
             (.not. tangential .or. s%ops%tangential%matches(s%grid, s%mat))) return
         kind = 'tangential'
         if (.not. tangential) kind = 'normal'
-        if (s%load%problem == FC_PROBLEM_ROLLING .or. s%load%transient /= FC_FROM_REST) kind = 'rolling'
-        bpe = serial_bytes_per_element(kind, fc_thread_count())
+        if (s%load%problem == FC_PROBLEM_ROLLING) kind = 'rolling'
+        if (tangential .and. s%load%transient /= FC_FROM_REST) kind = 'transient'
+        coupled = tangential .and. (s%mat%k /= 0 .or. allocated(s%ops%ic%a))
+        fmg_rsm = s%settings%normal%solver == 'fmg' .and. s%settings%fmg%smoother == 'fft-rsm'
+        bpe = serial_bytes_per_element(kind, fc_thread_count(), coupled, fmg_rsm)
+        if (coupled) kind = kind//' (dissimilar materials)'
         need = case_memory_bytes(int(s%grid%nx, i8)*s%grid%ny, bpe)
+        ! what the current operators release, counted low: the one-thread estimate of a
+        ! normal, or normal + tangential, solve on their grid
         held = 0
         if (s%ops%normal%a_zz%built()) held = case_memory_bytes(int(s%ops%normal%grid%nx, i8)*s%ops%normal%grid%ny, &
-            bpe) - memory_base_bytes
+            serial_bytes_per_element(merge('tangential', 'normal    ', s%ops%tangential%a_xx%built()), 1)) - &
+            memory_base_bytes
         ! the host's own memory is not the library's to release: no resident size added
         call memory_fits(need, 1, held, .false., fits, limit, source, stat, msg)
         if (stat /= 0 .or. fits) return

@@ -23,15 +23,24 @@ module fc_memory
 
     !> environment variable that replaces the detected available memory
     character(len=*), parameter, public :: memory_env = 'FASTCONTACT_AVAILABLE_MEMORY'
-    !> peak memory of the serial driver per grid element [bytes] (measured, doc/reliability.md:
-    !! peak resident memory of 256² … 1024² cases, fitted), one thread / two or more threads
-    !! (own plan sets of the side-by-side builds, the lanes' buffers); the process itself and
-    !! FFTW add `memory_base_bytes`
-    real(dp), parameter, public :: bytes_per_element_normal = 270          !! BCCG, NORM, FMG
-    real(dp), parameter, public :: bytes_per_element_tangential = 800      !! normal + shift (TangCG)
-    real(dp), parameter, public :: bytes_per_element_tangential_mt = 1020
-    real(dp), parameter, public :: bytes_per_element_rolling = 1150        !! steady and transient rolling, sweeps
-    real(dp), parameter, public :: bytes_per_element_rolling_mt = 1250
+    !> Peak memory of the serial driver per grid element [bytes], fitted to measured peak
+    !! resident memory (doc/reliability.md, "Memory": 256² … 1024² grids of the Cattaneo
+    !! sphere) with a margin of a few per cent.  Rows: the kind of problem ('normal',
+    !! 'tangential' (shift), 'transient' (transient rolling: TangCG with the previous
+    !! state), 'rolling' (steady rolling and creep-force sweeps: Newton–GMRES, counted with
+    !! its whole Krylov basis of 41 vectors, 656 B per element, which a long GMRES cycle on a
+    !! grid full of contact touches)).  Columns: one thread; two or more (the side-by-side
+    !! builds' own plan sets, the lanes' buffers); the same with dissimilar materials (K ≠ 0:
+    !! the coupling blocks and the Panagiotopoulos rounds).  The process itself and FFTW add
+    !! `memory_base_bytes`.
+    real(dp), parameter, public :: bytes_per_element_table(4, 4) = reshape([ &
+        270.0_dp, 800.0_dp, 880.0_dp, 1550.0_dp, &      ! one thread
+        270.0_dp, 1020.0_dp, 1100.0_dp, 1750.0_dp, &    ! two or more threads
+        270.0_dp, 1080.0_dp, 1150.0_dp, 1850.0_dp, &    ! K ≠ 0, one thread
+        270.0_dp, 1320.0_dp, 1370.0_dp, 2100.0_dp], [4, 4])   ! K ≠ 0, two or more threads
+    !> added per element by FMG with the 'fft-rsm' smoother (its hierarchy and the FFT
+    !! preconditioner of every level; measured 89 B)
+    real(dp), parameter, public :: bytes_per_element_fmg_rsm = 110
     integer(i8), parameter, public :: memory_base_bytes = 10000000_i8    !! process, libraries, FFTW
     integer(i8), parameter :: unlimited = 2_i8**60                       !! cgroup v1 "no limit" is ~2^63
 
@@ -107,16 +116,28 @@ contains
         fits = need <= limit
     end subroutine memory_fits
 
-    !> Bytes per grid element of a serial solve of `kind` ('normal', 'tangential', 'rolling')
-    !! on `threads` threads (the constants above).
-    pure real(dp) function serial_bytes_per_element(kind, threads) result(b)
+    !> Bytes per grid element of a serial solve of `kind` ('normal', 'tangential',
+    !! 'transient', 'rolling') on `threads` threads, with dissimilar materials (`coupled`,
+    !! K ≠ 0) and FMG's 'fft-rsm' hierarchy (`fmg_rsm`): [[bytes_per_element_table]].
+    pure real(dp) function serial_bytes_per_element(kind, threads, coupled, fmg_rsm) result(b)
         character(len=*), intent(in) :: kind
         integer, intent(in) :: threads
+        logical, intent(in), optional :: coupled, fmg_rsm
+        integer :: row, col
         select case (kind)
-        case ('tangential'); b = merge(bytes_per_element_tangential_mt, bytes_per_element_tangential, threads > 1)
-        case ('rolling'); b = merge(bytes_per_element_rolling_mt, bytes_per_element_rolling, threads > 1)
-        case default; b = bytes_per_element_normal
+        case ('tangential'); row = 2
+        case ('transient'); row = 3
+        case ('rolling'); row = 4
+        case default; row = 1
         end select
+        col = merge(2, 1, threads > 1)
+        if (present(coupled)) then
+            if (coupled) col = col + 2
+        end if
+        b = bytes_per_element_table(row, col)
+        if (present(fmg_rsm)) then
+            if (fmg_rsm) b = b + bytes_per_element_fmg_rsm
+        end if
     end function serial_bytes_per_element
 
     !> Estimated peak memory of a serial solve [bytes]: `memory_base_bytes` plus

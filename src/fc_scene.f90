@@ -74,8 +74,11 @@ contains
     end function is_rolling_sequence
 
     !> Estimated peak memory of a solve of `c` on an nx × ny grid [bytes] (fc_memory: bytes per
-    !! element of its kind of problem, more with two or more threads), with the kind
-    !! ('normal', 'tangential', 'rolling'), the bytes per element and the threads it assumed.
+    !! element of its kind of problem, more with two or more threads, with dissimilar
+    !! materials and with FMG's 'fft-rsm' hierarchy), with the kind as the messages name it
+    !! ('normal', 'tangential', 'transient', 'rolling', qualified by '(dissimilar materials)'
+    !! or '(FMG fft-rsm)'), the bytes per element and the threads it assumed.  Coefficients
+    !! from a file count as dissimilar (they may hold the coupling blocks).
     subroutine case_memory(c, nx, ny, need, kind, bpe, threads)
         type(fc_case), intent(in) :: c
         integer, intent(in) :: nx, ny
@@ -83,12 +86,23 @@ contains
         character(len=:), allocatable, intent(out) :: kind
         real(dp), intent(out) :: bpe
         integer, intent(out) :: threads
+        type(fc_material) :: m
+        integer :: st
+        character(len=msg_len) :: msg
+        logical :: coupled, fmg_rsm
         threads = c%threads
         if (threads <= 0) threads = fc_default_threads()
         kind = 'tangential'
         if (c%problem == FC_PROBLEM_NORMAL) kind = 'normal'
-        if (c%problem == FC_PROBLEM_ROLLING .or. c%rolling%transient) kind = 'rolling'
-        bpe = serial_bytes_per_element(kind, threads)
+        if (c%problem == FC_PROBLEM_ROLLING) kind = 'rolling'
+        if (c%rolling%transient) kind = 'transient'
+        m = c%material
+        call combine_material(m, st, msg)
+        coupled = kind /= 'normal' .and. ((st == 0 .and. m%k /= 0) .or. len_trim(c%ic_file) > 0)
+        fmg_rsm = c%settings%normal%solver == 'fmg' .and. c%settings%fmg%smoother == 'fft-rsm'
+        bpe = serial_bytes_per_element(kind, threads, coupled, fmg_rsm)
+        if (coupled) kind = kind//' (dissimilar materials)'
+        if (fmg_rsm) kind = kind//' (FMG fft-rsm)'
         need = case_memory_bytes(int(nx, i8)*ny, bpe)
     end subroutine case_memory
 

@@ -88,6 +88,15 @@ contains
         call check(error, ierr == FCL_OK .and. abs(fx - fx0) <= 1e-9_dp*abs(fx0) .and. abs(fy - fy0) <= 1e-9_dp*abs(fy0), &
             'the same handle solves 32^2 again, same forces')
         if (allocated(error)) goto 9
+        ! dissimilar materials count their coupling blocks: 10 MB + 1080 B x 4096 = 14.4 MB,
+        ! more than 13 MB plus the 0.8 MB the 32^2 operators release (800 B x 1024)
+        call fc_set_material(h, g_cat, 0.5_dp*g_cat, 0.28_dp, nu_cat, ierr)
+        call fc_set_grid(h, 64, 64, -l_cat, l_cat, -l_cat, l_cat, ierr)
+        call set_env(memory_env, '13M')
+        call fc_calculate(h, ierr)
+        call check(error, ierr == FCL_MEMORY .and. index(last_message(h), 'the tangential (dissimilar materials) solve '// &
+            'on 1 thread(s) needs about 14 MB') > 0, 'dissimilar materials: '//last_message(h))
+        if (allocated(error)) goto 9
         call set_env(memory_env, 'lots')
         call fc_set_grid(h, 40, 40, -l_cat, l_cat, -l_cat, l_cat, ierr)
         call fc_calculate(h, ierr)

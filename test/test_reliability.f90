@@ -457,11 +457,22 @@ contains
         ! the kinds of case and the threads (refused before anything is built: cheap)
         call run_with(replace_first(normal, "name = 'm'", "name = 'm', problem = 'rolling'")// &
             '&tangential mu = 0.3, xi = 1e-3 /'//new_line('a'), '1M', code, errs)
-        call check(error, code /= 0 .and. index(errs, 'a rolling case on 1 thread(s) needs about 33 MB (1150 B') > 0, &
+        call check(error, code /= 0 .and. index(errs, 'a rolling case on 1 thread(s) needs about 41 MB (1550 B') > 0, &
             'rolling: '//errs)
         call run_with(replace_first(normal, "name = 'm'", "name = 'm', problem = 'transient_rolling'")// &
             '&tangential mu = 0.3, xi = 1e-3, nsteps = 10 /'//new_line('a'), '1M', code, errs)
-        call check(error, code /= 0 .and. index(errs, 'a rolling case') > 0, 'transient rolling: '//errs)
+        call check(error, code /= 0 .and. index(errs, 'a transient case on 1 thread(s) needs about 28 MB (880 B') > 0, &
+            'transient rolling: '//errs)
+        ! dissimilar materials (K /= 0: coupling blocks, Panagiotopoulos rounds) and FMG's
+        ! fft-rsm hierarchy take more
+        call run_with(replace_first(replace_first(normal, "name = 'm'", "name = 'm', problem = 'normal+tangential'"), &
+            'g2 = 82000.0', 'g2 = 30000.0')//'&tangential mu = 0.3, xi = 1e-3 /'//new_line('a'), '1M', code, errs)
+        call check(error, code /= 0 .and. index(errs, 'a tangential (dissimilar materials) case on 1 thread(s) needs '// &
+            'about 32 MB (1080 B') > 0, 'tangential, dissimilar: '//errs)
+        call run_with(replace_first(replace_first(normal, 'nx = 200, ny = 100', 'nx = 256, ny = 256'), &
+            'threads = 1', "threads = 1, normal = 'fmg', smoother = 'fft-rsm'"), '1M', code, errs)
+        call check(error, code /= 0 .and. index(errs, 'a normal (FMG fft-rsm) case on 1 thread(s) needs about 35 MB '// &
+            '(380 B') > 0, 'FMG fft-rsm: '//errs)
         call run_with(replace_first(replace_first(normal, "name = 'm'", "name = 'm', problem = 'normal+tangential'"), &
             'threads = 1', 'threads = 2')//'&tangential mu = 0.3, xi = 1e-3 /'//new_line('a'), '1M', code, errs)
         call check(error, code /= 0 .and. index(errs, 'a tangential case on 2 thread(s) needs about 30 MB (1020 B') > 0, &
@@ -521,7 +532,7 @@ contains
             call check(error, code == 1, '--check: exit status 1 expected (a case too large, one with an input error)')
             call check(error, index(rep, ' case a: normal, 128 x 128, 1 thread(s): about 14 MB of 20 MB available ('// &
                 memory_env//')'//new_line('a')) > 0, '--check, case a: '//rep)
-            call check(error, index(rep, ' case b: rolling, 200 x 100, 1 thread(s): about 33 MB of 20 MB available ('// &
+            call check(error, index(rep, ' case b: rolling, 200 x 100, 1 thread(s): about 41 MB of 20 MB available ('// &
                 memory_env//'): TOO LARGE') > 0, '--check, case b: '//rep)
             call check(error, index(rep, '&material nu1') > 0 .and. index(rep, 'fastcontact --check: 3 case(s): 1 to '// &
                 'solve, 1 too large for the memory, 1 with input errors') > 0, '--check, case c and counts: '//rep)
