@@ -77,7 +77,7 @@ module fc_auto
 
     public :: fc_level, fc_auto_outcome
     public :: estimate_safety, estimate_safety_h2, h2_ratio_low, h2_ratio_high
-    public :: solve_case_auto, auto_area, richardson_estimate, prolong_copy, contact_touches_boundary
+    public :: solve_case_auto, case_grid, auto_area, richardson_estimate, prolong_copy, contact_touches_boundary
     public :: plane_strain_hertz, level_estimate, certify_coarsest, target_quantities
 
 contains
@@ -129,62 +129,10 @@ contains
             call analytic_answer(s, out, stat, errmsg)
             return
         end if
-        ! ---- which stages are needed
-        tang = is_tangential(s)
-        if (tang .and. s%reduce) then
-            if (s%tangential%mu == 0) then
-                tang = .false.
-                call append_line(out%reductions, 'mu = 0: frictionless, no tangential solve (tractions are zero)')
-            else if (out%material%k == 0 .and. no_tangential_loading(s%tangential) .and. &
-                     .not. is_rolling_sequence(s)) then
-                tang = .false.
-                call append_line(out%reductions, 'no tangential loading (zero shifts or forces, K = 0): no tangential solve '// &
-                    '(tractions are zero)')
-            end if
-        end if
-        if (tang .and. out%material%k == 0 .and. s%reduce) call append_line(out%reductions, 'quasi-identical '// &
-            'materials (K = 0): one normal and one tangential solve, no Panagiotopoulos loop')
-        out%tangential = tang
-        ! ---- line contact → 2D strip
-        line = is_line_contact(s) .and. s%kind /= 'strip2d' .and. .not. s%periodic
+        call plan_grid(s, out, tang, line, stat, errmsg)
+        if (stat /= 0) return
         ops%periodic = s%periodic
-        if (line .and. s%reduce) then
-            if (s%kind == 'quadratic' .and. s%ry > 0) then
-                ! elongated ellipse: only a strip when the y curvature is negligible over the area
-                if (s%grid_auto) then
-                    call append_line(out%reductions, 'not reduced: ry >= 1e3 rx but the automatic area would be sized by the '// &
-                        'elliptic Hertz solution (give a fixed grid or ry = 0 for a line contact)')
-                    line = .false.
-                else if (max(s%ymin**2, s%ymax**2)/(2*s%ry) > 0.01_dp*line_indentation(s, out%material)) then
-                    call append_line(out%reductions, 'not reduced: ry >= 1e3 rx but the y curvature over the grid exceeds '// &
-                        '1 % of the indentation')
-                    line = .false.
-                end if
-            end if
-            if (line) then
-                if (s%kind == 'quadratic' .and. s%grid_auto) then
-                    stat = FC_ERR_UNSUPPORTED
-                    errmsg = "ry = 0 (line contact) with an automatic area: the length is unknown; use "// &
-                        "kind = 'cylinder' with a length, or give the area's ymin, ymax"
-                    return
-                end if
-                out%model = 'strip2d'
-                s%ny = 1
-                call append_line(out%reductions, 'line contact ('//trim(s%kind)//'): 2D strip model, n x 1 grid, one element '// &
-                    'over the length '//fmt_real(s%ymax - s%ymin)//' mm (plane strain)')
-            end if
-        end if
-        if (s%kind == 'strip2d') out%model = 'strip2d'
-        if (s%kind == 'cylinder' .and. .not. (line .and. s%reduce) .and. s%grid_auto) then
-            ! full model of a cylinder: elements about as long as wide, at most 512 along y
-            s%ny = -1
-        end if
-        ! ---- potential contact area
-        out%grid_auto = s%grid_auto
-        out%target = s%target
         if (out%grid_auto) then
-            call auto_area(s, out%material, stat, errmsg)
-            if (stat /= 0) return
             ! the automatic grid is checked here, before anything is built (a given grid is
             ! the caller's to check)
             if (int(s%nx, i8)*s%ny > max_grid_elements) then
@@ -258,6 +206,97 @@ contains
             deallocate (out%levels); allocate (out%levels(0))
         end do
     end subroutine solve_case_auto
+
+    !> The model and the grid of a case after its reductions (the stages needed; a line
+    !! contact as an n × 1 strip; a cylinder's full model) and, for `&grid auto`, the
+    !! automatic potential contact area (s%nx, s%ny, xmin … ymax set): the first grid the
+    !! case is solved on, before any enlargement or refinement.  Notes go to
+    !! out%reductions; out%material must be combined.
+    subroutine plan_grid(s, out, tang, line, stat, errmsg)
+        type(fc_case), intent(inout) :: s
+        type(fc_auto_outcome), intent(inout) :: out
+        logical, intent(out) :: tang, line   !! tangential stage needed; reduced to a strip
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        stat = 0; errmsg = ''
+        ! ---- which stages are needed
+        tang = is_tangential(s)
+        if (tang .and. s%reduce) then
+            if (s%tangential%mu == 0) then
+                tang = .false.
+                call append_line(out%reductions, 'mu = 0: frictionless, no tangential solve (tractions are zero)')
+            else if (out%material%k == 0 .and. no_tangential_loading(s%tangential) .and. &
+                     .not. is_rolling_sequence(s)) then
+                tang = .false.
+                call append_line(out%reductions, 'no tangential loading (zero shifts or forces, K = 0): no tangential solve '// &
+                    '(tractions are zero)')
+            end if
+        end if
+        if (tang .and. out%material%k == 0 .and. s%reduce) call append_line(out%reductions, 'quasi-identical '// &
+            'materials (K = 0): one normal and one tangential solve, no Panagiotopoulos loop')
+        out%tangential = tang
+        ! ---- line contact → 2D strip
+        line = is_line_contact(s) .and. s%kind /= 'strip2d' .and. .not. s%periodic
+        if (line .and. s%reduce) then
+            if (s%kind == 'quadratic' .and. s%ry > 0) then
+                ! elongated ellipse: only a strip when the y curvature is negligible over the area
+                if (s%grid_auto) then
+                    call append_line(out%reductions, 'not reduced: ry >= 1e3 rx but the automatic area would be sized by the '// &
+                        'elliptic Hertz solution (give a fixed grid or ry = 0 for a line contact)')
+                    line = .false.
+                else if (max(s%ymin**2, s%ymax**2)/(2*s%ry) > 0.01_dp*line_indentation(s, out%material)) then
+                    call append_line(out%reductions, 'not reduced: ry >= 1e3 rx but the y curvature over the grid exceeds '// &
+                        '1 % of the indentation')
+                    line = .false.
+                end if
+            end if
+            if (line) then
+                if (s%kind == 'quadratic' .and. s%grid_auto) then
+                    stat = FC_ERR_UNSUPPORTED
+                    errmsg = "ry = 0 (line contact) with an automatic area: the length is unknown; use "// &
+                        "kind = 'cylinder' with a length, or give the area's ymin, ymax"
+                    return
+                end if
+                out%model = 'strip2d'
+                s%ny = 1
+                call append_line(out%reductions, 'line contact ('//trim(s%kind)//'): 2D strip model, n x 1 grid, one element '// &
+                    'over the length '//fmt_real(s%ymax - s%ymin)//' mm (plane strain)')
+            end if
+        end if
+        if (s%kind == 'strip2d') out%model = 'strip2d'
+        if (s%kind == 'cylinder' .and. .not. (line .and. s%reduce) .and. s%grid_auto) then
+            ! full model of a cylinder: elements about as long as wide, at most 512 along y
+            s%ny = -1
+        end if
+        ! ---- potential contact area
+        out%grid_auto = s%grid_auto
+        out%target = s%target
+        if (out%grid_auto) call auto_area(s, out%material, stat, errmsg)
+    end subroutine plan_grid
+
+    !> The first grid `s` is solved on ([[plan_grid]]: after the model reductions, the
+    !! automatic area sized), without solving or building anything: nx = ny = 0 when no
+    !! grid is solved (the analytic Hertz answer, FASTSIM).  For the drivers' `--check`.
+    subroutine case_grid(s_in, nx, ny, stat, errmsg)
+        type(fc_case), intent(in) :: s_in
+        integer, intent(out) :: nx, ny
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        type(fc_case) :: s
+        type(fc_auto_outcome) :: out
+        logical :: tang, line
+        nx = 0; ny = 0
+        s = s_in
+        allocate (out%reductions(0), out%warnings(0), out%levels(0))
+        out%material = s%material
+        call combine_material(out%material, stat, errmsg)
+        if (stat /= 0) return
+        if (s%rolling%fastsim .or. s%analytic) return
+        if (fastsim_meets_target(s, out)) return
+        call plan_grid(s, out, tang, line, stat, errmsg)
+        if (stat /= 0) return
+        nx = s%nx; ny = s%ny
+    end subroutine case_grid
 
     !> Solve on the grid of `s` or, with a target, on a sequence of grids refined by two.
     subroutine solve_levels(s, tang, ops, out, stat, errmsg)

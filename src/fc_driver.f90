@@ -41,7 +41,7 @@ module fc_driver
     use fc_errors, only: FC_ERR_FRICTION_BOUND, FC_ERR_NO_CONTACT, FC_ERR_GEOMETRY, FC_ERR_IO, FC_ERR_ALLOC, &
         FC_ERR_GRID, FC_ERR_IC_FILE, FC_ERR_MODEL_RANGE, FC_ERR_FFT_WISDOM
     use fc_output, only: fc_case_summary, write_case_json, write_case_csv, write_case_npy, write_case_report
-    use fc_auto, only: fc_auto_outcome, solve_case_auto
+    use fc_auto, only: fc_auto_outcome, solve_case_auto, case_grid
     use fc_threads, only: set_thread_count
     use fc_memory, only: available_memory, memory_fits, format_bytes, memory_env
     use fc_version, only: fc_build_info
@@ -191,8 +191,9 @@ contains
             integer(int64) :: avail, need, limit
             character(len=:), allocatable :: source, kind, line
             real(dp) :: bpe
-            integer :: threads
+            integer :: threads, gnx, gny
             logical :: fits
+            type(fc_auto_outcome) :: no_outcome
             status = 1
             saved_state = state
             call apply_case(cases(k), k, state, name, stat, errmsg)
@@ -214,13 +215,28 @@ contains
                 line = line//'strip model problem: not estimated'
             else if (state%problem == 'hertz') then
                 line = line//'analytic Hertz solution: no grid'
-            else if (grid_is_auto(state)) then
-                line = line//'automatic area: the grid is chosen while solving; not estimated'
             else
                 kase = build_case(state)
-                call case_memory(kase, kase%nx, kase%ny, need, kind, bpe, threads)
-                line = line//kind//', '//fmt_int(kase%nx)//' x '//fmt_int(kase%ny)//', '//fmt_int(threads)// &
-                    ' thread(s): about '//format_bytes(need)
+                ! the first grid the case is solved on: an automatic area sized, a line
+                ! contact as its n x 1 strip
+                call case_grid(kase, gnx, gny, stat, errmsg)
+                if (stat /= 0) then
+                    call library_context(stat, errmsg, state, no_outcome)
+                    call write_case_error(rep, err, 'fastcontact', k, cases(k)%line, name, errmsg)
+                    status = 1; return
+                end if
+                if (gnx == 0) then
+                    write (rep, '(a)') line//'analytic answer (FASTSIM or Hertz): no grid'
+                    return
+                end if
+                call case_memory(kase, gnx, gny, need, kind, bpe, threads)
+                line = line//kind//', '//fmt_int(gnx)//' x '//fmt_int(gny)
+                if (grid_is_auto(state)) then
+                    line = line//' (automatic area)'
+                else if (gnx /= kase%nx .or. gny /= kase%ny) then
+                    line = line//' (the line contact as a strip)'
+                end if
+                line = line//', '//fmt_int(threads)//' thread(s): about '//format_bytes(need)
                 ! a run adds what its process holds then; this pass holds nothing yet
                 call memory_fits(need, share, 0_int64, .false., fits, limit, source, stat, errmsg)
                 if (limit < 0) then
@@ -527,7 +543,14 @@ contains
         character(len=msg_len), intent(out) :: errmsg
         character(len=:), allocatable :: what
         logical :: fits
-        call case_fits_memory(kase, kase%nx, kase%ny, fits, what, stat, errmsg)
+        integer :: gnx, gny
+        ! the grid the case is solved on (a line contact as its strip); a case the planning
+        ! refuses is reported by the solve
+        call case_grid(kase, gnx, gny, stat, errmsg)
+        if (stat /= 0 .or. gnx == 0) then
+            stat = 0; errmsg = ''; return
+        end if
+        call case_fits_memory(kase, gnx, gny, fits, what, stat, errmsg)
         if (stat /= 0 .or. fits) return
         stat = FC_ERR_ALLOC
         errmsg = '&grid nx = '//fmt_int(kase%nx)//', ny = '//fmt_int(kase%ny)//': '//what// &

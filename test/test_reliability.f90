@@ -521,6 +521,14 @@ contains
             write (u, '(a)') "&case name = 'b', problem = 'rolling' /"//new_line('a')//'&grid nx = 200, ny = 100 /'// &
                 new_line('a')//'&tangential mu = 0.3, xi = 1e-3 /'
             write (u, '(a)') "&case name = 'c' /"//new_line('a')//'&material nu1 = 0.7 /'
+            ! an automatic area is sized as the solve would size it, a line contact estimated
+            ! as its strip, an analytic answer has no grid
+            write (u, '(a)') "&case name = 'd', problem = 'normal' /"//new_line('a')//'&grid auto = .true., n_across = 1000 /'
+            write (u, '(a)') "&case name = 'e', problem = 'normal' /"//new_line('a')// &
+                '&grid auto = .false., nx = 200, ny = 100, xmin = -10.0, xmax = 10.0, ymin = -6.0, ymax = 6.0 /'// &
+                new_line('a')//"&geometry kind = 'quadratic', rx = 300.0, ry = 0.0 /"
+            write (u, '(a)') "&case name = 'f', problem = 'hertz' /"//new_line('a')// &
+                "&geometry kind = 'quadratic', rx = 300.0, ry = 163.0 /"
             close (u)
             call set_env(memory_env, '20M')
             open (newunit=urep, file=dir//'/report.txt', status='replace', action='write')
@@ -534,8 +542,13 @@ contains
                 memory_env//')'//new_line('a')) > 0, '--check, case a: '//rep)
             call check(error, index(rep, ' case b: rolling, 200 x 100, 1 thread(s): about 41 MB of 20 MB available ('// &
                 memory_env//'): TOO LARGE') > 0, '--check, case b: '//rep)
-            call check(error, index(rep, '&material nu1') > 0 .and. index(rep, 'fastcontact --check: 3 case(s): 1 to '// &
-                'solve, 1 too large for the memory, 1 with input errors') > 0, '--check, case c and counts: '//rep)
+            call check(error, index(rep, ' case d: normal, 1250 x 1250 (automatic area), 1 thread(s): about 432 MB of '// &
+                '20 MB available ('//memory_env//'): TOO LARGE') > 0, '--check, case d: '//rep)
+            call check(error, index(rep, ' case e: normal, 200 x 1 (the line contact as a strip), 1 thread(s): about '// &
+                '10 MB of 20 MB available') > 0, '--check, case e: '//rep)
+            call check(error, index(rep, ' case f: analytic Hertz solution: no grid') > 0, '--check, case f: '//rep)
+            call check(error, index(rep, '&material nu1') > 0 .and. index(rep, 'fastcontact --check: 6 case(s): 3 to '// &
+                'solve, 2 too large for the memory, 1 with input errors') > 0, '--check, case c and counts: '//rep)
             call check(error, .not. file_exists(dir//'/a.json') .and. .not. file_exists(dir//'/b.json'), &
                 '--check must not solve or write')
         end subroutine check_mode
