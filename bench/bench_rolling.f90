@@ -42,6 +42,7 @@ program fastcontact_bench_rolling
     use fc_tangcg, only: fc_tangential_operator, fc_tangential_settings, fc_tangential_result
     use fc_tangcg, only: build_tangential_operator, solve_tangential
     use fc_rolling, only: fc_rolling_settings, fc_rolling_loading, solve_rolling
+    use fc_rolling_refsolvers, only: reference_solver
     use fc_rolling_ref, only: kalker_coefficients
     use fc_fastsim, only: fastsim, fc_fastsim_result
     use fc_hertz, only: fc_hertz_solution, hertz_from_force
@@ -141,7 +142,7 @@ program fastcontact_bench_rolling
             end if
             if (ig <= ngs) then
                 rs%solver = 'march'; rs%maxit = 5000
-                call solve_rolling(top, nr%pn, rl, rs, tr, stat, msg)
+                call solve_rolling(top, nr%pn, rl, rs, tr, stat, msg, reference=reference_solver)
                 call row('march', 3); rs%maxit = 2000
             end if
         end do

@@ -42,6 +42,7 @@ module fc_contact
     use fc_tangcg_operator, only: prepare_block_inverse_circulant
     use fc_fmg, only: fc_fmg_settings, fc_fmg_stats, fc_surface, solve_normal_fmg
     use fc_rolling, only: fc_rolling_loading, solve_rolling_loading, fc_rolling_case
+    use fc_rolling_refsolvers, only: reference_solver   ! the reference solvers, passed to fc_rolling
     use fc_contact_types, only: FC_PROBLEM_NORMAL, FC_PROBLEM_TANGENTIAL, FC_PROBLEM_ROLLING, fc_normal_loading, &
         fc_contact_settings, fc_contact_result, fc_contact_loading, fc_contact_operators, fc_contact_state, &
         FC_FROM_REST, FC_TRANSIENT_SHIFT, FC_TRANSIENT_ROLLING
@@ -546,10 +547,10 @@ contains
             if (has_guess) then
                 call solve_rolling_loading(top, pn, rl, settings%rolling, res%tangential, stat, errmsg, &
                     px_start=pxs, py_start=pys, offset_x=uxn, offset_y=uyn, xi_start=guess_base(1), &
-                    eta_start=guess_base(2))
+                    eta_start=guess_base(2), reference=reference_solver)
             else
                 call solve_rolling_loading(top, pn, rl, settings%rolling, res%tangential, stat, errmsg, &
-                    px_start=pxs, py_start=pys, offset_x=uxn, offset_y=uyn)
+                    px_start=pxs, py_start=pys, offset_x=uxn, offset_y=uyn, reference=reference_solver)
             end if
         end subroutine rolling_stage
 

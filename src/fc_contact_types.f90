@@ -9,8 +9,8 @@ module fc_contact_types
     use fc_norm, only: fc_normal_settings, fc_normal_result, fc_normal_operator
     use fc_tangcg_operator, only: fc_tangential_operator
     use fc_tangcg_types, only: fc_tangential_settings, fc_tangential_result, fc_tangential_loading
-    use fc_fmg_levels, only: fc_fmg_settings
-    use fc_rolling_base, only: fc_rolling_settings
+    use fc_fmg_types, only: fc_fmg_settings
+    use fc_rolling_types, only: fc_rolling_settings
     implicit none
     private
 

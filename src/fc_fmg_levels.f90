@@ -13,26 +13,14 @@ module fc_fmg_levels
     use fc_kinds
     use fc_errors, only: FC_ERR_GRID
     use fc_geometry, only: fc_grid, make_grid, h_no_contact
-    use fc_geometry_surfaces, only: fc_surface
+    use fc_geometry_grid, only: fc_surface
+    use fc_fmg_types, only: fc_fmg_settings
     use fc_influence
     implicit none
     private
 
-    !> Settings of the FMG / MG + active-set solver.
-    type, public :: fc_fmg_settings
-        integer :: nu1 = 1                 !! pre-smoothing sweeps (V(nu1,nu2))
-        integer :: nu2 = 1                 !! post-smoothing sweeps
-        real(dp) :: omega = 0.8_dp         !! damping of the smoother (thesis Table 2.1)
-        real(dp) :: beta = 0.003_dp        !! initial-area parameter of eq. (2.17)
-        real(dp) :: tol = 1.0e-6_dp        !! stopping rule (2.18) on the target grid
-        integer :: maxit = 100             !! active-set iterations (cycles) on the target grid
-        integer :: maxit_level = 50        !! active-set iterations on intermediate grids
-        integer :: coarsest = 4            !! stop coarsening below this many cells per direction
-        logical :: nested = .true.         !! .true.: FMG; .false.: MG + active set from {h ≤ 0}
-        character(len=8) :: smoother = 'gs'  !! 'gs' (thesis), 'jacobi' (fails), 'fft-rsm' (§6.3)
-        logical :: keep_history = .false.  !! store the pressure after every target-grid cycle
-        real(dp) :: rsm_floor = 0.8_dp     !! 'fft-rsm': diagonal of M̄ floored at rsm_floor/A_ii (0: thesis RSM)
-    end type fc_fmg_settings
+    ! the settings type lives in [[fc_fmg_types]] (below the orchestrator's types)
+    public :: fc_fmg_settings
 
     !> One grid level: grid, influence operator, undeformed distance.
     type, public :: fmg_level

@@ -1,8 +1,9 @@
 !> The grid type of the potential contact area (doc/conventions.md): nx×ny cell-centred
 !! elements on [xmin,xmax]×[ymin,ymax]; element (i,j) has its centre at
-!! (xmin+(i-½)dx, ymin+(j-½)dy).  A module of its own, below the influence coefficients and
-!! the solvers that need only the type; [[fc_geometry]] builds grids ([[make_grid]]) and
-!! undeformed distances and re-exports the type.
+!! (xmin+(i-½)dx, ymin+(j-½)dy), and the abstract [[fc_surface]], an undeformed distance
+!! evaluated on any grid.  A module of its own, below the influence coefficients and the
+!! solvers that need only the types; [[fc_geometry]] builds grids ([[make_grid]]) and
+!! undeformed distances and re-exports the grid type, [[fc_geometry_surfaces]] the surfaces.
 module fc_geometry_grid
     use fc_kinds, only: dp
     implicit none
@@ -23,6 +24,24 @@ module fc_geometry_grid
 
     !> Undeformed distance that keeps an element out of contact (outside a punch).
     real(dp), parameter, public :: h_no_contact = 1.0e20_dp
+
+    !> Undeformed distance h0 (without approach) as a formula that can be evaluated on
+    !! any grid; FMG evaluates it on every level.  Extend it for your own geometry
+    !! ([[fc_geometry_surfaces]] has the package's).
+    type, abstract, public :: fc_surface
+    contains
+        procedure(surface_evaluate), deferred :: evaluate
+    end type fc_surface
+
+    abstract interface
+        !> h0 [mm] at the element centres of `grid`; `h_no_contact` where no contact can occur.
+        subroutine surface_evaluate(self, grid, h0)
+            import :: fc_surface, fc_grid, dp
+            class(fc_surface), intent(in) :: self
+            type(fc_grid), intent(in) :: grid
+            real(dp), intent(out) :: h0(:, :)
+        end subroutine surface_evaluate
+    end interface
 
 contains
 

@@ -3,29 +3,18 @@
 !! Multigrid needs h0 on every level of a grid hierarchy.  A [[fc_surface]] evaluates its
 !! formula at the element centres of whatever grid it is given, as the thesis does for the
 !! rough surface (thesis Fig. 2.11), instead of averaging the finest grid's values.
-!! Extend [[fc_surface]] for your own geometry.
+!! Extend [[fc_surface]] (defined with the grid type in [[fc_geometry_grid]]) for your own
+!! geometry.
 module fc_geometry_surfaces
     use fc_kinds, only: dp
+    use fc_geometry_grid, only: fc_surface
     use fc_geometry, only: fc_grid, quadratic_gap, punch_rough_gap, wavy_gap, fc_rough_params
     implicit none
     private
 
-    !> Undeformed distance h0 (without approach) as a formula that can be evaluated on
-    !! any grid; FMG evaluates it on every level.  Extend it for your own geometry.
-    type, abstract, public :: fc_surface
-    contains
-        procedure(surface_evaluate), deferred :: evaluate
-    end type fc_surface
-
-    abstract interface
-        !> h0 [mm] at the element centres of `grid`; `h_no_contact` where no contact can occur.
-        subroutine surface_evaluate(self, grid, h0)
-            import :: fc_surface, fc_grid, dp
-            class(fc_surface), intent(in) :: self
-            type(fc_grid), intent(in) :: grid
-            real(dp), intent(out) :: h0(:, :)
-        end subroutine surface_evaluate
-    end interface
+    ! the abstract surface lives beside the grid type (below the multigrid levels that hold
+    ! one); the package's surfaces extend it here
+    public :: fc_surface
 
     !> Quadratic (Hertzian) profile h0 = x²/(2 rx) + y²/(2 ry), thesis §2.5.1.
     type, extends(fc_surface), public :: fc_quadratic_surface

@@ -34,9 +34,11 @@
 !! Stopping criterion as TangCG's (thesis eq. 4.49): relative RMS traction change of the last
 !! Newton step / sweep below `tol` with an unchanged subdivision.
 !!
-!! Size (~760 lines): the Newton–GMRES loop keeps its GMRES, preconditioner and Jacobian
+!! Size (~770 lines): the Newton–GMRES loop keeps its GMRES, preconditioner and Jacobian
 !! product as contained procedures on the loop's work arrays (no allocation per Krylov step);
-!! the reference solvers live in [[fc_rolling_refsolvers]].
+!! the reference solvers live in [[fc_rolling_refsolvers]] and come in as an argument
+!! (`reference`, which the orchestrator [[fc_contact]] passes), so that this module does
+!! not depend on them.
 module fc_rolling
     use, intrinsic :: ieee_arithmetic, only: ieee_is_nan, ieee_is_finite
     use fc_kinds
@@ -46,7 +48,6 @@ module fc_rolling
         finish_force_loop, finish_status, traction_change
     use fc_tangcg_operator, only: apply_block_inverse
     use fc_rolling_base
-    use fc_rolling_refsolvers, only: run_steadygs, run_march
     use fc_force_newton, only: fc_force_newton_t
     use fc_fastsim, only: fastsim_on_grid
     use fc_threads, only: omp_min_elements
@@ -84,7 +85,8 @@ contains
     !! coupling A^xz·pn for dissimilar materials), whose convective difference enters the slip.
     !! Result: tractions on body 1, slip velocity over rolling velocity (sx, sy) [-],
     !! displacement differences (ux, uy) = A p, element states, forces, moment, counts.
-    subroutine solve_rolling(top, pn, load, settings, res, stat, errmsg, px_start, py_start, offset_x, offset_y)
+    subroutine solve_rolling(top, pn, load, settings, res, stat, errmsg, px_start, py_start, offset_x, offset_y, &
+                             reference)
         type(fc_tangential_operator), intent(inout) :: top
         real(dp), intent(in) :: pn(:, :)
         type(fc_rolling_loading), intent(in) :: load
@@ -93,6 +95,8 @@ contains
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
         real(dp), intent(in), optional :: px_start(:, :), py_start(:, :), offset_x(:, :), offset_y(:, :)
+        !> the reference solvers ('march', 'steadygs'): [[reference_solver]] of fc_rolling_refsolvers
+        procedure(rolling_reference_solver), optional :: reference
         real(dp), allocatable :: wx(:, :), wy(:, :), gs(:, :), gk(:, :), ox(:, :), oy(:, :), dox(:, :), doy(:, :)
         real(dp) :: muk
         integer :: nx, ny
@@ -160,6 +164,11 @@ contains
                 "' is not one of 'fft', 'runsum'"
             return
         end if
+        if (settings%solver /= 'gmres' .and. .not. present(reference)) then
+            stat = FC_ERR_UNSUPPORTED; errmsg = "solver: rolling = '"//trim(settings%solver)//"' is a reference solver: "// &
+                'pass reference = reference_solver (fc_rolling_refsolvers), or solve through solve_contact'
+            return
+        end if
         if (settings%solver == 'march' .and. muk /= load%mu) then
             stat = FC_ERR_UNSUPPORTED; errmsg = "solver: rolling = 'march' needs mu_kinetic = mu (the transient step has one mu)"
             return
@@ -194,11 +203,9 @@ contains
         call system_clock(t0, rate)
         if (settings%solver == 'gmres') then
             call run_newton_gmres(top, pn > 0, gs, gk, wx, wy, settings, res, resumed)
-        else if (settings%solver == 'march') then
-            call run_march(top, pn, load%mu, wx, wy, settings, res, stat, errmsg)
-            if (stat /= 0) return
         else
-            call run_steadygs(top, pn > 0, gs, gk, wx, wy, settings, res)
+            call reference(top, pn, load%mu, gs, gk, wx, wy, settings, res, stat, errmsg)
+            if (stat /= 0) return
         end if
         call system_clock(t1)
         res%cpu_seconds = real(t1 - t0, dp)/rate
@@ -213,7 +220,7 @@ contains
     !! safeguarded by step halving; each solve starts from the previous tractions.
     !! |(Fx, Fy)| must be below μk·Fn.  Force tolerance: tol·μk·Fn.
     subroutine solve_rolling_loading(top, pn, load, settings, res, stat, errmsg, px_start, py_start, &
-                                     offset_x, offset_y, xi_start, eta_start)
+                                     offset_x, offset_y, xi_start, eta_start, reference)
         type(fc_tangential_operator), intent(inout) :: top
         real(dp), intent(in) :: pn(:, :)
         type(fc_rolling_loading), intent(in) :: load
@@ -223,6 +230,7 @@ contains
         character(len=*), intent(out) :: errmsg
         real(dp), intent(in), optional :: px_start(:, :), py_start(:, :), offset_x(:, :), offset_y(:, :)
         real(dp), intent(in), optional :: xi_start, eta_start   !! first guess of the creepages
+        procedure(rolling_reference_solver), optional :: reference   !! as for [[solve_rolling]]
         real(dp), allocatable :: qx(:, :), qy(:, :), ox(:, :), oy(:, :)
         type(fc_tangential_result) :: trial
         type(fc_rolling_settings) :: inner
@@ -240,7 +248,7 @@ contains
         if (present(offset_x)) ox = offset_x
         if (present(offset_y)) oy = offset_y
         if (.not. load%force_prescribed) then
-            call solve_rolling(top, pn, load, settings, res, stat, errmsg, qx, qy, ox, oy)
+            call solve_rolling(top, pn, load, settings, res, stat, errmsg, qx, qy, ox, oy, reference)
             return
         end if
         stat = 0; errmsg = ''
@@ -274,7 +282,7 @@ contains
                 cycle
             end if
             cur%xi = nw%x_trial(1); cur%eta = nw%x_trial(2)
-            call solve_rolling(top, pn, cur, inner, trial, stat, errmsg, qx, qy, ox, oy)
+            call solve_rolling(top, pn, cur, inner, trial, stat, errmsg, qx, qy, ox, oy, reference)
             if (stat /= 0) return
             qx = trial%px; qy = trial%py          ! warm start of the next solve
             call nw%update([trial%fx - load%fx, trial%fy - load%fy], accepted, done, &

@@ -1,4 +1,5 @@
-!> Reference solvers of steady rolling (module [[fc_rolling]] calls them): the transient
+!> Reference solvers of steady rolling ([[reference_solver]], which the orchestrator passes
+!! to [[fc_rolling]]'s [[solve_rolling]]): the transient
 !! march ('march': rolling steps δq = δx solved by TangCG until the tractions stop changing)
 !! and SteadyGS ('steadygs': under-relaxed nonlinear block Gauss–Seidel from the leading
 !! edge; small grids only).  Simple and trusted, slow; see doc/rolling.md.
@@ -13,9 +14,26 @@ module fc_rolling_refsolvers
 
     real(dp), parameter :: relax = 0.5_dp   !! SteadyGS under-relaxation factor
 
-    public :: run_steadygs, run_march
+    public :: run_steadygs, run_march, reference_solver
 
 contains
+
+    !> The reference solver `settings%solver` names ('march' or 'steadygs'), with the
+    !! interface [[rolling_reference_solver]]: what [[solve_rolling]] is given to run them.
+    subroutine reference_solver(top, pn, mu, gs, gk, wx, wy, settings, res, stat, errmsg)
+        type(fc_tangential_operator), intent(inout) :: top
+        real(dp), intent(in) :: pn(:, :), mu, gs(:, :), gk(:, :), wx(:, :), wy(:, :)
+        type(fc_rolling_settings), intent(in) :: settings
+        type(fc_tangential_result), intent(inout) :: res
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        stat = 0; errmsg = ''
+        if (settings%solver == 'march') then
+            call run_march(top, pn, mu, wx, wy, settings, res, stat, errmsg)
+        else
+            call run_steadygs(top, pn > 0, gs, gk, wx, wy, settings, res)
+        end if
+    end subroutine reference_solver
 
     !> SteadyGS: nonlinear block Gauss–Seidel, columns from the leading edge (x = xmax)
     !! backwards, elements in contact only.  An adhesion element I in a run of adhesion

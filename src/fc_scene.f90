@@ -16,7 +16,7 @@ module fc_scene
     use fc_tangcg_types, only: fc_tangential_loading
     use fc_contact_types, only: fc_normal_loading, fc_contact_settings, FC_PROBLEM_NORMAL, FC_PROBLEM_TANGENTIAL, &
         FC_PROBLEM_ROLLING
-    use fc_rolling_base, only: fc_rolling_case
+    use fc_rolling_types, only: fc_rolling_case
     implicit none
     private
 

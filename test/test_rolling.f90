@@ -10,12 +10,13 @@ module test_rolling
     use fc_norm
     use fc_tangcg
     use fc_rolling
+    use fc_rolling_refsolvers, only: reference_solver
     use fc_rolling_ref
     use fc_fastsim
     use fc_legacy
     use fc_driver, only: run_driver
     use fc_contact, only: rolling_sequence, fc_contact_operators, fc_contact_loading, fc_contact_settings, &
-        fc_contact_result, FC_PROBLEM_ROLLING
+        fc_contact_result, FC_PROBLEM_ROLLING, solve_contact
     use fc_rolling_base, only: fc_rolling_case
     use fc_testing, file_text => file_lines
     implicit none
@@ -255,10 +256,10 @@ contains
             call solve_rolling(top, pn, rl, rs, rg, stat, msg)
             call check(error, stat == 0 .and. rg%status == FC_CONVERGED, 'gmres: '//trim(msg)//trim(rg%message))
             rs%solver = 'march'; rs%tol = 1e-8_dp; rs%maxit = 5000
-            call solve_rolling(top, pn, rl, rs, rm, stat, msg)
+            call solve_rolling(top, pn, rl, rs, rm, stat, msg, reference=reference_solver)
             call check(error, stat == 0 .and. rm%status == FC_CONVERGED, 'march: '//trim(msg)//trim(rm%message))
             rs%solver = 'steadygs'; rs%tol = 1e-9_dp; rs%maxit = 5000
-            call solve_rolling(top, pn, rl, rs, rgs, stat, msg)
+            call solve_rolling(top, pn, rl, rs, rgs, stat, msg, reference=reference_solver)
             if (allocated(error)) return
             call check(error, rg%fx, rm%fx, 'Fx gmres vs march', abs=ftol)
             call check(error, rg%fy, rm%fy, 'Fy gmres vs march', abs=ftol)
@@ -274,6 +275,31 @@ contains
         ! SteadyGS must converge on case 5 at least (it is the independent O(n²) check)
         call check(error, rgs%status == FC_CONVERGED, 'steadygs converges on case 5: '//trim(rgs%message))
         call top%destroy()
+        if (allocated(error)) return
+        ! the orchestrator passes the reference solvers to the rolling module: 'march' through
+        ! solve_contact gives the march's forces of case 5
+        block
+            type(fc_contact_operators) :: ops
+            type(fc_contact_loading) :: load
+            type(fc_contact_settings) :: set
+            type(fc_contact_result) :: res
+            type(fc_material) :: mat
+            mat%g1 = g_cat; mat%g2 = g_cat; mat%nu1 = nu_cat; mat%nu2 = nu_cat
+            call combine_material(mat, stat, msg)
+            load%problem = FC_PROBLEM_ROLLING
+            load%normal%force_prescribed = .true.; load%normal%fn = fn_cat
+            load%tangential%mu = mu_cat; load%tangential%xi = xi(3); load%tangential%eta = eta(3)
+            load%tangential%phi = phi(3)
+            set%normal%tol = 1e-10_dp
+            set%rolling = rs; set%rolling%solver = 'march'; set%rolling%tol = 1e-8_dp
+            call solve_contact(ops, grid, mat, quadratic_gap(grid, r_cat, r_cat), load, set, res, stat, msg)
+            call check(error, stat == 0 .and. res%tangential%status == FC_CONVERGED, 'march through solve_contact: '// &
+                trim(msg)//trim(res%tangential%message))
+            if (allocated(error)) return
+            call check(error, res%tangential%fx, rm%fx, 'Fx march: solve_contact vs solve_rolling', abs=1e-6_dp*ftol)
+            call check(error, res%tangential%fy, rm%fy, 'Fy march: solve_contact vs solve_rolling', abs=1e-6_dp*ftol)
+            call ops%destroy()
+        end block
     end subroutine test_references
 
     !> The FFT preconditioner ('fft', with the Eisenstat–Walker forcing) and the run sums alone
@@ -307,7 +333,7 @@ contains
             call check(error, stat == 0 .and. rn%status == FC_CONVERGED, 'fft: '//trim(msg)//trim(rn%message))
             call solve_rolling(top, pn, rl, rs_old, ro, stat, msg)
             call check(error, stat == 0 .and. ro%status == FC_CONVERGED, 'runsum: '//trim(msg)//trim(ro%message))
-            call solve_rolling(top, pn, rl, rs_m, rm, stat, msg)
+            call solve_rolling(top, pn, rl, rs_m, rm, stat, msg, reference=reference_solver)
             call check(error, stat == 0 .and. rm%status == FC_CONVERGED, 'march: '//trim(msg)//trim(rm%message))
             if (allocated(error)) return
             call check(error, rn%fx, ro%fx, 'Fx fft vs runsum', abs=etol)
@@ -486,7 +512,7 @@ contains
         do k = 1, 2
             rs%solver = solvers(k)
             rl%mu = mu_cat; rl%xi = 0.1_dp; rl%eta = 0.05_dp
-            call solve_rolling(top, pn, rl, rs, res, stat, msg)
+            call solve_rolling(top, pn, rl, rs, res, stat, msg, reference=reference_solver)
             call check(error, res%status == FC_CONVERGED, trim(solvers(k))//' converged')
             call check(error, res%nslip == res%ncon, trim(solvers(k))//' full slip')
             call check(error, hypot(res%fx, res%fy), mu_cat*fn_cat, trim(solvers(k))//' |F| = mu Fn', rel=5e-3_dp)
@@ -582,8 +608,11 @@ contains
         call check(error, stat == 0 .and. res%status == FC_NOT_CONVERGED, 'gmres maxit 3: not converged')
         call check(error, index(res%message, 'not converged') > 0, 'message says not converged')
         rs%solver = 'steadygs'
-        call solve_rolling(top, pn, rl, rs, res, stat, msg)
+        call solve_rolling(top, pn, rl, rs, res, stat, msg, reference=reference_solver)
         call check(error, stat == 0 .and. res%status == FC_NOT_CONVERGED, 'steadygs maxit 3: not converged')
+        call solve_rolling(top, pn, rl, rs, res, stat, msg)
+        call check(error, stat == FC_ERR_UNSUPPORTED .and. index(msg, 'reference_solver') > 0, &
+            'a reference solver without reference = ...: '//trim(msg))
         rs = fc_rolling_settings()
         rs%solver = 'tangcg'
         call solve_rolling(top, pn, rl, rs, res, stat, msg)
