@@ -18,8 +18,9 @@
 !! Exit code: 0 all cases converged; 1 a case had an input error (or the command line /
 !! case file was bad); 2 no input error but a solver did not converge or diverged.
 !!
-!! Size (~800 lines): the case loop with its three outcomes (error, sweep or sequence,
-!! single solve), its `--check` pass (each case's memory, nothing solved), the summary it fills, and the helpers the MPI package's distributed
+!! Size (~820 lines): the case loop with its three outcomes (error, sweep or sequence,
+!! single solve), its `--check` pass (each case's grid and memory, nothing solved), the
+!! summary it fills, and the helpers the MPI package's distributed
 !! driver shares with it (command line, case errors, output directory, Hertz reference);
 !! the strip cases and the sequence tables already live in [[fc_driver_strip]] and
 !! [[fc_sequence_csv]].
