@@ -43,7 +43,8 @@ module fastcontact
     public :: fc_version_string, fc_version_major, fc_version_minor, fc_version_patch, fc_build_info
     public :: dp, pi, msg_len, FC_CONVERGED, FC_NOT_CONVERGED, FC_DIVERGED, FC_ERROR, status_name
     public :: FC_OK, FC_ERR_VALUE, FC_ERR_NOT_READY, FC_ERR_SHAPE, FC_ERR_UNSUPPORTED, FC_ERR_IO, FC_ERR_NO_CONTACT
-    public :: FC_ERR_FRICTION_BOUND, FC_ERR_GRID, FC_ERR_ALLOC, FC_ERR_INTERNAL, error_name
+    public :: FC_ERR_FRICTION_BOUND, FC_ERR_GRID, FC_ERR_ALLOC, FC_ERR_INTERNAL, FC_ERR_GEOMETRY, FC_ERR_IC_FILE
+    public :: FC_ERR_MODEL_RANGE, FC_ERR_FFT_WISDOM, FC_ERR_AREA, error_name
     public :: fc_grid, make_grid, quadratic_gap, punch_rough_gap, wavy_gap, read_gap_table, rough_heights
     public :: fc_rough_params, h_no_contact
     public :: fc_material, combine_material, rigid_modulus

@@ -39,7 +39,7 @@ module fc_driver
     use fc_input_scene, only: build_case, case_notes
     use fc_scene, only: fc_case, case_memory, case_fits_memory
     use fc_strings, only: fmt_int, fmt_real
-    use fc_errors, only: FC_ERR_FRICTION_BOUND, FC_ERR_NO_CONTACT, FC_ERR_GEOMETRY, FC_ERR_IO, FC_ERR_ALLOC, &
+    use fc_errors, only: FC_ERR_FRICTION_BOUND, FC_ERR_NO_CONTACT, FC_ERR_GEOMETRY, FC_ERR_IO, FC_ERR_ALLOC, FC_ERR_AREA, &
         FC_ERR_GRID, FC_ERR_IC_FILE, FC_ERR_MODEL_RANGE, FC_ERR_FFT_WISDOM
     use fc_output, only: fc_case_summary, write_case_json, write_case_csv, write_case_npy, write_case_report
     use fc_auto, only: fc_auto_outcome, solve_case_auto, case_grid
@@ -707,16 +707,14 @@ contains
         case (FC_ERR_GRID)
             errmsg = '&grid nx = '//fmt_int(auto%grid%nx)//', ny = '//fmt_int(auto%grid%ny)// &
                 " with &solver normal = '"//trim(state%normal_solver)//"': "//trim(errmsg)//"; or use normal = 'bccg'"
-        case default
-            ! a grid the library rejects: name what it was made from
-            if (index(errmsg, 'grid:') == 1) then
-                if (grid_is_auto(state) .or. state%problem == 'hertz') then
-                    errmsg = '&grid (automatic, sized from &normal '//trim(merge('fn      ', 'approach', &
-                        state%force_prescribed))//' = '//fmt_real(merge(state%fn, state%approach, state%force_prescribed))// &
-                        ', &geometry rx = '//fmt_real(state%rx)//', ry = '//fmt_real(state%ry)//'): '//trim(errmsg)
-                else
-                    errmsg = '&grid nx = '//fmt_int(state%nx)//', ny = '//fmt_int(state%ny)//': '//trim(errmsg)
-                end if
+        case (FC_ERR_AREA)
+            ! a potential contact area the library rejects: name what it was made from
+            if (grid_is_auto(state) .or. state%problem == 'hertz') then
+                errmsg = '&grid (automatic, sized from &normal '//trim(merge('fn      ', 'approach', &
+                    state%force_prescribed))//' = '//fmt_real(merge(state%fn, state%approach, state%force_prescribed))// &
+                    ', &geometry rx = '//fmt_real(state%rx)//', ry = '//fmt_real(state%ry)//'): '//trim(errmsg)
+            else
+                errmsg = '&grid nx = '//fmt_int(state%nx)//', ny = '//fmt_int(state%ny)//': '//trim(errmsg)
             end if
         end select
     end subroutine library_context

@@ -9,13 +9,13 @@
 module fc_errors
     use fc_kinds, only: FC_OK, FC_ERR_VALUE, FC_ERR_NOT_READY, FC_ERR_SHAPE, FC_ERR_UNSUPPORTED, FC_ERR_IO, &
         FC_ERR_NO_CONTACT, FC_ERR_FRICTION_BOUND, FC_ERR_GRID, FC_ERR_ALLOC, FC_ERR_INTERNAL, FC_ERR_GEOMETRY, &
-        FC_ERR_IC_FILE, FC_ERR_MODEL_RANGE, FC_ERR_FFT_WISDOM
+        FC_ERR_IC_FILE, FC_ERR_MODEL_RANGE, FC_ERR_FFT_WISDOM, FC_ERR_AREA
     implicit none
     private
 
     public :: FC_OK, FC_ERR_VALUE, FC_ERR_NOT_READY, FC_ERR_SHAPE, FC_ERR_UNSUPPORTED, FC_ERR_IO, FC_ERR_NO_CONTACT
     public :: FC_ERR_FRICTION_BOUND, FC_ERR_GRID, FC_ERR_ALLOC, FC_ERR_INTERNAL, FC_ERR_GEOMETRY
-    public :: FC_ERR_IC_FILE, FC_ERR_MODEL_RANGE, FC_ERR_FFT_WISDOM
+    public :: FC_ERR_IC_FILE, FC_ERR_MODEL_RANGE, FC_ERR_FFT_WISDOM, FC_ERR_AREA
     public :: error_name
 
 contains
@@ -39,6 +39,7 @@ contains
         case (FC_ERR_IC_FILE);        name = 'ic_file'
         case (FC_ERR_MODEL_RANGE);    name = 'model_range'
         case (FC_ERR_FFT_WISDOM);     name = 'fft_wisdom'
+        case (FC_ERR_AREA);           name = 'area'
         case default;                 name = 'internal'
         end select
     end function error_name

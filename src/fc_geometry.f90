@@ -6,7 +6,7 @@
 !! contain the approach: the solvers use h = h0 − δ.
 module fc_geometry
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
-    use fc_kinds, only: dp, i8, pi, msg_len, FC_ERR_VALUE, FC_ERR_IO
+    use fc_kinds, only: dp, i8, pi, msg_len, FC_ERR_VALUE, FC_ERR_IO, FC_ERR_AREA
     use fc_table_io, only: read_real_table
     use fc_limits, only: max_length
     use fc_geometry_grid, only: fc_grid, h_no_contact
@@ -33,7 +33,8 @@ module fc_geometry
 
 contains
 
-    !> Build a grid, validating sizes and extents.
+    !> Build a grid, validating sizes and extents (stat = FC_ERR_AREA with a message naming
+    !! the value and its limit).
     subroutine make_grid(grid, nx, ny, xmin, xmax, ymin, ymax, stat, errmsg)
         type(fc_grid), intent(out) :: grid
         integer, intent(in) :: nx, ny
@@ -42,28 +43,28 @@ contains
         character(len=*), intent(out) :: errmsg
         stat = 0; errmsg = ''
         if (nx < 1 .or. ny < 1) then
-            stat = FC_ERR_VALUE; write (errmsg, '(a,i0,a,i0)') 'grid: nx and ny must be >= 1, got nx = ', nx, ', ny = ', ny
+            stat = FC_ERR_AREA; write (errmsg, '(a,i0,a,i0)') 'grid: nx and ny must be >= 1, got nx = ', nx, ', ny = ', ny
             return
         end if
         ! finite first: no comparison touches a NaN (floating-point traps stay quiet)
         if (.not. all(ieee_is_finite([xmin, xmax, ymin, ymax]))) then
-            stat = FC_ERR_VALUE; write (errmsg, '(a,4(1x,g0.6))') 'grid: xmin, xmax, ymin, ymax must be finite, got', &
+            stat = FC_ERR_AREA; write (errmsg, '(a,4(1x,g0.6))') 'grid: xmin, xmax, ymin, ymax must be finite, got', &
                 xmin, xmax, ymin, ymax
             return
         end if
         if (maxval(abs([xmin, xmax, ymin, ymax])) > max_length) then
-            stat = FC_ERR_VALUE
+            stat = FC_ERR_AREA
             write (errmsg, '(a,4(1x,g0.6),a,es8.1,a)') 'grid: xmin, xmax, ymin, ymax =', xmin, xmax, ymin, ymax, &
                 ' exceed the limit |x|, |y| <= ', max_length, ' mm'
             return
         end if
         if (.not. (xmax > xmin) .or. .not. (ymax > ymin)) then
-            stat = FC_ERR_VALUE
+            stat = FC_ERR_AREA
             write (errmsg, '(a,4(es12.4))') 'grid: need xmax > xmin and ymax > ymin, got ', xmin, xmax, ymin, ymax
             return
         end if
         if ((xmax - xmin)/nx < min_element_size .or. (ymax - ymin)/ny < min_element_size) then
-            stat = FC_ERR_VALUE
+            stat = FC_ERR_AREA
             write (errmsg, '(a,2(es11.3e3),a,es8.1,a)') 'grid: element size dx, dy =', (xmax - xmin)/nx, &
                 (ymax - ymin)/ny, ' below the limit ', min_element_size, ' mm'
             return

@@ -37,6 +37,7 @@ module fc_kinds
     integer, parameter, public :: FC_ERR_IC_FILE = 12       !! an influence-coefficient file cannot be used
     integer, parameter, public :: FC_ERR_MODEL_RANGE = 13   !! the case lies outside a simplified model's range
     integer, parameter, public :: FC_ERR_FFT_WISDOM = 14    !! an FFTW wisdom file cannot be read or written
+    integer, parameter, public :: FC_ERR_AREA = 15          !! the potential contact area (its grid) is not valid
 
 
     public :: status_name, check_iteration_settings

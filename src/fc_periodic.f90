@@ -29,7 +29,7 @@
 !! circulant on mean-free vectors: symbol 1/ŵ (zero mode 0, values floored at 1e−8 of the
 !! largest as in [[inverse_toeplitz_from_kernel]]), on the same plans.
 module fc_periodic
-    use fc_kinds, only: dp, i8, msg_len, FC_ERR_VALUE
+    use fc_kinds, only: dp, i8, msg_len, FC_ERR_VALUE, FC_ERR_AREA
     use fc_geometry, only: fc_grid
     use fc_influence, only: fc_material, element_coefficient, IC_ZZ
     use fc_toeplitz, only: build_bttb_periodic
@@ -53,11 +53,11 @@ contains
         character(len=*), intent(out) :: errmsg
         stat = 0; errmsg = ''
         if (grid%nx < 2 .or. grid%ny < 2 .or. modulo(grid%nx, 2) /= 0 .or. modulo(grid%ny, 2) /= 0) then
-            stat = FC_ERR_VALUE
+            stat = FC_ERR_AREA
             write (errmsg, '(a,i0,a,i0,a)') 'grid: periodic = .true. needs even nx and ny >= 2, got nx = ', &
                 grid%nx, ', ny = ', grid%ny, ' (the cell is repeated in x and y)'
         else if (images < 0 .or. images > periodic_images_max) then
-            stat = FC_ERR_VALUE
+            stat = FC_ERR_AREA
             write (errmsg, '(a,i0,a,i0,a)') 'grid: periodic images = ', images, ' must lie in [0, ', &
                 periodic_images_max, ']'
         end if

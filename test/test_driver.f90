@@ -47,6 +47,7 @@ contains
             new_unittest('empty_grid', test_empty_grid), &
             new_unittest('oversized_grid', test_oversized), &
             new_unittest('no_contact_possible', test_no_contact), &
+            new_unittest('automatic_area_too_fine', test_auto_area_too_fine), &
             new_unittest('fn_not_positive', test_fn_not_positive), &
             new_unittest('approach_and_fn', test_approach_and_fn), &
             new_unittest('unknown_solver', test_unknown_solver), &
@@ -410,6 +411,19 @@ contains
         call expect_bad(error, replace(base_case('bad'), 'approach = 0.1091', 'approach = -0.01'), &
             [character(len=16) :: '&normal', 'approach', '-0.01', 'no contact'])
     end subroutine test_no_contact
+
+    !> An automatic area the grid builder rejects (FC_ERR_AREA: a contact of 1.6e-8 mm, 64
+    !! elements across it are below the 1e-9 mm element size) names what the area was sized
+    !! from; the driver chooses that context by the error code.
+    subroutine test_auto_area_too_fine(error)
+        type(error_type), allocatable, intent(out) :: error
+        call expect_bad(error, "&case name = 'bad' /"//nl// &
+            '&material g1 = 82000.0, g2 = 82000.0, nu1 = 0.28, nu2 = 0.28 /'//nl// &
+            '&grid auto = .true., n_across = 64 /'//nl//"&geometry kind = 'quadratic', rx = 1e-6, ry = 1e-6 /"//nl// &
+            '&normal fn = 1e-12 /'//nl, &
+            [character(len=40) :: '&grid (automatic, sized from &normal fn', 'rx = 1.00000000E-06', &
+            'element size dx, dy', 'below the limit'])
+    end subroutine test_auto_area_too_fine
 
     subroutine test_fn_not_positive(error)
         type(error_type), allocatable, intent(out) :: error
