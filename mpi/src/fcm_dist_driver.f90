@@ -50,7 +50,7 @@ module fcm_dist_driver
     use fc_threads, only: set_thread_count
     use fcm_norm, only: fcm_normal_operator, build_dist_normal_operator, solve_dist_normal, dist_memory_per_rank
     use fc_memory, only: available_memory, process_resident_bytes, format_bytes, memory_env
-    use fc_errors, only: FC_ERR_ALLOC, FC_ERR_FFT_WISDOM
+    use fc_errors, only: FC_ERR_ALLOC, FC_ERR_FFT_WISDOM, FC_ERR_NO_CONTACT, FC_ERR_VALUE, FC_ERR_UNSUPPORTED
     use fc_fft_effort, only: read_wisdom, write_wisdom, wisdom_temp_name
     use fcm_fftw_mpi, only: fftw_mpi_broadcast_wisdom, fftw_mpi_gather_wisdom
     use fcm_geometry, only: quadratic_gap_rows, wavy_gap_rows, punch_rough_gap_rows
@@ -257,13 +257,12 @@ contains
                 call solve_dist_normal(dop, h0, kase%settings%normal, res, stat, errmsg, approach=kase%normal%approach)
             end if
             if (stat /= 0) then
-                ! the library names the group ('normal: approach = …'): as the driver's '&normal approach = …'
-                j0 = index(errmsg, ': ')
-                if (j0 > 1 .and. j0 <= 12) then
-                    errmsg = '&'//errmsg(1:j0 - 1)//' '//trim(errmsg(j0 + 2:))
-                else
-                    errmsg = '&normal '//trim(errmsg)
-                end if
+                ! the library names the key and value ('approach = … gives no contact'); the
+                ! namelist group follows from the error code
+                select case (stat)
+                case (FC_ERR_NO_CONTACT, FC_ERR_VALUE); errmsg = '&normal '//trim(errmsg)
+                case (FC_ERR_UNSUPPORTED); errmsg = '&solver '//trim(errmsg)
+                end select
                 call case_error(nbefore); return
             end if
             ! ---- summary (the serial driver's keys)

@@ -178,24 +178,24 @@ contains
         end if
         if (trim(settings%solver) /= 'bccg') then
             stat = FC_ERR_UNSUPPORTED
-            errmsg = "solver: normal = '"//trim(settings%solver)//"': the distributed solver is 'bccg'"; return
+            errmsg = "normal = '"//trim(settings%solver)//"': the distributed solver is 'bccg'"; return
         end if
         if (settings%deflation) then
-            stat = FC_ERR_UNSUPPORTED; errmsg = 'solver: deflation = .true. is not available in the distributed solver'; return
+            stat = FC_ERR_UNSUPPORTED; errmsg = 'deflation = .true. is not available in the distributed solver'; return
         end if
         force_mode = present(fn)
         fnv = 0; delta = 0
         if (force_mode) then
             fnv = fn
             if (.not. (fn > 0)) then
-                stat = FC_ERR_VALUE; write (errmsg, '(a,es12.4,a)') 'normal: fn = ', fn, ' must be > 0'; return
+                stat = FC_ERR_VALUE; write (errmsg, '(a,es12.4,a)') 'fn = ', fn, ' must be > 0'; return
             end if
         else
             delta = approach
             any_contact = any(h0 - delta <= 0 .and. h0 < 0.5_dp*h_no_contact)
             call mpi_allreduce(MPI_IN_PLACE, any_contact, 1, MPI_LOGICAL, MPI_LOR, dop%lay%comm, ierr)
             if (.not. any_contact) then
-                stat = FC_ERR_NO_CONTACT; write (errmsg, '(a,es12.4,a)') 'normal: approach = ', approach, &
+                stat = FC_ERR_NO_CONTACT; write (errmsg, '(a,es12.4,a)') 'approach = ', approach, &
                     ' gives no contact (h0 − approach > 0 everywhere)'
                 return
             end if
