@@ -44,7 +44,7 @@ module fc_driver
     use fc_output, only: fc_case_summary, write_case_json, write_case_csv, write_case_npy, write_case_report
     use fc_auto, only: fc_auto_outcome, solve_case_auto, case_grid
     use fc_threads, only: set_thread_count
-    use fc_memory, only: available_memory, memory_fits, format_bytes, memory_env
+    use fc_memory, only: available_memory, memory_fits, format_bytes, memory_env, strip_bytes_per_element, case_memory_bytes
     use fc_version, only: fc_build_info
     implicit none
     private
@@ -213,7 +213,18 @@ contains
             status = 0
             line = ' case '//trim(state%name)//': '
             if (strip_model_index(state) > 0) then
-                line = line//'strip model problem: not estimated'
+                need = case_memory_bytes(int(state%nx, int64), strip_bytes_per_element(state%strip))
+                line = line//"strip model problem (solver '"//trim(state%strip)//"'), "//fmt_int(state%nx)//' x 1: about '// &
+                    format_bytes(need)
+                call memory_fits(need, share, 0_int64, .false., fits, limit, source, stat, errmsg)
+                if (limit < 0) then
+                    line = line//' (the available memory is unknown)'
+                else
+                    line = line//' of '//format_bytes(limit)//' available ('//source//')'
+                    if (.not. fits) then
+                        line = line//': TOO LARGE'; status = 2
+                    end if
+                end if
             else if (state%problem == 'hertz') then
                 line = line//'analytic Hertz solution: no grid'
             else
@@ -298,6 +309,10 @@ contains
             ! ---- strip model problems: their own solvers and outputs
             kase = build_case(state)
             if (strip_model_index(state) > 0) then
+                call check_strip_memory(stat, errmsg)
+                if (stat /= 0) then
+                    call case_error(); return
+                end if
                 call run_strip_case(dir, kase, t0, rate, case_status)
                 return
             end if
@@ -445,6 +460,28 @@ contains
         end subroutine solve_and_count
 
         !> Solve a strip model problem case and write its outputs (sets case_status).
+        !> A strip model problem's estimated memory (fc_memory: bytes per element of its
+        !! solver) against what this process may use: stat = FC_ERR_ALLOC naming `&grid nx`.
+        subroutine check_strip_memory(stat, errmsg)
+            integer, intent(out) :: stat
+            character(len=*), intent(out) :: errmsg
+            integer(int64) :: need, limit
+            real(dp) :: bpe
+            logical :: fits
+            character(len=:), allocatable :: source
+            character(len=msg_len) :: m
+            bpe = strip_bytes_per_element(state%strip)
+            need = case_memory_bytes(int(state%nx, int64), bpe)
+            call memory_fits(need, share, 0_int64, .true., fits, limit, source, stat, m)
+            errmsg = m
+            if (stat /= 0 .or. fits) return
+            stat = FC_ERR_ALLOC
+            errmsg = '&grid nx = '//fmt_int(state%nx)//": the strip model problem (&solver strip = '"// &
+                trim(state%strip)//"') needs about "//format_bytes(need)//' ('//fmt_int(nint(bpe))// &
+                ' B per element), more than the '//format_bytes(limit)//' this process may use ('//source// &
+                '); use a smaller nx, or set '//memory_env//' to override'
+        end subroutine check_strip_memory
+
         subroutine run_strip_case(dir, kase, t0, rate, case_status)
             character(len=*), intent(in) :: dir
             type(fc_case), intent(in) :: kase

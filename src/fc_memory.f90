@@ -45,6 +45,7 @@ module fc_memory
     integer(i8), parameter :: unlimited = 2_i8**60                       !! cgroup v1 "no limit" is ~2^63
 
     public :: available_memory, case_memory_bytes, serial_bytes_per_element, parse_byte_size, format_bytes, memory_fits
+    public :: strip_bytes_per_element
     public :: kb_field, process_resident_bytes, cgroup_headroom
 
 contains
@@ -139,6 +140,18 @@ contains
             if (fmg_rsm) b = b + bytes_per_element_fmg_rsm
         end if
     end function serial_bytes_per_element
+
+    !> Bytes per grid element of a strip model problem (nx × 1) by its solver ('mg-fft-rsm',
+    !! 'mg-fft-sd', 'fft-rsm'): measured 207, 264–278 and 125–135 B at 2^20 and 2^22 elements,
+    !! one or two threads, with a margin (doc/reliability.md, "Memory").
+    pure real(dp) function strip_bytes_per_element(solver) result(b)
+        character(len=*), intent(in) :: solver
+        select case (solver)
+        case ('mg-fft-sd'); b = 300
+        case ('fft-rsm'); b = 150
+        case default; b = 225
+        end select
+    end function strip_bytes_per_element
 
     !> Estimated peak memory of a serial solve [bytes]: `memory_base_bytes` plus
     !! `bytes_per_element` for each of `nelements` grid elements.

@@ -505,6 +505,15 @@ contains
             'ymax = 6.0 /', '&grid auto = .true., margin = 0.0 /'), '11M', code, errs)
         call check(error, code == 0 .and. index(file_lines(dir//'/m.json'), 'enlarged x1.5') > 0 .and. &
             index(file_lines(dir//'/m.json'), 'clipped') == 0, 'enlargement within 11M: '//file_lines(dir//'/m.json'))
+        ! strip model problems: 10 MB + 225 B x 65 536 = 24.7 MB for the default solver
+        call run_with("&case name = 'm', problem = 'strip_mp1' /"//new_line('a')//"&geometry kind = 'strip2d' /"// &
+            new_line('a')//'&grid nx = 65536 /'//new_line('a')//'&output table = .false. /', '20M', code, errs)
+        call check(error, code /= 0 .and. index(errs, "&grid nx = 65536: the strip model problem (&solver strip = "// &
+            "'mg-fft-rsm') needs about 25 MB (225 B per element), more than the 20 MB this process may use") > 0 .and. &
+            .not. file_exists(dir//'/m.json'), 'strip model problem, 20M: '//errs)
+        call run_with("&case name = 'm', problem = 'strip_mp1' /"//new_line('a')//"&geometry kind = 'strip2d' /"// &
+            new_line('a')//'&grid nx = 65536 /'//new_line('a')//'&output table = .false. /', '26M', code, errs)
+        call check(error, code == 0 .and. file_exists(dir//'/m.json'), 'strip model problem, 26M must be solved: '//errs)
         call check_mode()
         call unset_env(memory_env)
     contains
@@ -529,6 +538,8 @@ contains
                 new_line('a')//"&geometry kind = 'quadratic', rx = 300.0, ry = 0.0 /"
             write (u, '(a)') "&case name = 'f', problem = 'hertz' /"//new_line('a')// &
                 "&geometry kind = 'quadratic', rx = 300.0, ry = 163.0 /"
+            write (u, '(a)') "&case name = 'g', problem = 'strip_mp1' /"//new_line('a')// &
+                "&geometry kind = 'strip2d' /"//new_line('a')//'&grid nx = 65536 /'
             close (u)
             call set_env(memory_env, '20M')
             open (newunit=urep, file=dir//'/report.txt', status='replace', action='write')
@@ -547,8 +558,10 @@ contains
             call check(error, index(rep, ' case e: normal, 200 x 1 (the line contact as a strip), 1 thread(s): about '// &
                 '10 MB of 20 MB available') > 0, '--check, case e: '//rep)
             call check(error, index(rep, ' case f: analytic Hertz solution: no grid') > 0, '--check, case f: '//rep)
-            call check(error, index(rep, '&material nu1') > 0 .and. index(rep, 'fastcontact --check: 6 case(s): 3 to '// &
-                'solve, 2 too large for the memory, 1 with input errors') > 0, '--check, case c and counts: '//rep)
+            call check(error, index(rep, " case g: strip model problem (solver 'mg-fft-rsm'), 65536 x 1: about 25 MB "// &
+                'of 20 MB available ('//memory_env//'): TOO LARGE') > 0, '--check, case g: '//rep)
+            call check(error, index(rep, '&material nu1') > 0 .and. index(rep, 'fastcontact --check: 7 case(s): 3 to '// &
+                'solve, 3 too large for the memory, 1 with input errors') > 0, '--check, case c and counts: '//rep)
             call check(error, .not. file_exists(dir//'/a.json') .and. .not. file_exists(dir//'/b.json'), &
                 '--check must not solve or write')
         end subroutine check_mode
