@@ -18,7 +18,7 @@
 !! Exit code: 0 all cases converged; 1 a case had an input error (or the command line /
 !! case file was bad); 2 no input error but a solver did not converge or diverged.
 !!
-!! Size (~820 lines): the case loop with its three outcomes (error, sweep or sequence,
+!! Size (~840 lines): the case loop with its three outcomes (error, sweep or sequence,
 !! single solve), its `--check` pass (each case's grid and memory, nothing solved), the
 !! summary it fills, and the helpers the MPI package's distributed
 !! driver shares with it (command line, case errors, output directory, Hertz reference);
@@ -31,7 +31,7 @@ module fc_driver
     use fc_influence, only: fc_material
     use fc_contact, only: fc_contact_operators, FC_PROBLEM_ROLLING
     use fc_sequence_csv, only: write_sequence_csv, sweep_header, steps_header
-    use fc_driver_strip, only: solve_strip_case
+    use fc_driver_strip, only: solve_strip_case, strip_memory_need, check_strip_memory
     use fc_hertz, only: hertz_from_approach, hertz_from_force
     use fc_namelist, only: fc_case_chunk, read_case_file
     use fc_input, only: fc_case_input, apply_case, strip_model_index, grid_is_auto
@@ -44,7 +44,7 @@ module fc_driver
     use fc_output, only: fc_case_summary, write_case_json, write_case_csv, write_case_npy, write_case_report
     use fc_auto, only: fc_auto_outcome, solve_case_auto, case_grid
     use fc_threads, only: set_thread_count
-    use fc_memory, only: available_memory, memory_fits, format_bytes, memory_env, strip_bytes_per_element, case_memory_bytes
+    use fc_memory, only: available_memory, memory_fits, format_bytes, memory_env
     use fc_version, only: fc_build_info
     implicit none
     private
@@ -189,11 +189,10 @@ contains
             integer, intent(in) :: k
             integer, intent(out) :: status
             type(fc_case) :: kase
-            integer(int64) :: avail, need, limit
+            integer(int64) :: avail, need
             character(len=:), allocatable :: source, kind, line
             real(dp) :: bpe
             integer :: threads, gnx, gny
-            logical :: fits
             type(fc_auto_outcome) :: no_outcome
             status = 1
             saved_state = state
@@ -213,18 +212,10 @@ contains
             status = 0
             line = ' case '//trim(state%name)//': '
             if (strip_model_index(state) > 0) then
-                need = case_memory_bytes(int(state%nx, int64), strip_bytes_per_element(state%strip))
+                need = strip_memory_need(state)
                 line = line//"strip model problem (solver '"//trim(state%strip)//"'), "//fmt_int(state%nx)//' x 1: about '// &
                     format_bytes(need)
-                call memory_fits(need, share, 0_int64, .false., fits, limit, source, stat, errmsg)
-                if (limit < 0) then
-                    line = line//' (the available memory is unknown)'
-                else
-                    line = line//' of '//format_bytes(limit)//' available ('//source//')'
-                    if (.not. fits) then
-                        line = line//': TOO LARGE'; status = 2
-                    end if
-                end if
+                call against_memory(need, line, status)
             else if (state%problem == 'hertz') then
                 line = line//'analytic Hertz solution: no grid'
             else
@@ -249,20 +240,32 @@ contains
                     line = line//' (the line contact as a strip)'
                 end if
                 line = line//', '//fmt_int(threads)//' thread(s): about '//format_bytes(need)
-                ! a run adds what its process holds then; this pass holds nothing yet
-                call memory_fits(need, share, 0_int64, .false., fits, limit, source, stat, errmsg)
-                if (limit < 0) then
-                    line = line//' (the available memory is unknown)'
-                else
-                    line = line//' of '//format_bytes(limit)//' available ('//source//')'
-                    if (.not. fits) then
-                        line = line//': TOO LARGE'; status = 2
-                    end if
-                end if
+                call against_memory(need, line, status)
                 if (kase%target > 0) line = line//'; the accuracy target refines further, as memory allows'
             end if
             write (rep, '(a)') line
         end subroutine check_one_case
+
+        !> `--check`: the estimate `need` [bytes] against the memory available (a run adds what
+        !! its process holds then; this pass holds nothing yet), appended to `line`; status 2
+        !! when it does not fit.
+        subroutine against_memory(need, line, status)
+            integer(int64), intent(in) :: need
+            character(len=:), allocatable, intent(inout) :: line
+            integer, intent(inout) :: status
+            integer(int64) :: limit
+            logical :: fits
+            character(len=:), allocatable :: source
+            call memory_fits(need, share, 0_int64, .false., fits, limit, source, stat, errmsg)
+            if (limit < 0) then
+                line = line//' (the available memory is unknown)'
+            else
+                line = line//' of '//format_bytes(limit)//' available ('//source//')'
+                if (.not. fits) then
+                    line = line//': TOO LARGE'; status = 2
+                end if
+            end if
+        end subroutine against_memory
 
         !> Solve case k; case_status 0 converged, 1 input error, 2 solver failure.
         subroutine run_one_case(k, case_status)
@@ -309,7 +312,7 @@ contains
             ! ---- strip model problems: their own solvers and outputs
             kase = build_case(state)
             if (strip_model_index(state) > 0) then
-                call check_strip_memory(stat, errmsg)
+                call check_strip_memory(state, share, stat, errmsg)
                 if (stat /= 0) then
                     call case_error(); return
                 end if
@@ -460,28 +463,6 @@ contains
         end subroutine solve_and_count
 
         !> Solve a strip model problem case and write its outputs (sets case_status).
-        !> A strip model problem's estimated memory (fc_memory: bytes per element of its
-        !! solver) against what this process may use: stat = FC_ERR_ALLOC naming `&grid nx`.
-        subroutine check_strip_memory(stat, errmsg)
-            integer, intent(out) :: stat
-            character(len=*), intent(out) :: errmsg
-            integer(int64) :: need, limit
-            real(dp) :: bpe
-            logical :: fits
-            character(len=:), allocatable :: source
-            character(len=msg_len) :: m
-            bpe = strip_bytes_per_element(state%strip)
-            need = case_memory_bytes(int(state%nx, int64), bpe)
-            call memory_fits(need, share, 0_int64, .true., fits, limit, source, stat, m)
-            errmsg = m
-            if (stat /= 0 .or. fits) return
-            stat = FC_ERR_ALLOC
-            errmsg = '&grid nx = '//fmt_int(state%nx)//": the strip model problem (&solver strip = '"// &
-                trim(state%strip)//"') needs about "//format_bytes(need)//' ('//fmt_int(nint(bpe))// &
-                ' B per element), more than the '//format_bytes(limit)//' this process may use ('//source// &
-                '); use a smaller nx, or set '//memory_env//' to override'
-        end subroutine check_strip_memory
-
         subroutine run_strip_case(dir, kase, t0, rate, case_status)
             character(len=*), intent(in) :: dir
             type(fc_case), intent(in) :: kase

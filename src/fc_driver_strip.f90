@@ -1,9 +1,9 @@
 !> Strip model problems of the batch driver (`problem = 'strip_mp1'` … `'strip_mp3'`, thesis
 !! §3.2.5): the case record's strip settings mapped onto [[fc_mg2d]], its result onto the
-!! case summary.  Apart from [[fc_driver]] because these problems have their own solvers,
-!! settings and outputs.
+!! case summary, and the memory check of such a case.  Apart from [[fc_driver]] because
+!! these problems have their own solvers, settings, memory and outputs.
 module fc_driver_strip
-    use fc_kinds, only: dp, FC_ERROR, status_name
+    use fc_kinds, only: dp, i8, msg_len, FC_ERROR, status_name
     use fc_geometry, only: fc_grid
     use fc_tangcg_types, only: EL_EXTERIOR, EL_ADHESION
     use fc_mg2d, only: fc_strip_problem, fc_mg2d_settings, fc_mg2d_result, strip_model_problem, solve_strip_mg, &
@@ -13,14 +13,46 @@ module fc_driver_strip
     use fc_input_scene, only: case_notes
     use fc_scene, only: fc_case
     use fc_strings, only: fmt_int
-    use fc_errors, only: FC_ERR_VALUE
+    use fc_errors, only: FC_ERR_VALUE, FC_ERR_ALLOC
+    use fc_memory, only: memory_fits, format_bytes, memory_env, strip_bytes_per_element, case_memory_bytes
     use fc_output, only: fc_case_summary
     implicit none
     private
 
-    public :: solve_strip_case
+    public :: solve_strip_case, strip_memory_need, check_strip_memory
 
 contains
+
+    !> Estimated peak memory of a strip model problem [bytes] (fc_memory: bytes per element
+    !! of its solver, nx elements).
+    integer(i8) function strip_memory_need(state) result(need)
+        type(fc_case_input), intent(in) :: state
+        need = case_memory_bytes(int(state%nx, i8), strip_bytes_per_element(state%strip))
+    end function strip_memory_need
+
+    !> A strip model problem's estimate against what this process may use (its `share` of
+    !! the available memory, plus what it holds): stat = FC_ERR_ALLOC naming `&grid nx` and
+    !! `&solver strip`; FC_ERR_VALUE for an invalid `FASTCONTACT_AVAILABLE_MEMORY`.
+    subroutine check_strip_memory(state, share, stat, errmsg)
+        type(fc_case_input), intent(in) :: state
+        integer, intent(in) :: share   !! processes sharing the available memory
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        integer(i8) :: need, limit
+        logical :: fits
+        character(len=:), allocatable :: source
+        character(len=msg_len) :: m
+        need = strip_memory_need(state)
+        call memory_fits(need, share, 0_i8, .true., fits, limit, source, stat, m)
+        errmsg = m
+        if (stat /= 0 .or. fits) return
+        stat = FC_ERR_ALLOC
+        errmsg = '&grid nx = '//fmt_int(state%nx)//": the strip model problem (&solver strip = '"// &
+            trim(state%strip)//"') needs about "//format_bytes(need)//' ('// &
+            fmt_int(nint(strip_bytes_per_element(state%strip)))//' B per element), more than the '// &
+            format_bytes(limit)//' this process may use ('//source//'); use a smaller nx, or set '//memory_env// &
+            ' to override'
+    end subroutine check_strip_memory
 
     !> Solve a strip model problem case (problem = 'strip_mp1' … 'strip_mp3', thesis §3.2.5):
     !! the no-slip tangential problem A^xx p = u on an nx×1 grid of [−4,4]×[−50,50] mm with
