@@ -51,7 +51,7 @@ module fc_auto
     use fc_influence, only: fc_material, combine_material
     use fc_norm, only: fc_normal_result
     use fc_tangcg_types, only: fc_tangential_result, fc_tangential_loading
-    use fc_contact, only: set_influence_coefficients, clear_influence_coefficients, &
+    use fc_contact, only: take_influence_coefficients, clear_influence_coefficients, &
         fc_contact_operators, fc_contact_loading, fc_contact_settings, fc_contact_result, &
         solve_contact, rolling_sequence, FC_PROBLEM_TANGENTIAL, FC_PROBLEM_ROLLING
     use fc_fmg, only: fc_quadratic_surface, fc_punch_rough_surface, fc_wavy_surface
@@ -617,7 +617,7 @@ contains
         if (stat /= 0) then
             stat = FC_ERR_IC_FILE; return
         end if
-        call set_influence_coefficients(ops, ic, stat, errmsg)
+        call take_influence_coefficients(ops, ic, stat, errmsg)
         if (stat /= 0) stat = FC_ERR_IC_FILE
     end subroutine use_ic_file
 

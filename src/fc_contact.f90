@@ -59,7 +59,7 @@ module fc_contact
         fc_contact_result, fc_contact_loading, fc_contact_operators, fc_contact_state, &
         FC_FROM_REST, FC_TRANSIENT_SHIFT, FC_TRANSIENT_ROLLING
     public :: solve_contact, ensure_operators, solve_normal_tangential, shift_along_x, fc_tangential_loading
-    public :: set_influence_coefficients, clear_influence_coefficients
+    public :: set_influence_coefficients, take_influence_coefficients, clear_influence_coefficients
     public :: rolling_sequence, continuation_factor, extrapolate_tractions, extrapolate_tractions_swap
 
 contains
@@ -167,14 +167,39 @@ contains
         type(fc_ic_set), intent(in) :: ic
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
-        stat = 0; errmsg = ''
-        if (ic%content /= 'combined' .or. .not. allocated(ic%a)) then
-            stat = FC_ERR_VALUE; errmsg = "influence coefficients: a set of content 'combined' is needed (combine the bodies first)"
-            return
-        end if
+        call check_combined(ic, stat, errmsg)
+        if (stat /= 0) return
         ops%ic = ic
         call ops%normal%destroy(); call ops%tangential%destroy()
     end subroutine set_influence_coefficients
+
+    !> [[set_influence_coefficients]] without a copy: the coefficients move from `ic` (left
+    !! unallocated) to `ops`, so that a large set is not held twice.
+    subroutine take_influence_coefficients(ops, ic, stat, errmsg)
+        type(fc_contact_operators), intent(inout) :: ops
+        type(fc_ic_set), intent(inout) :: ic
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        real(dp), allocatable :: a(:, :, :, :)
+        call check_combined(ic, stat, errmsg)
+        if (stat /= 0) return
+        if (allocated(ops%ic%a)) deallocate (ops%ic%a)
+        call ops%normal%destroy(); call ops%tangential%destroy()
+        call move_alloc(ic%a, a)
+        ops%ic = ic
+        call move_alloc(a, ops%ic%a)
+    end subroutine take_influence_coefficients
+
+    !> stat = FC_ERR_VALUE unless `ic` is a combined set with coefficients.
+    subroutine check_combined(ic, stat, errmsg)
+        type(fc_ic_set), intent(in) :: ic
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        stat = 0; errmsg = ''
+        if (ic%content /= 'combined' .or. .not. allocated(ic%a)) then
+            stat = FC_ERR_VALUE; errmsg = "influence coefficients: a set of content 'combined' is needed (combine the bodies first)"
+        end if
+    end subroutine check_combined
 
     !> Return to the half-space coefficients (operators rebuilt at the next solve).
     subroutine clear_influence_coefficients(ops)

@@ -572,8 +572,16 @@ contains
         call case_fits_memory(kase, gnx, gny, fits, what, stat, errmsg)
         if (stat /= 0 .or. fits) return
         stat = FC_ERR_ALLOC
-        errmsg = '&grid nx = '//fmt_int(kase%nx)//', ny = '//fmt_int(kase%ny)//': '//what// &
-            '; use a smaller grid or more memory, or set '//memory_env//' to override'
+        if (len_trim(kase%ic_file) > 0) then
+            ! the coefficient sets count too: name the file and how far it reaches
+            errmsg = "&material ic_file = '"//trim(kase%ic_file)//"' (offsets to "//fmt_int(kase%ic_offsets(1))//' x '// &
+                fmt_int(kase%ic_offsets(2))//'), &grid nx = '//fmt_int(kase%nx)//', ny = '//fmt_int(kase%ny)//': '// &
+                what//'; use a smaller grid, a file that reaches no farther than the grid needs (nx-1, ny-1), or '// &
+                'more memory, or set '//memory_env//' to override'
+        else
+            errmsg = '&grid nx = '//fmt_int(kase%nx)//', ny = '//fmt_int(kase%ny)//': '//what// &
+                '; use a smaller grid or more memory, or set '//memory_env//' to override'
+        end if
     end subroutine check_case_memory
 
     !> The output directory of a case: `out_dir` (the command line's --out) when present,

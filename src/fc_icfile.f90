@@ -37,7 +37,7 @@ module fc_icfile
     character(len=2), parameter :: comp_name(3) = ['x ', 'y ', 'z ']
 
     public :: fc_ic_set, ic_set_allocate, ic_block_index, ic_set_kernel   ! (from [[fc_influence]])
-    public :: validate_ic_set, combine_ic_sets, analytic_body_set
+    public :: validate_ic_set, combine_ic_sets, combine_ic_sets_in_place, analytic_body_set, move_ic_set
     public :: write_ic_file, read_ic_file, hash_text, is_fastcontact_ic_file
     public :: rename_file, temp_name
 
@@ -83,8 +83,43 @@ contains
         type(fc_ic_set), intent(inout) :: out
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
-        integer :: mx, my, i, j
-        real(dp) :: s
+        integer :: mx, my
+        call check_combinable(b1, b2, stat, errmsg)
+        if (stat /= 0) return
+        mx = min(b1%mx, b2%mx); my = min(b1%my, b2%my)
+        call ic_set_allocate(out, mx, my, b1%dx, b1%dy)
+        out%a = b1%a(-mx:mx, -my:my, :, :)
+        out%source = b1%source; out%load = b1%load; out%model = b1%model
+        call add_second_body(out, b2)
+    end subroutine combine_ic_sets
+
+    !> [[combine_ic_sets]] into `b1`: body 1's set becomes the combined one, with the same
+    !! values, without a third set in memory (a set is 72 B per offset pair, about 290 B per
+    !! element of the grid it serves).  Only when b1 reaches farther than b2 is it cut to the
+    !! common offsets through a copy.
+    subroutine combine_ic_sets_in_place(b1, b2, stat, errmsg)
+        type(fc_ic_set), intent(inout) :: b1
+        type(fc_ic_set), intent(in) :: b2
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        integer :: mx, my
+        real(dp), allocatable :: cut(:, :, :, :)
+        call check_combinable(b1, b2, stat, errmsg)
+        if (stat /= 0) return
+        mx = min(b1%mx, b2%mx); my = min(b1%my, b2%my)
+        if (mx /= b1%mx .or. my /= b1%my) then
+            allocate (cut(-mx:mx, -my:my, 3, 3), source=b1%a(-mx:mx, -my:my, :, :))
+            call move_alloc(cut, b1%a)
+            b1%mx = mx; b1%my = my
+        end if
+        call add_second_body(b1, b2)
+    end subroutine combine_ic_sets_in_place
+
+    !> stat = FC_ERR_VALUE (errmsg) unless b1 and b2 are one body each on the same cells.
+    subroutine check_combinable(b1, b2, stat, errmsg)
+        type(fc_ic_set), intent(in) :: b1, b2
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
         stat = FC_ERR_VALUE
         if (b1%content /= 'body' .or. b2%content /= 'body') then
             errmsg = "influence coefficients: only sets of content 'body' can be combined"; return
@@ -94,23 +129,40 @@ contains
                 b1%dx, b1%dy, ' vs ', b2%dx, b2%dy
             return
         end if
-        mx = min(b1%mx, b2%mx); my = min(b1%my, b2%my)
-        call ic_set_allocate(out, mx, my, b1%dx, b1%dy)
+        stat = 0; errmsg = ''
+    end subroutine check_combinable
+
+    !> out (body 1's coefficients on offsets out%mx, out%my, with its source, load and
+    !! model) becomes the combined set: body 2's coefficients added, its coupling blocks
+    !! mirrored in z.
+    subroutine add_second_body(out, b2)
+        type(fc_ic_set), intent(inout) :: out
+        type(fc_ic_set), intent(in) :: b2
+        integer :: mx, my, i, j
+        real(dp) :: s
+        mx = out%mx; my = out%my
         do j = 1, 3
             do i = 1, 3
                 s = 1
                 if ((i == 3) .neqv. (j == 3)) s = -1   ! coupling blocks: body 2 is mirrored in z
-                out%a(:, :, i, j) = b1%a(-mx:mx, -my:my, i, j) + s*b2%a(-mx:mx, -my:my, i, j)
+                out%a(:, :, i, j) = out%a(:, :, i, j) + s*b2%a(-mx:mx, -my:my, i, j)
             end do
         end do
         out%content = 'combined'
-        out%source = trim(b1%source)//'+'//trim(b2%source)
-        out%load = b1%load
-        out%model = 'body 1: '//trim(b1%model)//'; body 2: '//trim(b2%model)
+        out%source = trim(out%source)//'+'//trim(b2%source)
+        out%model = 'body 1: '//trim(out%model)//'; body 2: '//trim(b2%model)
         out%hash = ''
         out%g = 0; out%nu = 0
-        stat = 0; errmsg = ''
-    end subroutine combine_ic_sets
+    end subroutine add_second_body
+
+    !> `to` = `from` without copying the coefficients: they move (`from%a` ends unallocated).
+    subroutine move_ic_set(from, to)
+        type(fc_ic_set), intent(inout) :: from, to
+        real(dp), allocatable :: a(:, :, :, :)
+        call move_alloc(from%a, a)
+        to = from
+        call move_alloc(a, to%a)
+    end subroutine move_ic_set
 
     !> Check a set: finite values, even symmetric blocks with xy = yx, positive FFT symbols
     !! of A^zz and of the tangential 2×2 block.  `label` names the file in messages.
@@ -330,11 +382,14 @@ contains
 
     !> Read a fastcontact influence-coefficient file (any version ≤ ic_format_version) and
     !! validate it ([[validate_ic_set]]).
-    subroutine read_ic_file(path, set, stat, errmsg)
+    subroutine read_ic_file(path, set, stat, errmsg, header_only)
         character(len=*), intent(in) :: path
         type(fc_ic_set), intent(inout) :: set
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
+        !> read and check the header only: `set` gets its offsets, cell size and content, no
+        !! coefficients (what a memory estimate needs before the file is loaded)
+        logical, intent(in), optional :: header_only
         integer :: u, ios, line, version, mx, my, ix, iy, jx, jy, p
         real(dp) :: v(9), dx, dy
         character(len=4096) :: buf
@@ -411,6 +466,13 @@ contains
             write (errmsg, '(2a,es12.4,a,g0.6,a)') trim(path), ': g = ', set%g, ', nu = ', set%nu, &
                 ' must satisfy g > 0, 0 <= nu < 0.5 for content body'
             close (u); return
+        end if
+        if (present(header_only)) then
+            if (header_only) then
+                if (allocated(set%a)) deallocate (set%a)
+                set%mx = mx; set%my = my; set%dx = dx; set%dy = dy
+                close (u); stat = 0; errmsg = ''; return
+            end if
         end if
         call ic_set_allocate(set, mx, my, dx, dy)
         do iy = -my, my

@@ -90,11 +90,13 @@ contains
     end function mirror_sign
 
     !> Read CONTACT's format into a combined set (offsets ±(mx−1), ±(my−1)) and validate it.
-    subroutine read_contact_file(path, set, stat, errmsg)
+    subroutine read_contact_file(path, set, stat, errmsg, header_only)
         character(len=*), intent(in) :: path
         type(fc_ic_set), intent(inout) :: set
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
+        !> read and check the header only (offsets, cell size; no coefficients)
+        logical, intent(in), optional :: header_only
         integer :: u, ios, line, nmatrix, iaconvex, lquasid, xyzorder, lsymmx, lsymmy, mx, my, ix, iy, jx
         real(dp) :: dx, dy, v(10)
         character(len=4096) :: buf
@@ -141,9 +143,16 @@ contains
             if (.not. (dx > 0 .and. dy > 0)) then
                 write (errmsg, '(2a,2es12.4,a)') trim(path), ': dx, dy = ', dx, dy, ' must be > 0'; close (u); return
             end if
-            call ic_set_allocate(set, mx - 1, my - 1, dx, dy)
             set%content = 'combined'; set%source = 'contact'; set%load = 'constant'
             set%model = 'CONTACT influence-coefficient file '//trim(path); set%hash = ''; set%g = 0; set%nu = 0
+            if (present(header_only)) then
+                if (header_only) then
+                    if (allocated(set%a)) deallocate (set%a)
+                    set%mx = mx - 1; set%my = my - 1; set%dx = dx; set%dy = dy
+                    close (u); stat = 0; errmsg = ''; return
+                end if
+            end if
+            call ic_set_allocate(set, mx - 1, my - 1, dx, dy)
             do iy = -(my - 1), my - 1
                 do ix = 0, mx - 1
                     call next_data(ios); if (ios /= 0) exit parse

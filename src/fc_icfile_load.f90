@@ -8,25 +8,26 @@ module fc_icfile_load
     implicit none
     private
 
-    public :: load_influence_source, read_any_ic_file
+    public :: load_influence_source, read_any_ic_file, ic_source_offsets
 
 contains
 
     !> Read `path` in either format (fastcontact files start with `format = fastcontact-ic`).
-    subroutine read_any_ic_file(path, set, stat, errmsg)
+    subroutine read_any_ic_file(path, set, stat, errmsg, header_only)
         character(len=*), intent(in) :: path
         type(fc_ic_set), intent(inout) :: set
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
+        logical, intent(in), optional :: header_only   !! the header only: offsets, cell size, content
         logical :: exists
         inquire (file=path, exist=exists)
         if (.not. exists) then
             stat = FC_ERR_IO; errmsg = "influence-coefficient file '"//trim(path)//"' does not exist"; return
         end if
         if (is_fastcontact_ic_file(path)) then
-            call read_ic_file(path, set, stat, errmsg)
+            call read_ic_file(path, set, stat, errmsg, header_only)
         else
-            call read_contact_file(path, set, stat, errmsg)
+            call read_contact_file(path, set, stat, errmsg, header_only)
         end if
     end subroutine read_any_ic_file
 
@@ -50,7 +51,7 @@ contains
                     "' must not be given"
                 return
             end if
-            set = b1
+            call move_ic_set(b1, set)
             return
         end if
         call check_material(b1, path, g1, nu1, 'g1', 'nu1', stat, errmsg)
@@ -68,10 +69,33 @@ contains
             call analytic_body_set(g2, nu2, b1%dx, b1%dy, b1%mx, b1%my, b2, stat, errmsg)
             if (stat /= 0) return
         end if
-        call combine_ic_sets(b1, b2, set, stat, errmsg)
+        ! combined into body 1's set, which then moves to `set`: at most two sets in memory
+        call combine_ic_sets_in_place(b1, b2, stat, errmsg)
         if (stat /= 0) return
+        deallocate (b2%a)
+        call move_ic_set(b1, set)
         call validate_ic_set(set, 'combined coefficients of '//trim(path), stat, errmsg)
     end subroutine load_influence_source
+
+    !> The largest offsets (mx, my) of the coefficient files of a contact (`path`, and `path2`
+    !! when given), read from their headers: what [[load_influence_source]] will hold (its
+    !! peak: body 1's set and body 2's, each of 72 B per offset pair, doc/reliability.md,
+    !! "Memory").  stat ≠ 0 when a header cannot be read (the load reports it in full).
+    subroutine ic_source_offsets(path, path2, mx, my, stat, errmsg)
+        character(len=*), intent(in) :: path, path2
+        integer, intent(out) :: mx, my
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        type(fc_ic_set) :: h
+        mx = 0; my = 0
+        call read_any_ic_file(path, h, stat, errmsg, header_only=.true.)
+        if (stat /= 0) return
+        mx = h%mx; my = h%my
+        if (len_trim(path2) == 0) return
+        call read_any_ic_file(path2, h, stat, errmsg, header_only=.true.)
+        if (stat /= 0) return
+        mx = max(mx, h%mx); my = max(my, h%my)
+    end subroutine ic_source_offsets
 
     subroutine check_material(b, path, g, nu, gkey, nukey, stat, errmsg)
         type(fc_ic_set), intent(in) :: b

@@ -153,7 +153,9 @@ contains
         if (.not. tangential) kind = 'normal'
         if (s%load%problem == FC_PROBLEM_ROLLING) kind = 'rolling'
         if (tangential .and. s%load%transient /= FC_FROM_REST) kind = 'transient'
-        coupled = tangential .and. (s%mat%k /= 0 .or. allocated(s%ops%ic%a))
+        ! the coupling blocks are built when K ≠ 0; a coefficient set is loaded already
+        ! (fc_set_influence_file checked its memory) and is not part of this estimate
+        coupled = tangential .and. s%mat%k /= 0
         fmg_rsm = s%settings%normal%solver == 'fmg' .and. s%settings%fmg%smoother == 'fft-rsm'
         bpe = serial_bytes_per_element(kind, fc_thread_count(), coupled, fmg_rsm)
         if (coupled) kind = kind//' (dissimilar materials)'

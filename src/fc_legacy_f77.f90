@@ -4,7 +4,10 @@
 !! unchanged.  One alias per routine of [[fc_legacy]], same arguments.
 module fc_legacy_f77
     use, intrinsic :: iso_c_binding, only: c_int, c_double, c_char
-    use fc_legacy
+    ! the three parts of [[fc_legacy]], not the module itself: one layer less in the module graph
+    use fc_legacy_setup
+    use fc_legacy_calculate
+    use fc_legacy_results
     implicit none
     private
 

@@ -17,11 +17,12 @@ module fc_legacy_setup
     use fc_influence
     use fc_contact_types
     use fc_tangcg_types
-    use fc_contact, only: set_influence_coefficients, clear_influence_coefficients
+    use fc_contact, only: take_influence_coefficients, clear_influence_coefficients
     use fc_strings, only: fmt_int, fmt_g6
     use fc_legacy_registry
     use fc_icfile, only: fc_ic_set
-    use fc_icfile_load, only: load_influence_source
+    use fc_icfile_load, only: load_influence_source, ic_source_offsets
+    use fc_memory, only: memory_fits, format_bytes, memory_env, ic_set_bytes
     use fc_threads, only: max_threads_allowed
     implicit none
     private
@@ -112,12 +113,45 @@ contains
             call fail(s, ierr, FCL_ORDER, 'fc_set_influence_file: material not set (call fc_set_material first)')
             return
         end if
+        call check_load_memory(p1, p2, stat, msg)
+        if (stat /= 0) then
+            call fail(s, ierr, flat_code(stat), 'fc_set_influence_file: '//trim(msg)); return
+        end if
         call load_influence_source(p1, p2, s%mat%g1, s%mat%nu1, s%mat%g2, s%mat%nu2, ic, stat, msg)
-        if (stat == 0) call set_influence_coefficients(s%ops, ic, stat, msg)
+        if (stat == 0) call take_influence_coefficients(s%ops, ic, stat, msg)
         if (stat /= 0) then
             call fail(s, ierr, FCL_INVALID_VALUE, 'fc_set_influence_file: '//trim(msg)); return
         end if
     end subroutine fc_set_influence_file
+
+    !> Before coefficient files are loaded: the load holds body 1's set and body 2's (each
+    !! [[ic_set_bytes]] at the files' largest offsets, read from their headers) and the
+    !! checks' temporaries, about half a set ([[ic_case_memory_bytes]]); stat = FC_ERR_ALLOC when that exceeds the memory
+    !! this process may use (nothing is loaded), FC_ERR_VALUE for an invalid
+    !! `FASTCONTACT_AVAILABLE_MEMORY`.  A header that cannot be read is left to the load,
+    !! which reports it in full.
+    subroutine check_load_memory(p1, p2, stat, msg)
+        character(len=*), intent(in) :: p1, p2
+        integer, intent(out) :: stat
+        character(len=msg_len), intent(out) :: msg
+        integer :: mx, my
+        integer(i8) :: set, need, limit
+        character(len=:), allocatable :: source
+        logical :: fits
+        call ic_source_offsets(p1, p2, mx, my, stat, msg)
+        if (stat /= 0) then
+            stat = 0; msg = ''; return
+        end if
+        set = ic_set_bytes(mx, my)
+        need = 2*set + set/2
+        ! the host's own memory is not the library's to release: no resident size added
+        call memory_fits(need, 1, 0_i8, .false., fits, limit, source, stat, msg)
+        if (stat /= 0 .or. fits) return
+        stat = FC_ERR_ALLOC
+        msg = 'the coefficient files reach offsets '//fmt_int(mx)//' x '//fmt_int(my)//': loading them needs about '// &
+            format_bytes(need)//', more than the '//format_bytes(limit)//' this process may use ('//source// &
+            '); use files that reach no farther than the grid needs (nx-1, ny-1), or set '//memory_env//' to override'
+    end subroutine check_load_memory
 
     !> A null-terminated C string (at most 4096 characters) as a Fortran string.
     function c_string(c) result(f)

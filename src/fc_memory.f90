@@ -45,7 +45,7 @@ module fc_memory
     integer(i8), parameter :: unlimited = 2_i8**60                       !! cgroup v1 "no limit" is ~2^63
 
     public :: available_memory, case_memory_bytes, serial_bytes_per_element, parse_byte_size, format_bytes, memory_fits
-    public :: strip_bytes_per_element
+    public :: strip_bytes_per_element, ic_set_bytes, ic_case_memory_bytes
     public :: kb_field, process_resident_bytes, cgroup_headroom
 
 contains
@@ -160,6 +160,27 @@ contains
         real(dp), intent(in) :: bytes_per_element
         b = memory_base_bytes + int(bytes_per_element*real(nelements, dp), i8)
     end function case_memory_bytes
+
+    !> Bytes of a set of tabulated influence coefficients reaching offsets ±mx, ±my: nine
+    !! blocks of (2mx + 1)(2my + 1) reals, 72 B per offset pair (about 290 B per element of
+    !! the grid it serves when mx, my = nx, ny).
+    pure integer(i8) function ic_set_bytes(mx, my) result(b)
+        integer, intent(in) :: mx, my
+        b = 72_i8*(2_i8*mx + 1)*(2_i8*my + 1)
+    end function ic_set_bytes
+
+    !> Estimated peak memory [bytes] of a solve whose coefficients come from a file: the
+    !! larger of the load (body 1's set and body 2's while they are read and combined, plus
+    !! the checks' FFT symbols and temporaries, about half a set) and the solve (the combined
+    !! set beside the operators and work arrays, `bytes_per_element`).  Measured peaks
+    !! (doc/reliability.md, "Memory"): a normal case 18.5, 49.9 and 176.1 MB on 128², 256²,
+    !! 512² with one file (estimates 21.9, 57.4, 199.0 MB), 53.9 MB on 256² with two.
+    pure integer(i8) function ic_case_memory_bytes(nelements, bytes_per_element, set_bytes) result(b)
+        integer(i8), intent(in) :: nelements
+        real(dp), intent(in) :: bytes_per_element
+        integer(i8), intent(in) :: set_bytes
+        b = memory_base_bytes + set_bytes + max(set_bytes + set_bytes/2, int(bytes_per_element*real(nelements, dp), i8))
+    end function ic_case_memory_bytes
 
     !> Bytes of a size such as '24G', '512 M', '1.5e9', '2000000000' (decimal suffixes k, M,
     !! G, T, an optional 'B'); ok = .false. unless it is a finite number in [1, 1e18].

@@ -6,7 +6,8 @@
 !! [[case_setup]] turns it into the material, grid and undeformed distance of one solve.
 module fc_scene
     use fc_kinds, only: dp, i8, msg_len
-    use fc_memory, only: serial_bytes_per_element, case_memory_bytes, memory_fits, format_bytes
+    use fc_memory, only: serial_bytes_per_element, case_memory_bytes, memory_fits, format_bytes, ic_set_bytes, &
+        ic_case_memory_bytes, memory_base_bytes
     use fc_threads, only: fc_default_threads
     use fc_errors, only: FC_ERR_ALLOC, FC_ERR_IO, FC_ERR_GEOMETRY, FC_ERR_NO_CONTACT
     use fc_strings, only: fmt_int, fmt_real
@@ -29,6 +30,10 @@ module fc_scene
         type(fc_material) :: material                !! g1, g2, nu1, nu2 (combined when solved)
         character(len=path_len) :: ic_file = ''      !! influence coefficients of body 1 (or combined) from a file
         character(len=path_len) :: ic_file2 = ''     !! body 2's coefficients from a file ('': half-space g2, nu2)
+        !> largest offsets (mx, my) of the coefficient files, from their headers
+        !! ([[ic_source_offsets]]; the namelist input reads them); 0: not known, the
+        !! memory estimate then assumes the grid's nx, ny (the least a file must reach)
+        integer :: ic_offsets(2) = 0
         ! ---- potential contact area
         integer :: nx = 0, ny = 0                    !! elements per direction
         real(dp) :: xmin = 0, xmax = 0, ymin = 0, ymax = 0  !! outer edges [mm]
@@ -75,10 +80,11 @@ contains
 
     !> Estimated peak memory of a solve of `c` on an nx × ny grid [bytes] (fc_memory: bytes per
     !! element of its kind of problem, more with two or more threads, with dissimilar
-    !! materials and with FMG's 'fft-rsm' hierarchy), with the kind as the messages name it
-    !! ('normal', 'tangential', 'transient', 'rolling', qualified by '(dissimilar materials)'
-    !! or '(FMG fft-rsm)'), the bytes per element and the threads it assumed.  Coefficients
-    !! from a file count as dissimilar (they may hold the coupling blocks).
+    !! materials and with FMG's 'fft-rsm' hierarchy; coefficients from a file add their sets,
+    !! [[ic_case_memory_bytes]]), with the kind as the messages name it ('normal',
+    !! 'tangential', 'transient', 'rolling', qualified by '(dissimilar materials)', '(FMG
+    !! fft-rsm)' or '(coefficients from a file)'), the bytes per element (all of the estimate
+    !! above the process's base, per element) and the threads it assumed.
     subroutine case_memory(c, nx, ny, need, kind, bpe, threads)
         type(fc_case), intent(in) :: c
         integer, intent(in) :: nx, ny
@@ -88,6 +94,7 @@ contains
         integer, intent(out) :: threads
         type(fc_material) :: m
         integer :: st
+        integer(i8) :: n
         character(len=msg_len) :: msg
         logical :: coupled, fmg_rsm
         threads = c%threads
@@ -98,12 +105,20 @@ contains
         if (c%rolling%transient) kind = 'transient'
         m = c%material
         call combine_material(m, st, msg)
-        coupled = kind /= 'normal' .and. ((st == 0 .and. m%k /= 0) .or. len_trim(c%ic_file) > 0)
+        ! the coupling blocks are built when K ≠ 0, with or without a coefficient file
+        coupled = kind /= 'normal' .and. st == 0 .and. m%k /= 0
         fmg_rsm = c%settings%normal%solver == 'fmg' .and. c%settings%fmg%smoother == 'fft-rsm'
         bpe = serial_bytes_per_element(kind, threads, coupled, fmg_rsm)
         if (coupled) kind = kind//' (dissimilar materials)'
         if (fmg_rsm) kind = kind//' (FMG fft-rsm)'
-        need = case_memory_bytes(int(nx, i8)*ny, bpe)
+        n = int(nx, i8)*ny
+        if (len_trim(c%ic_file) > 0) then
+            need = ic_case_memory_bytes(n, bpe, ic_set_bytes(max(c%ic_offsets(1), nx), max(c%ic_offsets(2), ny)))
+            kind = kind//' (coefficients from a file)'
+            bpe = real(need - memory_base_bytes, dp)/real(n, dp)
+        else
+            need = case_memory_bytes(n, bpe)
+        end if
     end subroutine case_memory
 
     !> Whether a solve of `c` on an nx × ny grid fits in the memory this process may use: the

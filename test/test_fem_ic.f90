@@ -38,6 +38,7 @@ contains
             new_unittest('file_with_analytic_kernel_equals_analytic_solve', test_file_solve), &
             new_unittest('file_refused_by_fmg_and_other_cells', test_file_refusals), &
             new_unittest('flat_api_set_influence_file', test_flat_api), &
+            new_unittest('coefficient_sets_in_memory', test_sets_in_memory), &
             new_unittest('fem_coefficients_vs_analytic_and_hertz', test_fem_vs_analytic) ]
     end subroutine collect_fem_ic
 
@@ -427,6 +428,120 @@ contains
         call fc_finalize(h, ierr)
         call delete_file('test_fem_ic_api.fcic')
     end subroutine test_flat_api
+
+    !> What coefficient files cost in memory, and that it is counted (doc/reliability.md,
+    !! "Memory"): the in-place combination and the move into the operators give the same
+    !! values as the copying ones; the headers give the offsets a load will hold (both
+    !! formats); the driver refuses a case whose file, not its grid, exceeds the memory, and
+    !! names `&material ic_file`; the flat API refuses to load such a file (FCL_MEMORY) and
+    !! keeps its half-space coefficients.
+    subroutine test_sets_in_memory(error)
+        use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char
+        use fc_icfile_load, only: ic_source_offsets
+        use fc_memory, only: memory_env
+        use fc_driver, only: run_driver
+        use fc_legacy, only: fc_init, fc_finalize, fc_set_material, fc_set_influence_file, fc_get_error_message, &
+            FCL_OK, FCL_MEMORY
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_ic_set) :: b1, b2, big, c, d
+        type(fc_contact_operators) :: ops
+        integer :: stat, mx, my, code, i
+        integer(c_int) :: h, ierr, jerr
+        character(kind=c_char) :: buf(512)
+        character(len=msg_len) :: msg
+        character(len=:), allocatable :: errs
+        character(len=*), parameter :: dir = 'build/test_fem_ic_memory'
+        ! combination: dissimilar bodies (non-zero coupling blocks), b1 reaching farther than b2
+        call analytic_body_set(200.0_dp, 0.42_dp, 0.2_dp, 0.25_dp, 5, 3, b1, stat, msg)
+        call analytic_body_set(800.0_dp, 0.2_dp, 0.2_dp, 0.25_dp, 5, 3, b2, stat, msg)
+        call analytic_body_set(200.0_dp, 0.42_dp, 0.2_dp, 0.25_dp, 7, 4, big, stat, msg)
+        call combine_ic_sets(b1, b2, c, stat, msg)
+        d = b1
+        call combine_ic_sets_in_place(d, b2, stat, msg)
+        call check(error, stat == 0 .and. all(d%a == c%a) .and. d%content == c%content .and. d%source == c%source .and. &
+            d%model == c%model, 'in-place combination differs from combine_ic_sets'); if (allocated(error)) return
+        call combine_ic_sets(big, b2, c, stat, msg)
+        d = big
+        call combine_ic_sets_in_place(d, b2, stat, msg)
+        call check(error, stat == 0 .and. d%mx == 5 .and. d%my == 3 .and. all(shape(d%a) == shape(c%a)) .and. &
+            all(d%a == c%a), 'in-place combination of a larger body 1 differs'); if (allocated(error)) return
+        call take_influence_coefficients(ops, d, stat, msg)
+        call check(error, stat == 0 .and. .not. allocated(d%a) .and. ops%ic%mx == 5, &
+            'take_influence_coefficients must move the set'); if (allocated(error)) return
+        call check(error, all(ops%ic%a == c%a), 'the moved set differs'); if (allocated(error)) return
+        ! headers
+        call write_ic_file('test_fem_ic_hdr.fcic', big, stat, msg)
+        call write_contact_file('test_fem_ic_hdr.cnt', c, stat, msg)
+        call ic_source_offsets('test_fem_ic_hdr.fcic', '', mx, my, stat, msg)
+        call check(error, stat == 0 .and. mx == 7 .and. my == 4, 'own header: '//trim(msg)); if (allocated(error)) return
+        call ic_source_offsets('test_fem_ic_hdr.cnt', '', mx, my, stat, msg)
+        call check(error, stat == 0 .and. mx == 5 .and. my == 3, 'CONTACT header: '//trim(msg)); if (allocated(error)) return
+        call ic_source_offsets('test_fem_ic_hdr.cnt', 'test_fem_ic_hdr.fcic', mx, my, stat, msg)
+        call check(error, stat == 0 .and. mx == 7 .and. my == 4, 'largest of two headers'); if (allocated(error)) return
+        call delete_file('test_fem_ic_hdr.fcic'); call delete_file('test_fem_ic_hdr.cnt')
+        ! a 16 x 16 grid (dx = 0.15 mm) with a file reaching offsets 60 x 60: a set is 72 B x
+        ! 121² = 1.05 MB, the case 10 MB + 1.05 MB + 1.5 x 1.05 MB = 12.6 MB, while the grid
+        ! alone (270 B x 256) would be 10.07 MB
+        call execute_command_line('rm -rf '//dir//' && mkdir -p '//dir)
+        call analytic_body_set(200.0_dp, 0.42_dp, 0.15_dp, 0.15_dp, 60, 60, b1, stat, msg)
+        call write_ic_file(dir//'/far.fcic', b1, stat, msg)
+        call check(error, stat == 0, 'write: '//trim(msg)); if (allocated(error)) return
+        call run_case('11.5M', code, errs)
+        call check(error, code /= 0 .and. index(errs, "&material ic_file = '"//dir//"/far.fcic' (offsets to 60 x 60), "// &
+            '&grid nx = 16, ny = 16: a normal (coefficients from a file) case on 1 thread(s) needs about 13 MB') > 0 &
+            .and. index(errs, 'more than the 12 MB this process may use') > 0, '11.5M: '//errs)
+        if (allocated(error)) return
+        call check(error, .not. file_exists(dir//'/m.json'), 'no JSON for a case refused for memory')
+        call run_case('13M', code, errs)
+        call check(error, code == 0 .and. file_exists(dir//'/m.json'), '13M must be solved: '//errs)
+        if (allocated(error)) return
+        ! the flat API: loading needs 2.5 sets, 2.6 MB
+        call fc_init(h, ierr)
+        call fc_set_material(h, 200.0_dp, 200.0_dp, 0.42_dp, 0.42_dp, ierr)
+        call set_env(memory_env, '2M')
+        call fc_set_influence_file(h, dir//'/far.fcic'//c_null_char, ''//c_null_char, ierr)
+        call unset_env(memory_env)
+        call fc_get_error_message(h, buf, 512_c_int, jerr)
+        msg = ''
+        do i = 1, 511
+            if (buf(i) == c_null_char) exit
+            msg(i:i) = buf(i)
+        end do
+        call check(error, ierr == FCL_MEMORY .and. index(msg, 'fc_set_influence_file: the coefficient files reach '// &
+            'offsets 60 x 60: loading them needs about 3 MB, more than the 2 MB') > 0, 'flat API, 2M: '//trim(msg))
+        if (allocated(error)) return
+        call fc_set_influence_file(h, dir//'/far.fcic'//c_null_char, ''//c_null_char, ierr)
+        call check(error, ierr == FCL_OK, 'flat API without the limit must load the file')
+        call fc_finalize(h, ierr)
+    contains
+        subroutine run_case(avail, code, errs)
+            character(len=*), intent(in) :: avail
+            integer, intent(out) :: code
+            character(len=:), allocatable, intent(out) :: errs
+            character(len=256) :: args(3)
+            integer :: u, urep, uerr
+            call execute_command_line('rm -f '//dir//'/m.json')
+            open (newunit=u, file=dir//'/cases.nml', status='replace', action='write')
+            write (u, '(a)') "&case name = 'm', problem = 'normal' /", &
+                "&material g1 = 200.0, g2 = 200.0, nu1 = 0.42, nu2 = 0.42, ic_file = '"//dir//"/far.fcic' /", &
+                '&grid nx = 16, ny = 16, xmin = -1.2, xmax = 1.2, ymin = -1.2, ymax = 1.2 /', &
+                "&geometry kind = 'quadratic', rx = 50.0, ry = 50.0 /", '&normal approach = 0.02 /', &
+                '&output table = .false. /', '&solver threads = 1 /'
+            close (u)
+            call set_env(memory_env, avail)
+            open (newunit=urep, file=dir//'/report.txt', status='replace', action='write')
+            open (newunit=uerr, file=dir//'/errors.txt', status='replace', action='write')
+            args(1) = dir//'/cases.nml'; args(2) = '--out'; args(3) = dir
+            call run_driver(args, code, report_unit=urep, error_unit=uerr)
+            close (urep); close (uerr)
+            call unset_env(memory_env)
+            errs = file_lines(dir//'/errors.txt')
+        end subroutine run_case
+        logical function file_exists(path)
+            character(len=*), intent(in) :: path
+            inquire (file=path, exist=file_exists)
+        end function file_exists
+    end subroutine test_sets_in_memory
 
     !> Small, quick model used by the tests (quadratic hexahedra, coarse grading).
     subroutine small_fem_model(p)
