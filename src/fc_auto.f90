@@ -589,13 +589,17 @@ contains
 
     !> Influence coefficients of the case: a file (`ic_file`, body 2 from `ic_file2` or the
     !! half-space) replaces the half-space kernels in `ops`; without one the half-space
-    !! kernels are (re)used.  Modes that need coefficients on other grids are refused.
+    !! kernels are (re)used.  Modes that need coefficients on other grids are refused.  The
+    !! files are read once: while later cases name the same files and materials, `ops`
+    !! keeps the set and the operators built on it (a file rewritten during a run is not
+    !! read again).
     subroutine use_ic_file(s, ops, stat, errmsg)
         type(fc_case), intent(in) :: s
         type(fc_contact_operators), intent(inout) :: ops
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
         type(fc_ic_set) :: ic
+        character(len=:), allocatable :: source
         stat = 0; errmsg = ''
         if (len_trim(s%ic_file) == 0) then
             if (allocated(ops%ic%a)) call clear_influence_coefficients(ops)
@@ -612,13 +616,34 @@ contains
                 "for one grid; remove the target"
             return
         end if
+        ! the files and the materials they are checked against, exactly
+        source = 'files '//trim(s%ic_file)//' | '//trim(s%ic_file2)//'; materials '// &
+            real_key([s%material%g1, s%material%nu1, s%material%g2, s%material%nu2])
+        if (allocated(ops%ic%a) .and. allocated(ops%ic_source)) then
+            if (ops%ic_source == source) then
+                stat = 0; return
+            end if
+        end if
         call load_influence_source(s%ic_file, s%ic_file2, s%material%g1, s%material%nu1, s%material%g2, &
             s%material%nu2, ic, stat, errmsg)
         if (stat /= 0) then
             stat = FC_ERR_IC_FILE; return
         end if
-        call take_influence_coefficients(ops, ic, stat, errmsg)
+        call take_influence_coefficients(ops, ic, stat, errmsg, source)
         if (stat /= 0) stat = FC_ERR_IC_FILE
     end subroutine use_ic_file
+
+    !> The values, each written exactly (hexadecimal bits), as one key.
+    pure function real_key(v) result(key)
+        real(dp), intent(in) :: v(:)
+        character(len=:), allocatable :: key
+        character(len=17) :: one
+        integer :: i
+        key = ''
+        do i = 1, size(v)
+            write (one, '(z16.16,a)') v(i), ' '
+            key = key//one
+        end do
+    end function real_key
 
 end module fc_auto

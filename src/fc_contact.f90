@@ -170,16 +170,19 @@ contains
         call check_combined(ic, stat, errmsg)
         if (stat /= 0) return
         ops%ic = ic
+        ops%ic_source = ''
         call ops%normal%destroy(); call ops%tangential%destroy()
     end subroutine set_influence_coefficients
 
     !> [[set_influence_coefficients]] without a copy: the coefficients move from `ic` (left
-    !! unallocated) to `ops`, so that a large set is not held twice.
-    subroutine take_influence_coefficients(ops, ic, stat, errmsg)
+    !! unallocated) to `ops`, so that a large set is not held twice.  `source` names where
+    !! they came from ([[fc_contact_operators]]%ic_source; default '').
+    subroutine take_influence_coefficients(ops, ic, stat, errmsg, source)
         type(fc_contact_operators), intent(inout) :: ops
         type(fc_ic_set), intent(inout) :: ic
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
+        character(len=*), intent(in), optional :: source
         real(dp), allocatable :: a(:, :, :, :)
         call check_combined(ic, stat, errmsg)
         if (stat /= 0) return
@@ -188,6 +191,8 @@ contains
         call move_alloc(ic%a, a)
         ops%ic = ic
         call move_alloc(a, ops%ic%a)
+        ops%ic_source = ''
+        if (present(source)) ops%ic_source = source
     end subroutine take_influence_coefficients
 
     !> stat = FC_ERR_VALUE unless `ic` is a combined set with coefficients.
@@ -205,6 +210,7 @@ contains
     subroutine clear_influence_coefficients(ops)
         type(fc_contact_operators), intent(inout) :: ops
         if (allocated(ops%ic%a)) deallocate (ops%ic%a)
+        ops%ic_source = ''
         call ops%normal%destroy(); call ops%tangential%destroy()
     end subroutine clear_influence_coefficients
 

@@ -82,6 +82,10 @@ module fc_contact_types
         !> combined influence coefficients from a file ([[set_influence_coefficients]]); when
         !! allocated they replace the half-space kernels for every block
         type(fc_ic_set) :: ic
+        !> where `ic` came from, as its loader names it (the driver: the files and the
+        !! materials), so that a later case naming the same source keeps the set and the
+        !! operators built on it; '' when the caller set `ic` without a name
+        character(len=:), allocatable :: ic_source
     contains
         procedure :: destroy => operators_destroy
     end type fc_contact_operators

@@ -39,6 +39,7 @@ contains
             new_unittest('file_refused_by_fmg_and_other_cells', test_file_refusals), &
             new_unittest('flat_api_set_influence_file', test_flat_api), &
             new_unittest('coefficient_sets_in_memory', test_sets_in_memory), &
+            new_unittest('file_read_once_per_batch', test_file_read_once), &
             new_unittest('fem_coefficients_vs_analytic_and_hertz', test_fem_vs_analytic) ]
     end subroutine collect_fem_ic
 
@@ -542,6 +543,45 @@ contains
             inquire (file=path, exist=file_exists)
         end function file_exists
     end subroutine test_sets_in_memory
+
+    !> A batch reads a coefficient file once: later cases that name the same files and
+    !! materials keep the set and the operators built on it (`operator_built` false, as with
+    !! the half-space); a case that adds `ic_file2` reads again.
+    subroutine test_file_read_once(error)
+        use fc_driver, only: run_driver
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_ic_set) :: b1
+        integer :: stat, code, u, urep, uerr
+        character(len=msg_len) :: msg
+        character(len=256) :: args(3)
+        character(len=:), allocatable :: j1, j2, j3
+        character(len=*), parameter :: dir = 'build/test_fem_ic_once'
+        character(len=*), parameter :: rest = "&grid nx = 16, ny = 16, xmin = -1.2, xmax = 1.2, ymin = -1.2, ymax = 1.2 /"// &
+            new_line('a')//"&geometry kind = 'quadratic', rx = 50.0, ry = 50.0 /"//new_line('a')// &
+            '&output table = .false. /'//new_line('a')//'&solver threads = 1 /'
+        call execute_command_line('rm -rf '//dir//' && mkdir -p '//dir)
+        call analytic_body_set(200.0_dp, 0.42_dp, 0.15_dp, 0.15_dp, 16, 16, b1, stat, msg)
+        call write_ic_file(dir//'/body.fcic', b1, stat, msg)
+        call check(error, stat == 0, 'write: '//trim(msg)); if (allocated(error)) return
+        open (newunit=u, file=dir//'/cases.nml', status='replace', action='write')
+        write (u, '(a)') "&case name = 'a', problem = 'normal' /", &
+            "&material g1 = 200.0, g2 = 200.0, nu1 = 0.42, nu2 = 0.42, ic_file = '"//dir//"/body.fcic' /", rest, &
+            '&normal approach = 0.02 /', &
+            "&case name = 'b' /", '&normal approach = 0.015 /', &
+            "&case name = 'c' /", "&material ic_file2 = '"//dir//"/body.fcic' /"
+        close (u)
+        open (newunit=urep, file=dir//'/report.txt', status='replace', action='write')
+        open (newunit=uerr, file=dir//'/errors.txt', status='replace', action='write')
+        args(1) = dir//'/cases.nml'; args(2) = '--out'; args(3) = dir
+        call run_driver(args, code, report_unit=urep, error_unit=uerr)
+        close (urep); close (uerr)
+        call check(error, code == 0, 'batch failed: '//file_lines(dir//'/errors.txt')); if (allocated(error)) return
+        j1 = file_lines(dir//'/a.json'); j2 = file_lines(dir//'/b.json'); j3 = file_lines(dir//'/c.json')
+        call check(error, index(j1, '"operator_built": true') > 0, 'case a must build its operators')
+        call check(error, index(j2, '"operator_built": false') > 0 .and. index(j2, '"status": "converged"') > 0, &
+            'case b (same file) must keep the set and the operators: '//j2)
+        call check(error, index(j3, '"operator_built": true') > 0, 'case c (ic_file2 added) must read and build again')
+    end subroutine test_file_read_once
 
     !> Small, quick model used by the tests (quadratic hexahedra, coarse grading).
     subroutine small_fem_model(p)
