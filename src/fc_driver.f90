@@ -18,12 +18,11 @@
 !! Exit code: 0 all cases converged; 1 a case had an input error (or the command line /
 !! case file was bad); 2 no input error but a solver did not converge or diverged.
 !!
-!! Size (~840 lines): the case loop with its three outcomes (error, sweep or sequence,
-!! single solve), its `--check` pass (each case's grid and memory, nothing solved), the
-!! summary it fills, and the helpers the MPI package's distributed
-!! driver shares with it (command line, case errors, output directory, Hertz reference);
-!! the strip cases and the sequence tables already live in [[fc_driver_strip]] and
-!! [[fc_sequence_csv]].
+!! Size (~710 lines): the case loop with its three outcomes (error, sweep or sequence,
+!! single solve), its `--check` pass (each case's grid and memory, nothing solved) and the
+!! summary it fills; what the MPI package's drivers share with it (exit codes, command
+!! line, case errors, output files, Hertz reference) lives in [[fc_driver_common]], the
+!! strip cases and the sequence tables in [[fc_driver_strip]] and [[fc_sequence_csv]].
 module fc_driver
     use, intrinsic :: iso_fortran_env, only: output_unit, int64, error_unit_default => error_unit
     use fc_kinds, only: dp, msg_len, FC_CONVERGED, FC_DIVERGED, FC_ERR_IO, status_name
@@ -32,7 +31,6 @@ module fc_driver
     use fc_contact, only: fc_contact_operators, FC_PROBLEM_ROLLING
     use fc_sequence_csv, only: write_sequence_csv, sweep_header, steps_header
     use fc_driver_strip, only: solve_strip_case, strip_memory_need, check_strip_memory
-    use fc_hertz, only: hertz_from_approach, hertz_from_force
     use fc_namelist, only: fc_case_chunk, read_case_file
     use fc_input, only: fc_case_input, apply_case, strip_model_index, grid_is_auto
     use fc_input_validate, only: validate_case
@@ -46,13 +44,12 @@ module fc_driver
     use fc_threads, only: set_thread_count
     use fc_memory, only: available_memory, memory_fits, format_bytes, memory_env
     use fc_version, only: fc_build_info
+    use fc_driver_common
     implicit none
     private
 
-    integer, parameter, public :: EXIT_OK = 0           !! all cases converged
-    integer, parameter, public :: EXIT_INPUT_ERROR = 1  !! bad command line, file or case input
-    integer, parameter, public :: EXIT_NOT_CONVERGED = 2 !! a solver did not converge / diverged
-
+    ! re-exported: the drivers' shared pieces, for callers that know them from here
+    public :: EXIT_OK, EXIT_INPUT_ERROR, EXIT_NOT_CONVERGED
     public :: run_driver, driver_usage, make_directory, remove_file, parse_driver_arguments, write_case_error
     public :: case_output_dir, remove_case_outputs, hertz_reference
 
@@ -584,43 +581,6 @@ contains
         end if
     end subroutine check_case_memory
 
-    !> The output directory of a case: `out_dir` (the command line's --out) when present,
-    !! else the case's `&output dir`.
-    function case_output_dir(state, out_dir) result(d)
-        type(fc_case_input), intent(in) :: state
-        character(len=*), intent(in), optional :: out_dir
-        character(len=:), allocatable :: d
-        if (present(out_dir)) then
-            d = out_dir
-        else
-            d = trim(state%dir)
-        end if
-    end function case_output_dir
-
-    !> The analytic Hertz solution beside a quadratic case's numbers (both radii given): for
-    !! its prescribed force or approach, with the combined material `mat`.
-    subroutine hertz_reference(s, state, mat)
-        type(fc_case_summary), intent(inout) :: s
-        type(fc_case_input), intent(in) :: state
-        type(fc_material), intent(in) :: mat
-        real(dp) :: ca, cb
-        if (.not. (state%kind == 'quadratic' .and. state%rx > 0 .and. state%ry > 0)) return
-        ca = 0.5_dp/state%rx; cb = 0.5_dp/state%ry
-        s%has_hertz = .true.
-        if (state%force_prescribed) then
-            s%hertz = hertz_from_force(ca, cb, mat%g/(1 - mat%nu), state%fn)
-        else
-            s%hertz = hertz_from_approach(ca, cb, mat%g/(1 - mat%nu), state%approach)
-        end if
-    end subroutine hertz_reference
-
-    !> Remove a case's summary and table from `dir` (stale outputs of a case that failed).
-    subroutine remove_case_outputs(dir, name)
-        character(len=*), intent(in) :: dir, name
-        call remove_file(dir//'/'//trim(name)//'.json')
-        call remove_file(dir//'/'//trim(name)//'.csv')
-    end subroutine remove_case_outputs
-
     !> Summary of an analytic (problem = 'hertz') case: no grid, Hertz values as results.
     subroutine analytic_summary(s, state)
         type(fc_case_summary), intent(inout) :: s
@@ -744,105 +704,5 @@ contains
             end if
         end select
     end subroutine library_context
-
-    !> The drivers' command line: `CASES.nml [--out DIR | --out=DIR] | --help | --version`.
-    !! `action` is 'run' (case_file and, when given, out_dir set), 'help', 'version' or
-    !! 'error' (`errtext`: the message lines, prefixed by `prog`, with `usage` where it helps).
-    subroutine parse_driver_arguments(args, prog, usage, case_file, out_dir, action, errtext)
-        character(len=*), intent(in) :: args(:)
-        character(len=*), intent(in) :: prog    !! program name for the messages
-        character(len=*), intent(in) :: usage   !! usage text
-        character(len=:), allocatable, intent(out) :: case_file, out_dir, action, errtext
-        integer :: i
-        action = 'run'; errtext = ''
-        i = 1
-        do while (i <= size(args))
-            select case (trim(args(i)))
-            case ('-h', '--help')
-                action = 'help'; return
-            case ('-V', '--version')
-                action = 'version'; return
-            case ('--check')
-                action = 'check'
-            case ('--out', '-o')
-                if (i == size(args)) then
-                    call fail(prog//': --out needs a directory'//new_line('a')//usage); return
-                end if
-                out_dir = trim(args(i + 1)); i = i + 1
-            case default
-                if (len_trim(args(i)) > 6) then
-                    if (args(i)(1:6) == '--out=') then
-                        out_dir = trim(args(i)(7:)); i = i + 1; cycle
-                    end if
-                end if
-                if (args(i)(1:1) == '-' .or. allocated(case_file)) then
-                    call fail(prog//": unexpected argument '"//trim(args(i))//"'"//new_line('a')//usage); return
-                end if
-                case_file = trim(args(i))
-            end select
-            i = i + 1
-        end do
-        if (.not. allocated(case_file)) then
-            call fail(prog//': no case file given'//new_line('a')//usage); return
-        end if
-        if (allocated(out_dir)) then
-            if (len_trim(out_dir) == 0) call fail(prog//': --out needs a non-empty directory')
-        end if
-    contains
-        subroutine fail(text)
-            character(len=*), intent(in) :: text
-            action = 'error'; errtext = text
-        end subroutine fail
-    end subroutine parse_driver_arguments
-
-    !> An input error of case `k` (at `line` of the file): the message on `err` and the
-    !! report's error line on `rep`.
-    subroutine write_case_error(rep, err, prog, k, line, name, errmsg)
-        integer, intent(in) :: rep, err, k, line
-        character(len=*), intent(in) :: prog, name, errmsg
-        write (err, '(a,i0,a,i0,a)') prog//': case ', k, " '"//trim(name)//"' (line ", line, '): '//trim(errmsg)
-        write (rep, '(a)') ' case '//trim(name)//'   *** ERROR *** '//trim(errmsg)
-        write (rep, '(a)') ''
-    end subroutine write_case_error
-
-    !> mkdir -p DIR by the C library's mkdir (each parent in turn; existing ones are
-    !! fine), not by a shell: a child process cost every run about 2 ms.  stat ≠ 0 when DIR
-    !! is not a directory afterwards.
-    subroutine make_directory(dir, stat)
-        use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char
-        character(len=*), intent(in) :: dir
-        integer, intent(out) :: stat
-        interface
-            integer(c_int) function c_mkdir(path, mode) bind(C, name='mkdir')
-                import :: c_int, c_char
-                character(kind=c_char), intent(in) :: path(*)
-                integer(c_int), value :: mode
-            end function c_mkdir
-        end interface
-        integer(c_int), parameter :: mode = int(o'777', c_int)   ! less the umask, as mkdir(1)
-        integer(c_int) :: rc
-        integer :: i, n
-        logical :: exists
-        n = len_trim(dir)
-        stat = FC_ERR_IO
-        if (n == 0) return
-        do i = 2, n
-            if (dir(i:i) == '/' .and. dir(i - 1:i - 1) /= '/') rc = c_mkdir(dir(1:i - 1)//c_null_char, mode)
-        end do
-        rc = c_mkdir(dir(1:n)//c_null_char, mode)
-        inquire (file=dir(1:n)//'/.', exist=exists)
-        if (exists) stat = 0
-    end subroutine make_directory
-
-    !> Delete a file if it exists.
-    subroutine remove_file(path)
-        character(len=*), intent(in) :: path
-        logical :: exists
-        integer :: u, ios
-        inquire (file=path, exist=exists)
-        if (.not. exists) return
-        open (newunit=u, file=path, status='old', iostat=ios)
-        if (ios == 0) close (u, status='delete', iostat=ios)
-    end subroutine remove_file
 
 end module fc_driver

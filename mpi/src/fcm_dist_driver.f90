@@ -44,7 +44,7 @@ module fcm_dist_driver
     use fc_scene, only: fc_case
     use fc_output, only: fc_case_summary, write_case_json, write_case_report
     use fc_table_io, only: write_element_table_csv, write_element_table_npy
-    use fc_driver, only: EXIT_OK, EXIT_INPUT_ERROR, EXIT_NOT_CONVERGED, make_directory, remove_file, &
+    use fc_driver_common, only: EXIT_OK, EXIT_INPUT_ERROR, EXIT_NOT_CONVERGED, make_directory, remove_file, &
         parse_driver_arguments, write_case_error, case_output_dir, remove_case_outputs, hertz_reference
     use fc_version, only: fc_build_info
     use fc_threads, only: set_thread_count
