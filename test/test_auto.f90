@@ -17,7 +17,7 @@ module test_auto
     use fc_contact, only: fc_contact_operators
     use fc_hertz, only: fc_hertz_solution, hertz_from_approach, hertz_from_force
     use fc_auto, only: fc_auto_outcome, solve_case_auto, richardson_estimate, plane_strain_hertz
-    use fc_driver, only: run_driver
+    use fc_test_driver, only: fresh_dir, run_namelist, exists => file_exists
     implicit none
     private
 
@@ -794,26 +794,8 @@ contains
         character(len=*), intent(in) :: text
         integer, intent(out) :: code
         character(len=:), allocatable :: dir
-        integer :: u, urep, uerr, count
-        character(len=256) :: args(3)
-        character(len=32) :: tag
-        call system_clock(count)
-        write (tag, '(i0)') count
-        dir = '/tmp/fc_test_auto_'//trim(tag)
-        call execute_command_line("mkdir -p '"//dir//"'")
-        open (newunit=u, file=dir//'/cases.nml', status='replace', action='write')
-        write (u, '(a)') text
-        close (u)
-        open (newunit=urep, file=dir//'/report.txt', status='replace', action='write')
-        open (newunit=uerr, file=dir//'/errors.txt', status='replace', action='write')
-        args(1) = dir//'/cases.nml'; args(2) = '--out'; args(3) = dir
-        call run_driver(args, code, report_unit=urep, error_unit=uerr)
-        close (urep); close (uerr)
+        dir = fresh_dir('auto')
+        call run_namelist(dir, text, code)
     end function run_in_tmp
-
-    logical function exists(path)
-        character(len=*), intent(in) :: path
-        inquire (file=path, exist=exists)
-    end function exists
 
 end module test_auto

@@ -8,6 +8,7 @@ module test_driver
     use fc_kinds, only: dp
     use fc_testing, only: error_type, unittest_type, new_unittest, check, read_all => file_lines
     use fc_driver, only: run_driver
+    use fc_test_driver, only: fresh_dir, run_namelist, exists => file_exists
     use fc_namelist, only: fc_case_chunk, read_case_file
     use fc_input, only: fc_case_input, apply_case, max_dist_grid_elements
     use fc_input_validate, only: validate_case
@@ -20,7 +21,6 @@ module test_driver
 
     public :: collect_driver
 
-    integer, save :: run_counter = 0
     character(len=*), parameter :: nl = new_line('a')
 
 contains
@@ -135,19 +135,8 @@ contains
     !> A fresh, unique scratch directory under /tmp.
     function new_dir() result(dir)
         character(len=:), allocatable :: dir
-        character(len=32) :: tag
-        integer :: count
-        run_counter = run_counter + 1
-        call system_clock(count)
-        write (tag, '(i0,a,i0)') count, '_', run_counter
-        dir = '/tmp/fc_test_driver_'//trim(tag)
-        call execute_command_line("mkdir -p '"//dir//"'")
+        dir = fresh_dir('driver')
     end function new_dir
-
-    logical function exists(path)
-        character(len=*), intent(in) :: path
-        inquire (file=path, exist=exists)
-    end function exists
 
     subroutine cleanup(dir)
         character(len=*), intent(in) :: dir
@@ -183,20 +172,7 @@ contains
         character(len=*), intent(in) :: dir, text
         integer, intent(out) :: code
         character(len=:), allocatable, intent(out) :: errors
-        integer :: u, urep, uerr
-        character(len=256) :: args(3)
-        open (newunit=u, file=dir//'/cases.nml', status='replace', action='write')
-        write (u, '(a)') text
-        close (u)
-        open (newunit=urep, file=dir//'/report.txt', status='replace', action='write')
-        open (newunit=uerr, file=dir//'/errors.txt', status='replace', action='write')
-        args(1) = dir//'/cases.nml'
-        args(2) = '--out'
-        args(3) = dir
-        call run_driver(args, code, report_unit=urep, error_unit=uerr)
-        close (urep)
-        close (uerr)
-        errors = read_all(dir//'/errors.txt')
+        call run_namelist(dir, text, code, errors)
     end subroutine run_again
 
     ! ---------------------------------------------------------------- good input ----

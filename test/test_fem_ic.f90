@@ -440,7 +440,7 @@ contains
         use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char
         use fc_icfile_load, only: ic_source_offsets
         use fc_memory, only: memory_env
-        use fc_driver, only: run_driver
+        use fc_test_driver, only: run_namelist, file_exists
         use fc_legacy, only: fc_init, fc_finalize, fc_set_material, fc_set_influence_file, fc_get_error_message, &
             FCL_OK, FCL_MEMORY
         type(error_type), allocatable, intent(out) :: error
@@ -519,42 +519,25 @@ contains
             character(len=*), intent(in) :: avail
             integer, intent(out) :: code
             character(len=:), allocatable, intent(out) :: errs
-            character(len=256) :: args(3)
-            integer :: u, urep, uerr
             call execute_command_line('rm -f '//dir//'/m.json')
-            open (newunit=u, file=dir//'/cases.nml', status='replace', action='write')
-            write (u, '(a)') "&case name = 'm', problem = 'normal' /", &
-                "&material g1 = 200.0, g2 = 200.0, nu1 = 0.42, nu2 = 0.42, ic_file = '"//dir//"/far.fcic' /", &
-                '&grid nx = 16, ny = 16, xmin = -1.2, xmax = 1.2, ymin = -1.2, ymax = 1.2 /', &
-                "&geometry kind = 'quadratic', rx = 50.0, ry = 50.0 /", '&normal approach = 0.02 /', &
-                '&output table = .false. /', '&solver threads = 1 /'
-            close (u)
-            call set_env(memory_env, avail)
-            open (newunit=urep, file=dir//'/report.txt', status='replace', action='write')
-            open (newunit=uerr, file=dir//'/errors.txt', status='replace', action='write')
-            args(1) = dir//'/cases.nml'; args(2) = '--out'; args(3) = dir
-            call run_driver(args, code, report_unit=urep, error_unit=uerr)
-            close (urep); close (uerr)
-            call unset_env(memory_env)
-            errs = file_lines(dir//'/errors.txt')
+            call run_namelist(dir, "&case name = 'm', problem = 'normal' /"//new_line('a')// &
+                "&material g1 = 200.0, g2 = 200.0, nu1 = 0.42, nu2 = 0.42, ic_file = '"//dir//"/far.fcic' /"//new_line('a')// &
+                '&grid nx = 16, ny = 16, xmin = -1.2, xmax = 1.2, ymin = -1.2, ymax = 1.2 /'//new_line('a')// &
+                "&geometry kind = 'quadratic', rx = 50.0, ry = 50.0 /"//new_line('a')//'&normal approach = 0.02 /'// &
+                new_line('a')//'&output table = .false. /'//new_line('a')//'&solver threads = 1 /', code, errs, memory=avail)
         end subroutine run_case
-        logical function file_exists(path)
-            character(len=*), intent(in) :: path
-            inquire (file=path, exist=file_exists)
-        end function file_exists
     end subroutine test_sets_in_memory
 
     !> A batch reads a coefficient file once: later cases that name the same files and
     !! materials keep the set and the operators built on it (`operator_built` false, as with
     !! the half-space); a case that adds `ic_file2` reads again.
     subroutine test_file_read_once(error)
-        use fc_driver, only: run_driver
+        use fc_test_driver, only: run_namelist
         type(error_type), allocatable, intent(out) :: error
         type(fc_ic_set) :: b1
-        integer :: stat, code, u, urep, uerr
+        integer :: stat, code
         character(len=msg_len) :: msg
-        character(len=256) :: args(3)
-        character(len=:), allocatable :: j1, j2, j3
+        character(len=:), allocatable :: j1, j2, j3, errs
         character(len=*), parameter :: dir = 'build/test_fem_ic_once'
         character(len=*), parameter :: rest = "&grid nx = 16, ny = 16, xmin = -1.2, xmax = 1.2, ymin = -1.2, ymax = 1.2 /"// &
             new_line('a')//"&geometry kind = 'quadratic', rx = 50.0, ry = 50.0 /"//new_line('a')// &
@@ -563,19 +546,12 @@ contains
         call analytic_body_set(200.0_dp, 0.42_dp, 0.15_dp, 0.15_dp, 16, 16, b1, stat, msg)
         call write_ic_file(dir//'/body.fcic', b1, stat, msg)
         call check(error, stat == 0, 'write: '//trim(msg)); if (allocated(error)) return
-        open (newunit=u, file=dir//'/cases.nml', status='replace', action='write')
-        write (u, '(a)') "&case name = 'a', problem = 'normal' /", &
-            "&material g1 = 200.0, g2 = 200.0, nu1 = 0.42, nu2 = 0.42, ic_file = '"//dir//"/body.fcic' /", rest, &
-            '&normal approach = 0.02 /', &
-            "&case name = 'b' /", '&normal approach = 0.015 /', &
-            "&case name = 'c' /", "&material ic_file2 = '"//dir//"/body.fcic' /"
-        close (u)
-        open (newunit=urep, file=dir//'/report.txt', status='replace', action='write')
-        open (newunit=uerr, file=dir//'/errors.txt', status='replace', action='write')
-        args(1) = dir//'/cases.nml'; args(2) = '--out'; args(3) = dir
-        call run_driver(args, code, report_unit=urep, error_unit=uerr)
-        close (urep); close (uerr)
-        call check(error, code == 0, 'batch failed: '//file_lines(dir//'/errors.txt')); if (allocated(error)) return
+        call run_namelist(dir, "&case name = 'a', problem = 'normal' /"//new_line('a')// &
+            "&material g1 = 200.0, g2 = 200.0, nu1 = 0.42, nu2 = 0.42, ic_file = '"//dir//"/body.fcic' /"//new_line('a')// &
+            rest//new_line('a')//'&normal approach = 0.02 /'//new_line('a')// &
+            "&case name = 'b' /"//new_line('a')//'&normal approach = 0.015 /'//new_line('a')// &
+            "&case name = 'c' /"//new_line('a')//"&material ic_file2 = '"//dir//"/body.fcic' /", code, errs)
+        call check(error, code == 0, 'batch failed: '//errs); if (allocated(error)) return
         j1 = file_lines(dir//'/a.json'); j2 = file_lines(dir//'/b.json'); j3 = file_lines(dir//'/c.json')
         call check(error, index(j1, '"operator_built": true') > 0, 'case a must build its operators')
         call check(error, index(j2, '"operator_built": false') > 0 .and. index(j2, '"status": "converged"') > 0, &

@@ -23,6 +23,7 @@ module test_reliability
         solve_normal, contact_on_edge
     use fc_legacy
     use fc_driver, only: run_driver
+    use fc_test_driver, only: run_namelist, file_exists
     use fc_input, only: namelist_keys
     use fc_input_check, only: value_kind
     implicit none
@@ -520,33 +521,23 @@ contains
         !> `--check`: each case's estimate against the memory, input errors as in a run, the
         !! counts, exit status 1, and nothing solved or written.
         subroutine check_mode()
-            character(len=256) :: args(4)
-            character(len=:), allocatable :: rep
-            integer :: u, urep, uerr
+            character(len=:), allocatable :: rep, cases
+            character(len=*), parameter :: nl = new_line('a')
+            cases = replace_first(replace_first(normal, 'nx = 200, ny = 100', 'nx = 128, ny = 128'), &
+                "name = 'm'", "name = 'a'")//nl// &
+                "&case name = 'b', problem = 'rolling' /"//nl//'&grid nx = 200, ny = 100 /'//nl// &
+                '&tangential mu = 0.3, xi = 1e-3 /'//nl// &
+                "&case name = 'c' /"//nl//'&material nu1 = 0.7 /'//nl// &
+                ! an automatic area is sized as the solve would size it, a line contact estimated
+                ! as its strip, an analytic answer has no grid
+                "&case name = 'd', problem = 'normal' /"//nl//'&grid auto = .true., n_across = 1000 /'//nl// &
+                "&case name = 'e', problem = 'normal' /"//nl// &
+                '&grid auto = .false., nx = 200, ny = 100, xmin = -10.0, xmax = 10.0, ymin = -6.0, ymax = 6.0 /'//nl// &
+                "&geometry kind = 'quadratic', rx = 300.0, ry = 0.0 /"//nl// &
+                "&case name = 'f', problem = 'hertz' /"//nl//"&geometry kind = 'quadratic', rx = 300.0, ry = 163.0 /"//nl// &
+                "&case name = 'g', problem = 'strip_mp1' /"//nl//"&geometry kind = 'strip2d' /"//nl//'&grid nx = 65536 /'
             call execute_command_line('rm -rf '//dir//' && mkdir -p '//dir)
-            open (newunit=u, file=dir//'/cases.nml', status='replace', action='write')
-            write (u, '(a)') replace_first(replace_first(normal, 'nx = 200, ny = 100', 'nx = 128, ny = 128'), &
-                "name = 'm'", "name = 'a'")
-            write (u, '(a)') "&case name = 'b', problem = 'rolling' /"//new_line('a')//'&grid nx = 200, ny = 100 /'// &
-                new_line('a')//'&tangential mu = 0.3, xi = 1e-3 /'
-            write (u, '(a)') "&case name = 'c' /"//new_line('a')//'&material nu1 = 0.7 /'
-            ! an automatic area is sized as the solve would size it, a line contact estimated
-            ! as its strip, an analytic answer has no grid
-            write (u, '(a)') "&case name = 'd', problem = 'normal' /"//new_line('a')//'&grid auto = .true., n_across = 1000 /'
-            write (u, '(a)') "&case name = 'e', problem = 'normal' /"//new_line('a')// &
-                '&grid auto = .false., nx = 200, ny = 100, xmin = -10.0, xmax = 10.0, ymin = -6.0, ymax = 6.0 /'// &
-                new_line('a')//"&geometry kind = 'quadratic', rx = 300.0, ry = 0.0 /"
-            write (u, '(a)') "&case name = 'f', problem = 'hertz' /"//new_line('a')// &
-                "&geometry kind = 'quadratic', rx = 300.0, ry = 163.0 /"
-            write (u, '(a)') "&case name = 'g', problem = 'strip_mp1' /"//new_line('a')// &
-                "&geometry kind = 'strip2d' /"//new_line('a')//'&grid nx = 65536 /'
-            close (u)
-            call set_env(memory_env, '20M')
-            open (newunit=urep, file=dir//'/report.txt', status='replace', action='write')
-            open (newunit=uerr, file=dir//'/errors.txt', status='replace', action='write')
-            args(1) = dir//'/cases.nml'; args(2) = '--check'; args(3) = '--out'; args(4) = dir
-            call run_driver(args, code, report_unit=urep, error_unit=uerr)
-            close (urep); close (uerr)
+            call run_namelist(dir, cases, code, memory='20M', check_only=.true.)
             rep = file_lines(dir//'/report.txt')
             call check(error, code == 1, '--check: exit status 1 expected (a case too large, one with an input error)')
             call check(error, index(rep, ' case a: normal, 128 x 128, 1 thread(s): about 14 MB of 20 MB available ('// &
@@ -571,25 +562,9 @@ contains
             integer, intent(out) :: code
             character(len=:), allocatable, intent(out) :: errs
             integer, intent(in), optional :: share   !! processes sharing the memory
-            character(len=256) :: args(3)
-            integer :: u, urep, uerr
             call execute_command_line('rm -rf '//dir//' && mkdir -p '//dir)
-            open (newunit=u, file=dir//'/cases.nml', status='replace', action='write')
-            write (u, '(a)') text
-            close (u)
-            call set_env(memory_env, avail)
-            open (newunit=urep, file=dir//'/report.txt', status='replace', action='write')
-            open (newunit=uerr, file=dir//'/errors.txt', status='replace', action='write')
-            args(1) = dir//'/cases.nml'; args(2) = '--out'; args(3) = dir
-            call run_driver(args, code, report_unit=urep, error_unit=uerr, memory_share=share)
-            close (urep); close (uerr)
-            call unset_env(memory_env)
-            errs = file_lines(dir//'/errors.txt')
+            call run_namelist(dir, text, code, errs, memory=avail, share=share)
         end subroutine run_with
-        logical function file_exists(path)
-            character(len=*), intent(in) :: path
-            inquire (file=path, exist=file_exists)
-        end function file_exists
         function replace_first(text, old, new) result(out)
             character(len=*), intent(in) :: text, old, new
             character(len=:), allocatable :: out

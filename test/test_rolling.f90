@@ -14,7 +14,7 @@ module test_rolling
     use fc_rolling_ref
     use fc_fastsim
     use fc_legacy
-    use fc_driver, only: run_driver
+    use fc_test_driver, only: fresh_dir, run_namelist
     use fc_contact, only: rolling_sequence, fc_contact_operators, fc_contact_loading, fc_contact_settings, &
         fc_contact_result, FC_PROBLEM_ROLLING, solve_contact
     use fc_rolling_base, only: fc_rolling_case
@@ -655,29 +655,8 @@ contains
         character(len=*), intent(in) :: text
         character(len=:), allocatable, intent(out) :: dir, errors
         integer, intent(out) :: code
-        integer :: u, uerr, urep, count, ios
-        character(len=32) :: tag
-        character(len=256) :: args(3), line
-        call system_clock(count)
-        write (tag, '(i0)') count
-        dir = '/tmp/fc_test_rolling_'//trim(tag)
-        call execute_command_line("mkdir -p '"//dir//"'")
-        open (newunit=u, file=dir//'/cases.nml', status='replace', action='write')
-        write (u, '(a)') text
-        close (u)
-        open (newunit=urep, file=dir//'/report.txt', status='replace', action='write')
-        open (newunit=uerr, file=dir//'/errors.txt', status='replace', action='write')
-        args(1) = dir//'/cases.nml'; args(2) = '--out'; args(3) = dir
-        call run_driver(args, code, report_unit=urep, error_unit=uerr)
-        close (urep); close (uerr)
-        errors = ''
-        open (newunit=u, file=dir//'/errors.txt', status='old', action='read')
-        do
-            read (u, '(a)', iostat=ios) line
-            if (ios /= 0) exit
-            errors = errors//trim(line)//' '
-        end do
-        close (u)
+        dir = fresh_dir('rolling')
+        call run_namelist(dir, text, code, errors)
     end subroutine drive
 
     !> Lines of a text file (0 if missing) and the value of column `col` in its last line.

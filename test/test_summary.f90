@@ -5,14 +5,13 @@
 module test_summary
     use fc_kinds, only: dp
     use fc_testing, only: error_type, unittest_type, new_unittest, check, file_bytes
-    use fc_driver, only: run_driver
+    use fc_test_driver, only: fresh_dir, run_namelist
     implicit none
     private
 
     public :: collect_summary
 
     character(len=*), parameter :: nl = new_line('a')
-    integer, save :: run_counter = 0
 
 contains
 
@@ -115,26 +114,8 @@ contains
         character(len=*), intent(in) :: text
         integer, intent(out) :: code
         character(len=:), allocatable, intent(out) :: dir
-        integer :: u, urep, uerr
-        character(len=256) :: args(3)
-        character(len=32) :: tag
-        integer :: count
-        run_counter = run_counter + 1
-        call system_clock(count)
-        write (tag, '(i0,a,i0)') count, '_', run_counter
-        dir = '/tmp/fc_test_summary_'//trim(tag)
-        call execute_command_line("mkdir -p '"//dir//"'")
-        open (newunit=u, file=dir//'/cases.nml', status='replace', action='write')
-        write (u, '(a)') text
-        close (u)
-        open (newunit=urep, file=dir//'/report.txt', status='replace', action='write')
-        open (newunit=uerr, file=dir//'/errors.txt', status='replace', action='write')
-        args(1) = dir//'/cases.nml'
-        args(2) = '--out'
-        args(3) = dir
-        call run_driver(args, code, report_unit=urep, error_unit=uerr)
-        close (urep)
-        close (uerr)
+        dir = fresh_dir('summary')
+        call run_namelist(dir, text, code)
     end subroutine run_case
 
     subroutine cleanup(dir)
