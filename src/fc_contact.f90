@@ -2,7 +2,7 @@
 !! process for dissimilar materials, K ≠ 0), transient steps (shift or rolling) and the
 !! rolling sequences of a case ([[rolling_sequence]]: creep-force sweeps, transient rolling).
 !!
-!! The batch driver (through [[fc_auto]]), the flat API ([[fc_legacy_api]]) and the
+!! The batch driver (through [[fc_auto]]), the flat API ([[fc_legacy]]) and the
 !! `fastcontact` facade all call [[solve_contact]]; nothing else runs the
 !! normal + tangential loop.  Its pieces:
 !!

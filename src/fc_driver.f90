@@ -515,7 +515,7 @@ contains
         end function last_solved
 
         !> Apply and check case k without solving or writing: the state later cases inherit
-        !! (as [[run_one_case]] leaves it, except after an error found only while solving).
+        !! (as `run_one_case` leaves it, except after an error found only while solving).
         subroutine inherit_case(k)
             integer, intent(in) :: k
             saved_state = state

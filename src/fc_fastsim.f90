@@ -1,4 +1,4 @@
-!> FASTSIM: Kalker's simplified theory of steady rolling (Kalker 1982, "A fast algorithm for
+!> FASTSIM, Kalker's simplified theory of steady rolling (Kalker 1982, "A fast algorithm for
 !! the simplified theory of rolling contact", Veh. Syst. Dyn. 11) — the cheap model railway
 !! codes use when the full theory is too slow.
 !!

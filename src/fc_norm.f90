@@ -47,7 +47,7 @@ module fc_norm
         integer :: maxit = 1000               !! BCCG iterations / NORM active-set iterations
         integer :: inner_maxit = 0            !! NORM: CG steps per active-set iteration (0: until converged)
         logical :: precondition = .true.      !! BCCG: FFT-based preconditioner
-        !> BCCG: how the preconditioner M is applied — 'circulant' (Strang's circulant of M on
+        !> How BCCG applies its preconditioner M — 'circulant' (Strang's circulant of M on
         !! the grid, periodic transforms of nx×ny points) or 'toeplitz' (M itself, transforms of
         !! the doubled grid); doc/solvers.md
         character(len=9) :: prec_form = 'circulant'

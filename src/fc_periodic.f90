@@ -103,7 +103,7 @@ contains
         type(fc_grid), intent(in) :: grid
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
-        integer, intent(in), optional :: images   !! image rings (default [[periodic_images_default]])
+        integer, intent(in), optional :: images   !! image rings (default [[fc_periodic:periodic_images_default]])
         real(dp), allocatable :: q(:, :), w(:, :), rb(:, :)
         complex(dp), allocatable :: cb(:, :)
         type(c_ptr) :: plan_f, plan_b

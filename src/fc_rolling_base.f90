@@ -119,7 +119,7 @@ contains
     end function dot
 
 
-    !> Threads for a vector operation of n elements: 1 below [[omp_min_elements]], inside a
+    !> Threads for a vector operation of n elements: 1 below [[fc_threads:omp_min_elements]], inside a
     !! parallel region or with one thread (then the serial code runs unchanged).
     integer function vector_threads(n) result(nt)
         integer, intent(in) :: n
@@ -148,7 +148,7 @@ contains
         s = sum(part(1:nt))
     end function pdot
 
-    !> y ← y + α·x over n elements, threaded above [[omp_min_elements]].
+    !> y ← y + α·x over n elements, threaded above [[fc_threads:omp_min_elements]].
     subroutine paxpy(alpha, x, y, n)
         integer, intent(in) :: n
         real(dp), intent(in) :: alpha, x(n)
@@ -161,7 +161,7 @@ contains
         !$omp end parallel do
     end subroutine paxpy
 
-    !> y ← y/d over n elements, threaded above [[omp_min_elements]].
+    !> y ← y/d over n elements, threaded above [[fc_threads:omp_min_elements]].
     subroutine pdivide(y, d, n)
         integer, intent(in) :: n
         real(dp), intent(in) :: d

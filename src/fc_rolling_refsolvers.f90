@@ -35,7 +35,7 @@ contains
         end if
     end subroutine reference_solver
 
-    !> SteadyGS: nonlinear block Gauss–Seidel, columns from the leading edge (x = xmax)
+    !> SteadyGS, nonlinear block Gauss–Seidel, columns from the leading edge (x = xmax)
     !! backwards, elements in contact only.  An adhesion element I in a run of adhesion
     !! elements whose front (leading) element is F satisfies the summed steady equations
     !! u_I − u_{F+x} = −δx·Σ_{K=I..F} w_K (the sum of s_K = 0 over the run); it is solved for

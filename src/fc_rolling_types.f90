@@ -21,7 +21,7 @@ module fc_rolling_types
         !> 'fft': applied as the Strang circulant of the block inverse on the grid ('circulant')
         !! or as the block inverse itself on the doubled grid ('toeplitz'), as TangCG's
         character(len=9) :: prec_form = 'circulant'
-        !> GMRES: Eisenstat–Walker's superlinear forcing term once the subdivision has settled
+        !> Eisenstat–Walker's superlinear forcing term of GMRES once the subdivision has settled
         !! (.false.: the constant `forcing` throughout)
         logical :: adaptive_forcing = .true.
         !> GMRES without starting tractions: 'fastsim' (the simplified theory's tractions on

@@ -54,7 +54,7 @@ module fc_scene
         type(fc_normal_loading) :: normal            !! approach or total force
         type(fc_tangential_loading) :: tangential    !! friction, shifts or forces, spin
         logical :: tangential_given = .false.        !! analytic answer: shifts or forces were given
-        type(fc_rolling_case) :: rolling             !! rolling: kinetic friction, sweep or transient steps
+        type(fc_rolling_case) :: rolling             !! the rolling part: kinetic friction, sweep or transient steps
         ! ---- solvers and the automatic layer
         type(fc_contact_settings) :: settings        !! both stages (and FMG)
         real(dp) :: target = 0                       !! accuracy target (relative error; 0: none)

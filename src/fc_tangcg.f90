@@ -747,7 +747,7 @@ contains
         end subroutine copy_pair
     end subroutine run_tangcg
 
-    !> ConvexGS: block Gauss–Seidel over the contact elements (thesis §4.2.4).
+    !> ConvexGS, block Gauss–Seidel over the contact elements (thesis §4.2.4).
     subroutine run_convexgs(top, contact, g, wx, wy, settings, res)
         type(fc_tangential_operator), intent(inout) :: top
         logical, intent(in) :: contact(:, :)

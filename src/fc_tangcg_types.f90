@@ -14,9 +14,9 @@ module fc_tangcg_types
         character(len=8) :: solver = 'tangcg'   !! 'tangcg' or 'convexgs'
         real(dp) :: tol = 1.0e-5_dp              !! relative traction change, eq. (4.49)
         integer :: maxit = 2000                  !! TangCG inner iterations / ConvexGS sweeps
-        integer :: inner_k = 3                   !! TangCG: NLCG iterations between subdivision checks
-        logical :: precondition = .true.         !! TangCG: preconditioner on
-        character(len=8) :: preconditioner = 'fft'  !! TangCG: 'fft' (block Toeplitz inverse on adhesion,
+        integer :: inner_k = 3                   !! (TangCG) NLCG iterations between subdivision checks
+        logical :: precondition = .true.         !! (TangCG) preconditioner on
+        character(len=8) :: preconditioner = 'fft'  !! (TangCG) 'fft' (block Toeplitz inverse on adhesion,
                                                  !! diagonal on slip, elastic start) or 'diagonal' (eq. 4.43)
         !> 'fft' preconditioner applied as its Strang circulant on the grid ('circulant',
         !! periodic transforms of nx×ny points) or as the block Toeplitz inverse itself on the

@@ -1,4 +1,4 @@
-!> Threads: the OpenMP thread count and FFTW's threaded planner.
+!> The OpenMP thread count and FFTW's threaded planner.
 !!
 !! The count is a positive `threads` when one is given (`&solver threads`, the flat API,
 !! [[set_thread_count]]), else `OMP_NUM_THREADS` when it is set, else 1 ([[fc_default_threads]]):
@@ -16,7 +16,7 @@
 !!
 !! What runs in parallel: FFT products (FFTW), the influence-coefficient loops, the
 !! periodic kernel, the rows and columns of the distributed products, and above
-!! [[omp_min_elements]] the element loops and vector operations of BCCG and TangCG
+!! [[fc_threads:omp_min_elements]] the element loops and vector operations of BCCG and TangCG
 !! (doc/parallel.md).
 module fc_threads
     use, intrinsic :: iso_c_binding, only: c_int
@@ -95,7 +95,7 @@ contains
 
     !> Use `n` threads (n ≤ 0: [[fc_default_threads]]) for OpenMP regions and for FFTW plans
     !! made from now on.  With `elements` (the grid size nx·ny), FFT plans stay on one thread
-    !! below [[fftw_thread_min_elements]], where a second FFTW thread costs more than it saves
+    !! below [[fc_threads:fftw_thread_min_elements]], where a second FFTW thread costs more than it saves
     !! (doc/parallel.md §5.3).  Call it outside parallel regions.
     subroutine set_thread_count(n, elements)
         integer, intent(in) :: n
@@ -124,7 +124,7 @@ contains
 
 
     !> For one plan of a transform with `points` real points: plans made until the next call
-    !! use one thread when `points` < 2·[[fftw_thread_min_elements]] (a second thread costs
+    !! use one thread when `points` < 2·[[fc_threads:fftw_thread_min_elements]] (a second thread costs
     !! more than it saves there), else the count of the last [[set_thread_count]]; returns
     !! the planner's previous count in `saved`, to restore with
     !! `call fftw_threads_for_size(-1, saved)`.  Call inside the critical section

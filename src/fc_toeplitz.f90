@@ -59,7 +59,7 @@ module fc_toeplitz
         type(c_ptr) :: plan_x_fwd = c_null_ptr, plan_y_fwd = c_null_ptr
         type(c_ptr) :: plan_y_bwd = c_null_ptr, plan_x_bwd = c_null_ptr
         type(c_ptr) :: plan_xf_fwd = c_null_ptr, plan_xf_bwd = c_null_ptr
-        !> Large spectra (mxh·my ≥ [[transposed_y_min]]) take the y passes on column chunks
+        !> Large spectra (mxh·my ≥ [[fc_toeplitz:transposed_y_min]]) take the y passes on column chunks
         !! of `tw` columns copied into contiguous buffers (`tbuf`, one per thread), where the
         !! strided plans run out of cache; `tw` = 0: the strided plans.
         integer :: tw = 0
@@ -429,7 +429,7 @@ contains
     !! transforms of length my along y, forward or backward, reading rows 1…rows_in of c (the
     !! rows beyond taken as zero) and writing rows 1…rows_out.  Small spectra run the
     !! strided plan over all rows (the caller has zeroed rows beyond rows_in); large ones
-    !! ([[transposed_y_min]]) copy chunks of `tw` columns transposed into contiguous
+    !! ([[fc_toeplitz:transposed_y_min]]) copy chunks of `tw` columns transposed into contiguous
     !! buffers, transform them there and copy back the rows needed.
     !! With `slot`, the chunks run one after the other on the calling thread through buffer
     !! `slot` (the lanes of [[block_product]], one slot each).
@@ -1047,10 +1047,10 @@ contains
     !> (zx, zy) = [bxx bxy; bxy byy]·(dx, dy) for three blocks on bxx's plan set: two forward
     !! transforms into `sx`, `sy`, two symbol pairs into `w`, `w2`, two inverse transforms.
     !! With two or more OpenMP threads (outside a parallel region) and a grid of at least
-    !! [[lanes_min_elements]] cells, the x and y components run side by side, each on one
+    !! [[fc_threads:lanes_min_elements]] cells, the x and y components run side by side, each on one
     !! thread with single-threaded plans (the plan set's lanes): two transforms in parallel
     !! scale better than one threaded transform after the other, and on grids below
-    !! [[fftw_thread_min_elements]], whose transforms are not threaded at all, they are the
+    !! [[fc_threads:fftw_thread_min_elements]], whose transforms are not threaded at all, they are the
     !! only parallelism of the product (doc/parallel.md §5.3).  `w2` is used only there,
     !! `w` only there or when a symbol is not real (else the symbols multiply the spectra
     !! in place, [[block_symbol_product_in_place]]).
@@ -1099,7 +1099,7 @@ contains
     end subroutine block_product
 
     !> Whether [[block_product]] runs its components side by side on `w`'s lanes (two
-    !! threads or more, outside a parallel region, at least [[lanes_min_elements]] cells,
+    !! threads or more, outside a parallel region, at least [[fc_threads:lanes_min_elements]] cells,
     !! spectra FFTW may use in place of the plans' buffer); makes the lanes on first use
     !! (inside the planner's critical section).
     logical function use_lanes(w, s1, s2, s3, s4)

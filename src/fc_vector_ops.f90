@@ -1,7 +1,7 @@
 !> Threaded reductions over grid arrays, shared by the iterative solvers (BCCG, TangCG).
 !!
 !! Each is one OpenMP `parallel do` over the columns with a reduction, taken only for
-!! arrays with more than [[omp_min_elements]] elements.  Serial (one thread, or a small
+!! arrays with more than [[fc_threads:omp_min_elements]] elements.  Serial (one thread, or a small
 !! array) the sum runs in element order, exactly like the intrinsic `sum(a*b)`; with T threads
 !! each thread sums a contiguous block of columns and the T partial sums are added, which
 !! changes the result by rounding only (relative O(n·eps) at worst, in practice ~√n·eps).
