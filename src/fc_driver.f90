@@ -35,7 +35,7 @@ module fc_driver
     use fc_input, only: fc_case_input, apply_case, strip_model_index, grid_is_auto
     use fc_input_validate, only: validate_case
     use fc_input_scene, only: build_case, case_notes
-    use fc_scene, only: fc_case, case_memory, case_fits_memory
+    use fc_scene, only: fc_case, case_memory, case_fits_memory, check_case_ic_header
     use fc_strings, only: fmt_int, fmt_real
     use fc_errors, only: FC_ERR_FRICTION_BOUND, FC_ERR_NO_CONTACT, FC_ERR_GEOMETRY, FC_ERR_IO, FC_ERR_ALLOC, FC_ERR_AREA, &
         FC_ERR_GRID, FC_ERR_IC_FILE, FC_ERR_MODEL_RANGE, FC_ERR_FFT_WISDOM
@@ -217,9 +217,10 @@ contains
                 line = line//'analytic Hertz solution: no grid'
             else
                 kase = build_case(state)
+                call check_case_ic_header(kase, stat, errmsg)
                 ! the first grid the case is solved on: an automatic area sized, a line
                 ! contact as its n x 1 strip
-                call case_grid(kase, gnx, gny, stat, errmsg)
+                if (stat == 0) call case_grid(kase, gnx, gny, stat, errmsg)
                 if (stat /= 0) then
                     call library_context(stat, errmsg, state, no_outcome)
                     call write_case_error(rep, err, 'fastcontact', k, cases(k)%line, name, errmsg)
@@ -320,6 +321,12 @@ contains
             !      not a process killed by the operating system while it builds the operators
             kase%memory_share = share
             if (.not. grid_is_auto(state)) then
+                ! a coefficient file for other cells, or too short a reach, before its load
+                call check_case_ic_header(kase, stat, errmsg)
+                if (stat /= 0) then
+                    call library_context(stat, errmsg, state, s%outcome)
+                    call case_error(); return
+                end if
                 call check_case_memory(kase, stat, errmsg)
                 if (stat /= 0) then
                     call case_error(); return
@@ -571,8 +578,8 @@ contains
         stat = FC_ERR_ALLOC
         if (len_trim(kase%ic_file) > 0) then
             ! the coefficient sets count too: name the file and how far it reaches
-            errmsg = "&material ic_file = '"//trim(kase%ic_file)//"' (offsets to "//fmt_int(kase%ic_offsets(1))//' x '// &
-                fmt_int(kase%ic_offsets(2))//'), &grid nx = '//fmt_int(kase%nx)//', ny = '//fmt_int(kase%ny)//': '// &
+            errmsg = "&material ic_file = '"//trim(kase%ic_file)//"' (offsets to "//fmt_int(kase%ic_header%mx)//' x '// &
+                fmt_int(kase%ic_header%my)//'), &grid nx = '//fmt_int(kase%nx)//', ny = '//fmt_int(kase%ny)//': '// &
                 what//'; use a smaller grid, a file that reaches no farther than the grid needs (nx-1, ny-1), or '// &
                 'more memory, or set '//memory_env//' to override'
         else

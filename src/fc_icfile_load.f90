@@ -8,7 +8,7 @@ module fc_icfile_load
     implicit none
     private
 
-    public :: load_influence_source, read_any_ic_file, ic_source_offsets
+    public :: load_influence_source, read_any_ic_file, ic_source_header
 
 contains
 
@@ -77,25 +77,23 @@ contains
         call validate_ic_set(set, 'combined coefficients of '//trim(path), stat, errmsg)
     end subroutine load_influence_source
 
-    !> The largest offsets (mx, my) of the coefficient files of a contact (`path`, and `path2`
-    !! when given), read from their headers: what [[load_influence_source]] will hold (its
-    !! peak: body 1's set and body 2's, each of 72 B per offset pair, doc/reliability.md,
-    !! "Memory").  stat ≠ 0 when a header cannot be read (the load reports it in full).
-    subroutine ic_source_offsets(path, path2, mx, my, stat, errmsg)
+    !> The headers of the coefficient files of a contact (`path`, and `path2` when given):
+    !! body 1's cell size and content, and the largest offsets (mx, my) of the two, what
+    !! [[load_influence_source]] will hold (its peak: body 1's set and body 2's, each of 72 B
+    !! per offset pair, doc/reliability.md, "Memory"); no coefficients.  stat ≠ 0 when a
+    !! header cannot be read (the load reports it in full).
+    subroutine ic_source_header(path, path2, header, stat, errmsg)
         character(len=*), intent(in) :: path, path2
-        integer, intent(out) :: mx, my
+        type(fc_ic_set), intent(out) :: header
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
-        type(fc_ic_set) :: h
-        mx = 0; my = 0
-        call read_any_ic_file(path, h, stat, errmsg, header_only=.true.)
+        type(fc_ic_set) :: h2
+        call read_any_ic_file(path, header, stat, errmsg, header_only=.true.)
+        if (stat /= 0 .or. len_trim(path2) == 0) return
+        call read_any_ic_file(path2, h2, stat, errmsg, header_only=.true.)
         if (stat /= 0) return
-        mx = h%mx; my = h%my
-        if (len_trim(path2) == 0) return
-        call read_any_ic_file(path2, h, stat, errmsg, header_only=.true.)
-        if (stat /= 0) return
-        mx = max(mx, h%mx); my = max(my, h%my)
-    end subroutine ic_source_offsets
+        header%mx = max(header%mx, h2%mx); header%my = max(header%my, h2%my)
+    end subroutine ic_source_header
 
     subroutine check_material(b, path, g, nu, gkey, nukey, stat, errmsg)
         type(fc_ic_set), intent(in) :: b

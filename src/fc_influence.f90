@@ -59,7 +59,7 @@ module fc_influence
 
     public :: combine_material, element_coefficient, ic_kernel, build_bttb, rigid_modulus, build_inverse_toeplitz
     public :: ic_kernel_extended, ic_kernels_uncoupled
-    public :: ic_set_allocate, ic_block_index, ic_set_kernel, same_cell_size
+    public :: ic_set_allocate, ic_block_index, ic_set_kernel, same_cell_size, check_ic_set_grid
     ! the fast operators built from the coefficients (fc_toeplitz)
     public :: fc_bttb, build_bttb_from_kernel, build_bttb_taking_kernel, inverse_toeplitz_from_kernel, fft_symbol_of_kernel
     public :: copy_bttb
@@ -471,17 +471,14 @@ contains
         same_cell_size = abs(a - b) <= 1.0e-9_dp*max(abs(a), abs(b))
     end function same_cell_size
 
-    !> Kernel of one library block for a grid of nx×ny cells: kernel(−nx:nx, −ny:ny) (the
-    !! offsets ±nx, ±ny serve only the preconditioner's wrap-around slot; when the set stops
-    !! at nx−1 they repeat the last stored coefficient).
-    subroutine ic_set_kernel(set, block, grid, kernel, stat, errmsg)
+    !> Whether a set (its header is enough: cell size and offsets) serves `grid`: the same
+    !! cells (relative 1e−9) and offsets reaching at least nx−1, ny−1.  stat = FC_ERR_VALUE
+    !! with the sizes in `errmsg` when not.
+    subroutine check_ic_set_grid(set, grid, stat, errmsg)
         type(fc_ic_set), intent(in) :: set
-        integer, intent(in) :: block
         type(fc_grid), intent(in) :: grid
-        real(dp), allocatable, intent(out) :: kernel(:, :)
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
-        integer :: i, j, ix, iy, ci, cj
         stat = FC_ERR_VALUE
         if (.not. same_cell_size(set%dx, grid%dx) .or. .not. same_cell_size(set%dy, grid%dy)) then
             write (errmsg, '(a,2es14.6,a,2es14.6,a)') 'influence coefficients are for cells dx, dy = ', set%dx, set%dy, &
@@ -493,6 +490,22 @@ contains
                 ', the grid of ', grid%nx, ' x ', grid%ny, ' cells needs at least nx-1, ny-1'
             return
         end if
+        stat = 0; errmsg = ''
+    end subroutine check_ic_set_grid
+
+    !> Kernel of one library block for a grid of nx×ny cells: kernel(−nx:nx, −ny:ny) (the
+    !! offsets ±nx, ±ny serve only the preconditioner's wrap-around slot; when the set stops
+    !! at nx−1 they repeat the last stored coefficient).
+    subroutine ic_set_kernel(set, block, grid, kernel, stat, errmsg)
+        type(fc_ic_set), intent(in) :: set
+        integer, intent(in) :: block
+        type(fc_grid), intent(in) :: grid
+        real(dp), allocatable, intent(out) :: kernel(:, :)
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        integer :: i, j, ix, iy, ci, cj
+        call check_ic_set_grid(set, grid, stat, errmsg)
+        if (stat /= 0) return
         call ic_block_index(block, i, j)
         allocate (kernel(-grid%nx:grid%nx, -grid%ny:grid%ny))
         do iy = -grid%ny, grid%ny

@@ -7,7 +7,8 @@ module fc_input_scene
     use fc_fmg_levels, only: fmg_cycle_from_name
     use fc_contact_types, only: FC_PROBLEM_NORMAL, FC_PROBLEM_TANGENTIAL, FC_PROBLEM_ROLLING
     use fc_scene, only: fc_case
-    use fc_icfile_load, only: ic_source_offsets
+    use fc_icfile_load, only: ic_source_header
+    use fc_influence, only: fc_ic_set
     use fc_input, only: fc_case_input, is_given, grid_is_auto, is_tangential, strip_model_index
     use fc_input_validate, only: effective_record
     use fc_strings, only: fmt_real
@@ -33,8 +34,8 @@ contains
         ! the files' extents for the memory estimate; a header that cannot be read leaves
         ! them unknown, and loading the file reports why
         if (len_trim(c%ic_file) > 0) then
-            call ic_source_offsets(c%ic_file, c%ic_file2, c%ic_offsets(1), c%ic_offsets(2), stat, msg)
-            if (stat /= 0) c%ic_offsets = 0
+            call ic_source_header(c%ic_file, c%ic_file2, c%ic_header, stat, msg)
+            if (stat /= 0) c%ic_header = fc_ic_set()
         end if
         ! potential contact area
         c%nx = s%nx; c%ny = s%ny

@@ -21,7 +21,7 @@ module fc_legacy_setup
     use fc_strings, only: fmt_int, fmt_g6
     use fc_legacy_registry
     use fc_icfile, only: fc_ic_set
-    use fc_icfile_load, only: load_influence_source, ic_source_offsets
+    use fc_icfile_load, only: load_influence_source, ic_source_header
     use fc_memory, only: memory_fits, format_bytes, memory_env, ic_set_bytes
     use fc_threads, only: max_threads_allowed
     implicit none
@@ -134,21 +134,21 @@ contains
         character(len=*), intent(in) :: p1, p2
         integer, intent(out) :: stat
         character(len=msg_len), intent(out) :: msg
-        integer :: mx, my
+        type(fc_ic_set) :: h
         integer(i8) :: set, need, limit
         character(len=:), allocatable :: source
         logical :: fits
-        call ic_source_offsets(p1, p2, mx, my, stat, msg)
+        call ic_source_header(p1, p2, h, stat, msg)
         if (stat /= 0) then
             stat = 0; msg = ''; return
         end if
-        set = ic_set_bytes(mx, my)
+        set = ic_set_bytes(h%mx, h%my)
         need = 2*set + set/2
         ! the host's own memory is not the library's to release: no resident size added
         call memory_fits(need, 1, 0_i8, .false., fits, limit, source, stat, msg)
         if (stat /= 0 .or. fits) return
         stat = FC_ERR_ALLOC
-        msg = 'the coefficient files reach offsets '//fmt_int(mx)//' x '//fmt_int(my)//': loading them needs about '// &
+        msg = 'the coefficient files reach offsets '//fmt_int(h%mx)//' x '//fmt_int(h%my)//': loading them needs about '// &
             format_bytes(need)//', more than the '//format_bytes(limit)//' this process may use ('//source// &
             '); use files that reach no farther than the grid needs (nx-1, ny-1), or set '//memory_env//' to override'
     end subroutine check_load_memory

@@ -9,11 +9,11 @@ module fc_scene
     use fc_memory, only: serial_bytes_per_element, case_memory_bytes, memory_fits, format_bytes, ic_set_bytes, &
         ic_case_memory_bytes, memory_base_bytes
     use fc_threads, only: fc_default_threads
-    use fc_errors, only: FC_ERR_ALLOC, FC_ERR_IO, FC_ERR_GEOMETRY, FC_ERR_NO_CONTACT
+    use fc_errors, only: FC_ERR_ALLOC, FC_ERR_IO, FC_ERR_GEOMETRY, FC_ERR_NO_CONTACT, FC_ERR_IC_FILE
     use fc_strings, only: fmt_int, fmt_real
     use fc_geometry, only: fc_grid, fc_rough_params, make_grid, quadratic_gap, punch_rough_gap, wavy_gap, &
         read_gap_table, h_no_contact
-    use fc_influence, only: fc_material, combine_material
+    use fc_influence, only: fc_material, combine_material, fc_ic_set, check_ic_set_grid
     use fc_tangcg_types, only: fc_tangential_loading
     use fc_contact_types, only: fc_normal_loading, fc_contact_settings, FC_PROBLEM_NORMAL, FC_PROBLEM_TANGENTIAL, &
         FC_PROBLEM_ROLLING
@@ -30,10 +30,11 @@ module fc_scene
         type(fc_material) :: material                !! g1, g2, nu1, nu2 (combined when solved)
         character(len=path_len) :: ic_file = ''      !! influence coefficients of body 1 (or combined) from a file
         character(len=path_len) :: ic_file2 = ''     !! body 2's coefficients from a file ('': half-space g2, nu2)
-        !> largest offsets (mx, my) of the coefficient files, from their headers
-        !! ([[ic_source_offsets]]; the namelist input reads them); 0: not known, the
-        !! memory estimate then assumes the grid's nx, ny (the least a file must reach)
-        integer :: ic_offsets(2) = 0
+        !> the coefficient files' headers ([[ic_source_header]]: body 1's cell size, the
+        !! largest offsets of the two; no coefficients), read with the namelist input; dx = 0
+        !! when not read: the memory estimate then assumes offsets nx, ny (the least a file
+        !! must reach) and nothing is checked before the load
+        type(fc_ic_set) :: ic_header
         ! ---- potential contact area
         integer :: nx = 0, ny = 0                    !! elements per direction
         real(dp) :: xmin = 0, xmax = 0, ymin = 0, ymax = 0  !! outer edges [mm]
@@ -69,6 +70,7 @@ module fc_scene
     end type fc_case
 
     public :: case_setup, is_line_contact, is_tangential, is_rolling_sequence, case_memory, case_fits_memory
+    public :: check_case_ic_header
 
 contains
 
@@ -85,13 +87,15 @@ contains
     !! 'tangential', 'transient', 'rolling', qualified by '(dissimilar materials)', '(FMG
     !! fft-rsm)' or '(coefficients from a file)'), the bytes per element (all of the estimate
     !! above the process's base, per element) and the threads it assumed.
-    subroutine case_memory(c, nx, ny, need, kind, bpe, threads)
+    subroutine case_memory(c, nx, ny, need, kind, bpe, threads, set_bytes)
         type(fc_case), intent(in) :: c
         integer, intent(in) :: nx, ny
         integer(i8), intent(out) :: need
         character(len=:), allocatable, intent(out) :: kind
         real(dp), intent(out) :: bpe
         integer, intent(out) :: threads
+        integer(i8), intent(out), optional :: set_bytes   !! one coefficient set (0 without a file)
+        integer(i8) :: set
         type(fc_material) :: m
         integer :: st
         integer(i8) :: n
@@ -112,13 +116,16 @@ contains
         if (coupled) kind = kind//' (dissimilar materials)'
         if (fmg_rsm) kind = kind//' (FMG fft-rsm)'
         n = int(nx, i8)*ny
+        set = 0
         if (len_trim(c%ic_file) > 0) then
-            need = ic_case_memory_bytes(n, bpe, ic_set_bytes(max(c%ic_offsets(1), nx), max(c%ic_offsets(2), ny)))
+            set = ic_set_bytes(max(c%ic_header%mx, nx), max(c%ic_header%my, ny))
+            need = ic_case_memory_bytes(n, bpe, set)
             kind = kind//' (coefficients from a file)'
             bpe = real(need - memory_base_bytes, dp)/real(n, dp)
         else
             need = case_memory_bytes(n, bpe)
         end if
+        if (present(set_bytes)) set_bytes = set
     end subroutine case_memory
 
     !> Whether a solve of `c` on an nx × ny grid fits in the memory this process may use: the
@@ -135,20 +142,44 @@ contains
         character(len=:), allocatable, intent(out) :: what
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
-        integer(i8) :: need, limit
-        character(len=:), allocatable :: source, kind
+        integer(i8) :: need, limit, set
+        character(len=:), allocatable :: source, kind, detail
         character(len=msg_len) :: m
         real(dp) :: bpe
         integer :: threads
         what = ''
-        call case_memory(c, nx, ny, need, kind, bpe, threads)
+        call case_memory(c, nx, ny, need, kind, bpe, threads, set)
         call memory_fits(need, c%memory_share, 0_i8, .true., fits, limit, source, stat, m)
         errmsg = m
         if (fits) return
+        if (set > 0) then
+            detail = 'coefficient sets of '//format_bytes(set)//': two while the files are loaded, one beside the solve'
+        else
+            detail = fmt_int(nint(bpe))//' B per element'
+        end if
         what = 'a '//kind//' case on '//fmt_int(threads)//' thread(s) needs about '//format_bytes(need)//' ('// &
-            fmt_int(nint(bpe))//' B per element), more than the '//format_bytes(limit)// &
-            ' this process may use ('//source//')'
+            detail//'), more than the '//format_bytes(limit)//' this process may use ('//source//')'
     end subroutine case_fits_memory
+
+    !> Whether the coefficient files of `c`, by their headers ([[fc_case]]%ic_header), serve
+    !! its grid: the same cells and offsets reaching nx−1, ny−1 ([[check_ic_set_grid]]), so
+    !! that a wrong file is reported before anything is loaded or estimated.  Nothing is
+    !! checked without a file, without a header read, or with an automatic area.
+    !! stat = FC_ERR_IC_FILE with the sizes in `errmsg` when they do not.
+    subroutine check_case_ic_header(c, stat, errmsg)
+        type(fc_case), intent(in) :: c
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        type(fc_grid) :: g
+        stat = 0; errmsg = ''
+        if (len_trim(c%ic_file) == 0 .or. .not. c%ic_header%dx > 0 .or. c%grid_auto) return
+        call make_grid(g, c%nx, c%ny, c%xmin, c%xmax, c%ymin, c%ymax, stat, errmsg)
+        if (stat /= 0) then
+            stat = 0; errmsg = ''; return   ! the grid's own error is reported by the solve
+        end if
+        call check_ic_set_grid(c%ic_header, g, stat, errmsg)
+        if (stat /= 0) stat = FC_ERR_IC_FILE
+    end subroutine check_case_ic_header
 
     !> Whether the case solves the tangential problem too.
     pure logical function is_tangential(c)

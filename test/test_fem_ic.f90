@@ -438,15 +438,15 @@ contains
     !! keeps its half-space coefficients.
     subroutine test_sets_in_memory(error)
         use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char
-        use fc_icfile_load, only: ic_source_offsets
+        use fc_icfile_load, only: ic_source_header
         use fc_memory, only: memory_env
         use fc_test_driver, only: run_namelist, file_exists
         use fc_legacy, only: fc_init, fc_finalize, fc_set_material, fc_set_influence_file, fc_get_error_message, &
             FCL_OK, FCL_MEMORY
         type(error_type), allocatable, intent(out) :: error
-        type(fc_ic_set) :: b1, b2, big, c, d
+        type(fc_ic_set) :: b1, b2, big, c, d, hdr
         type(fc_contact_operators) :: ops
-        integer :: stat, mx, my, code, i
+        integer :: stat, code, i
         integer(c_int) :: h, ierr, jerr
         character(kind=c_char) :: buf(512)
         character(len=msg_len) :: msg
@@ -473,12 +473,14 @@ contains
         ! headers
         call write_ic_file('test_fem_ic_hdr.fcic', big, stat, msg)
         call write_contact_file('test_fem_ic_hdr.cnt', c, stat, msg)
-        call ic_source_offsets('test_fem_ic_hdr.fcic', '', mx, my, stat, msg)
-        call check(error, stat == 0 .and. mx == 7 .and. my == 4, 'own header: '//trim(msg)); if (allocated(error)) return
-        call ic_source_offsets('test_fem_ic_hdr.cnt', '', mx, my, stat, msg)
-        call check(error, stat == 0 .and. mx == 5 .and. my == 3, 'CONTACT header: '//trim(msg)); if (allocated(error)) return
-        call ic_source_offsets('test_fem_ic_hdr.cnt', 'test_fem_ic_hdr.fcic', mx, my, stat, msg)
-        call check(error, stat == 0 .and. mx == 7 .and. my == 4, 'largest of two headers'); if (allocated(error)) return
+        call ic_source_header('test_fem_ic_hdr.fcic', '', hdr, stat, msg)
+        call check(error, stat == 0 .and. hdr%mx == 7 .and. hdr%my == 4 .and. hdr%dx == 0.2_dp .and. hdr%dy == 0.25_dp &
+            .and. hdr%content == 'body' .and. .not. allocated(hdr%a), 'own header: '//trim(msg)); if (allocated(error)) return
+        call ic_source_header('test_fem_ic_hdr.cnt', '', hdr, stat, msg)
+        call check(error, stat == 0 .and. hdr%mx == 5 .and. hdr%my == 3 .and. hdr%dx == 0.2_dp .and. &
+            hdr%content == 'combined' .and. .not. allocated(hdr%a), 'CONTACT header: '//trim(msg)); if (allocated(error)) return
+        call ic_source_header('test_fem_ic_hdr.cnt', 'test_fem_ic_hdr.fcic', hdr, stat, msg)
+        call check(error, stat == 0 .and. hdr%mx == 7 .and. hdr%my == 4, 'largest of two headers'); if (allocated(error)) return
         call delete_file('test_fem_ic_hdr.fcic'); call delete_file('test_fem_ic_hdr.cnt')
         ! a 16 x 16 grid (dx = 0.15 mm) with a file reaching offsets 60 x 60: a set is 72 B x
         ! 121² = 1.05 MB, the case 10 MB + 1.05 MB + 1.5 x 1.05 MB = 12.6 MB, while the grid
@@ -493,6 +495,17 @@ contains
             .and. index(errs, 'more than the 12 MB this process may use') > 0, '11.5M: '//errs)
         if (allocated(error)) return
         call check(error, .not. file_exists(dir//'/m.json'), 'no JSON for a case refused for memory')
+        call check(error, index(errs, '(coefficient sets of 1 MB: two while the files are loaded, one beside the '// &
+            'solve)') > 0, 'the message must give the set size: '//errs)
+        ! a file for other cells is refused by its header, before memory or the load: with a
+        ! memory limit no case could meet, the message is about the cells
+        call analytic_body_set(200.0_dp, 0.42_dp, 0.2_dp, 0.2_dp, 60, 60, b2, stat, msg)
+        call write_ic_file(dir//'/other.fcic', b2, stat, msg)
+        call run_case('1M', code, errs, 'other.fcic')
+        call check(error, code /= 0 .and. index(errs, "&material ic_file = '"//dir//"/other.fcic': influence "// &
+            'coefficients are for cells dx, dy =') > 0 .and. index(errs, 'this process may use') == 0, &
+            'file for other cells: '//errs)
+        if (allocated(error)) return
         call run_case('13M', code, errs)
         call check(error, code == 0 .and. file_exists(dir//'/m.json'), '13M must be solved: '//errs)
         if (allocated(error)) return
@@ -515,13 +528,17 @@ contains
         call check(error, ierr == FCL_OK, 'flat API without the limit must load the file')
         call fc_finalize(h, ierr)
     contains
-        subroutine run_case(avail, code, errs)
+        subroutine run_case(avail, code, errs, file)
             character(len=*), intent(in) :: avail
             integer, intent(out) :: code
             character(len=:), allocatable, intent(out) :: errs
+            character(len=*), intent(in), optional :: file   !! the coefficient file (default far.fcic)
+            character(len=:), allocatable :: f
+            f = 'far.fcic'
+            if (present(file)) f = file
             call execute_command_line('rm -f '//dir//'/m.json')
             call run_namelist(dir, "&case name = 'm', problem = 'normal' /"//new_line('a')// &
-                "&material g1 = 200.0, g2 = 200.0, nu1 = 0.42, nu2 = 0.42, ic_file = '"//dir//"/far.fcic' /"//new_line('a')// &
+                "&material g1 = 200.0, g2 = 200.0, nu1 = 0.42, nu2 = 0.42, ic_file = '"//dir//'/'//f//"' /"//new_line('a')// &
                 '&grid nx = 16, ny = 16, xmin = -1.2, xmax = 1.2, ymin = -1.2, ymax = 1.2 /'//new_line('a')// &
                 "&geometry kind = 'quadratic', rx = 50.0, ry = 50.0 /"//new_line('a')//'&normal approach = 0.02 /'// &
                 new_line('a')//'&output table = .false. /'//new_line('a')//'&solver threads = 1 /', code, errs, memory=avail)
