@@ -39,7 +39,7 @@ module fc_icfile
     public :: fc_ic_set, ic_set_allocate, ic_block_index, ic_set_kernel   ! (from [[fc_influence]])
     public :: validate_ic_set, combine_ic_sets, combine_ic_sets_in_place, analytic_body_set, move_ic_set
     public :: write_ic_file, read_ic_file, hash_text, is_fastcontact_ic_file
-    public :: rename_file, temp_name
+    public :: rename_file, temp_name, check_file_length
 
 contains
 
@@ -380,6 +380,22 @@ contains
         close (u)
     end function is_fastcontact_ic_file
 
+    !> stat = FC_ERR_IO unless the file `path` is long enough for `lines` data lines of at
+    !! least 22 bytes (eleven numbers of one digit and their separators, both formats).
+    subroutine check_file_length(path, lines, stat, errmsg)
+        character(len=*), intent(in) :: path
+        integer(i8), intent(in) :: lines
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        integer(i8) :: bytes
+        stat = 0; errmsg = ''
+        inquire (file=path, size=bytes)
+        if (bytes < 0 .or. bytes >= 22*lines) return   ! size unknown (-1): the read finds it
+        stat = FC_ERR_IO
+        write (errmsg, '(2a,i0,a,i0,a)') trim(path), ': the header announces ', lines, ' lines of coefficients, '// &
+            'at least 22 bytes each, but the file has only ', bytes, ' bytes (truncated?)'
+    end subroutine check_file_length
+
     !> Read a fastcontact influence-coefficient file (any version ≤ ic_format_version) and
     !! validate it ([[validate_ic_set]]).
     subroutine read_ic_file(path, set, stat, errmsg, header_only)
@@ -467,6 +483,12 @@ contains
                 ' must satisfy g > 0, 0 <= nu < 0.5 for content body'
             close (u); return
         end if
+        ! a truncated file is found before its set is allocated (up to 4.8 GB)
+        call check_file_length(path, (2_i8*mx + 1)*(2_i8*my + 1), stat, errmsg)
+        if (stat /= 0) then
+            close (u); return
+        end if
+        stat = FC_ERR_IO
         if (present(header_only)) then
             if (header_only) then
                 if (allocated(set%a)) deallocate (set%a)

@@ -18,8 +18,9 @@
 !! the surfaces apart, A^zz > 0); the lateral coordinate is our y; nmatrix = 1 only (one
 !! matrix, translation invariant: the only case a BTTB operator represents).
 module fc_icfile_contact
-    use fc_kinds, only: dp, msg_len, FC_ERR_VALUE, FC_ERR_IO
-    use fc_icfile, only: fc_ic_set, ic_set_allocate, validate_ic_set, ic_max_offset, rename_file, temp_name
+    use fc_kinds, only: dp, i8, msg_len, FC_ERR_VALUE, FC_ERR_IO
+    use fc_icfile, only: fc_ic_set, ic_set_allocate, validate_ic_set, ic_max_offset, rename_file, temp_name, &
+        check_file_length
     implicit none
     private
 
@@ -145,6 +146,12 @@ contains
             end if
             set%content = 'combined'; set%source = 'contact'; set%load = 'constant'
             set%model = 'CONTACT influence-coefficient file '//trim(path); set%hash = ''; set%g = 0; set%nu = 0
+            ! a truncated file is found before its set is allocated
+            call check_file_length(path, int(mx, i8)*(2_i8*my - 1), stat, errmsg)
+            if (stat /= 0) then
+                close (u); return
+            end if
+            stat = FC_ERR_IO
             if (present(header_only)) then
                 if (header_only) then
                     if (allocated(set%a)) deallocate (set%a)

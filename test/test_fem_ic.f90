@@ -206,6 +206,24 @@ contains
         close (u)
         call read_contact_file('test_fem_ic_hdr.fcic', b, stat, msg)
         call check(error, stat /= 0 .and. index(msg, 'lsymmx = 0') > 0, 'lsymmx = 0 accepted: '//trim(msg))
+        if (allocated(error)) return
+        ! headers that announce far more coefficients than the file holds: refused from the
+        ! file's length, before a set of 72 x 4001^2 B = 1.15 GB (ours) or 0.6 GB (CONTACT's)
+        ! is allocated
+        open (newunit=u, file='test_fem_ic_hdr.fcic', status='replace')
+        write (u, '(a)') 'format = fastcontact-ic', 'version = 1', 'content = combined', 'dx = 0.1', 'dy = 0.1', &
+            'mx = 2000', 'my = 2000', 'data', '-2000 -2000 1 1 1 0 0 0 0 0 0'
+        close (u)
+        call read_ic_file('test_fem_ic_hdr.fcic', b, stat, msg)
+        call check(error, stat /= 0 .and. index(msg, 'the header announces 16008001 lines of coefficients') > 0 .and. &
+            index(msg, 'truncated') > 0 .and. .not. allocated(b%a), 'truncated file: '//trim(msg))
+        if (allocated(error)) return
+        open (newunit=u, file='test_fem_ic_hdr.fcic', status='replace')
+        write (u, '(a)') '1 1', '0 312', '1 0', '2001 2001 0.1 0.1', '0 0 1 0 0 0 1 0 0 0 1'
+        close (u)
+        call read_contact_file('test_fem_ic_hdr.fcic', b, stat, msg)
+        call check(error, stat /= 0 .and. index(msg, 'the header announces 8006001 lines') > 0 .and. &
+            .not. allocated(b%a), 'truncated CONTACT file: '//trim(msg))
         call delete_file('test_fem_ic_hdr.fcic')
     end subroutine test_reject_header
 
