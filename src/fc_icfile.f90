@@ -39,7 +39,7 @@ module fc_icfile
     public :: fc_ic_set, ic_set_allocate, ic_block_index, ic_set_kernel   ! (from [[fc_influence]])
     public :: validate_ic_set, combine_ic_sets, combine_ic_sets_in_place, analytic_body_set, move_ic_set
     public :: write_ic_file, read_ic_file, hash_text, is_fastcontact_ic_file
-    public :: rename_file, temp_name, check_file_length
+    public :: rename_file, temp_name, end_of_header
 
 contains
 
@@ -380,21 +380,39 @@ contains
         close (u)
     end function is_fastcontact_ic_file
 
-    !> stat = FC_ERR_IO unless the file `path` is long enough for `lines` data lines of at
-    !! least 22 bytes (eleven numbers of one digit and their separators, both formats).
-    subroutine check_file_length(path, lines, stat, errmsg)
+    !> After a checked header (both formats), before the coefficients are allocated and read:
+    !! `done` (the reader returns, unit `u` closed) for a file too short for its `lines` data
+    !! lines of at least 22 bytes each (eleven numbers of one digit and their separators:
+    !! stat = FC_ERR_IO, a truncated file found before a set of up to 4.8 GB is allocated),
+    !! or with `header_only` (stat = 0; `set` gets offsets mx, my and the cell size, no
+    !! coefficients).  Else stat = FC_ERR_IO for the read that follows.
+    subroutine end_of_header(u, path, lines, mx, my, dx, dy, set, header_only, done, stat, errmsg)
+        integer, intent(in) :: u, mx, my
         character(len=*), intent(in) :: path
         integer(i8), intent(in) :: lines
+        real(dp), intent(in) :: dx, dy
+        type(fc_ic_set), intent(inout) :: set
+        logical, intent(in), optional :: header_only
+        logical, intent(out) :: done
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
         integer(i8) :: bytes
-        stat = 0; errmsg = ''
+        done = .true.; stat = FC_ERR_IO; errmsg = ''
         inquire (file=path, size=bytes)
-        if (bytes < 0 .or. bytes >= 22*lines) return   ! size unknown (-1): the read finds it
-        stat = FC_ERR_IO
-        write (errmsg, '(2a,i0,a,i0,a)') trim(path), ': the header announces ', lines, ' lines of coefficients, '// &
-            'at least 22 bytes each, but the file has only ', bytes, ' bytes (truncated?)'
-    end subroutine check_file_length
+        if (bytes >= 0 .and. bytes < 22*lines) then   ! size unknown (-1): the read finds it
+            write (errmsg, '(2a,i0,a,i0,a)') trim(path), ': the header announces ', lines, ' lines of coefficients, '// &
+                'at least 22 bytes each, but the file has only ', bytes, ' bytes (truncated?)'
+            close (u); return
+        end if
+        if (present(header_only)) then
+            if (header_only) then
+                if (allocated(set%a)) deallocate (set%a)
+                set%mx = mx; set%my = my; set%dx = dx; set%dy = dy
+                close (u); stat = 0; return
+            end if
+        end if
+        done = .false.
+    end subroutine end_of_header
 
     !> Read a fastcontact influence-coefficient file (any version ≤ ic_format_version) and
     !! validate it ([[validate_ic_set]]).
@@ -406,6 +424,7 @@ contains
         !> read and check the header only: `set` gets its offsets, cell size and content, no
         !! coefficients (what a memory estimate needs before the file is loaded)
         logical, intent(in), optional :: header_only
+        logical :: done
         integer :: u, ios, line, version, mx, my, ix, iy, jx, jy, p
         real(dp) :: v(9), dx, dy
         character(len=4096) :: buf
@@ -483,19 +502,8 @@ contains
                 ' must satisfy g > 0, 0 <= nu < 0.5 for content body'
             close (u); return
         end if
-        ! a truncated file is found before its set is allocated (up to 4.8 GB)
-        call check_file_length(path, (2_i8*mx + 1)*(2_i8*my + 1), stat, errmsg)
-        if (stat /= 0) then
-            close (u); return
-        end if
-        stat = FC_ERR_IO
-        if (present(header_only)) then
-            if (header_only) then
-                if (allocated(set%a)) deallocate (set%a)
-                set%mx = mx; set%my = my; set%dx = dx; set%dy = dy
-                close (u); stat = 0; errmsg = ''; return
-            end if
-        end if
+        call end_of_header(u, path, (2_i8*mx + 1)*(2_i8*my + 1), mx, my, dx, dy, set, header_only, done, stat, errmsg)
+        if (done) return
         call ic_set_allocate(set, mx, my, dx, dy)
         do iy = -my, my
             do ix = -mx, mx

@@ -20,7 +20,7 @@
 module fc_icfile_contact
     use fc_kinds, only: dp, i8, msg_len, FC_ERR_VALUE, FC_ERR_IO
     use fc_icfile, only: fc_ic_set, ic_set_allocate, validate_ic_set, ic_max_offset, rename_file, temp_name, &
-        check_file_length
+        end_of_header
     implicit none
     private
 
@@ -98,6 +98,7 @@ contains
         character(len=*), intent(out) :: errmsg
         !> read and check the header only (offsets, cell size; no coefficients)
         logical, intent(in), optional :: header_only
+        logical :: done
         integer :: u, ios, line, nmatrix, iaconvex, lquasid, xyzorder, lsymmx, lsymmy, mx, my, ix, iy, jx
         real(dp) :: dx, dy, v(10)
         character(len=4096) :: buf
@@ -146,19 +147,9 @@ contains
             end if
             set%content = 'combined'; set%source = 'contact'; set%load = 'constant'
             set%model = 'CONTACT influence-coefficient file '//trim(path); set%hash = ''; set%g = 0; set%nu = 0
-            ! a truncated file is found before its set is allocated
-            call check_file_length(path, int(mx, i8)*(2_i8*my - 1), stat, errmsg)
-            if (stat /= 0) then
-                close (u); return
-            end if
-            stat = FC_ERR_IO
-            if (present(header_only)) then
-                if (header_only) then
-                    if (allocated(set%a)) deallocate (set%a)
-                    set%mx = mx - 1; set%my = my - 1; set%dx = dx; set%dy = dy
-                    close (u); stat = 0; errmsg = ''; return
-                end if
-            end if
+            call end_of_header(u, path, int(mx, i8)*(2_i8*my - 1), mx - 1, my - 1, dx, dy, set, header_only, done, stat, &
+                errmsg)
+            if (done) return
             call ic_set_allocate(set, mx - 1, my - 1, dx, dy)
             do iy = -(my - 1), my - 1
                 do ix = 0, mx - 1
