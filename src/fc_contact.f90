@@ -45,7 +45,8 @@ module fc_contact
     use fc_rolling_refsolvers, only: reference_solver   ! the reference solvers, passed to fc_rolling
     use fc_contact_types, only: FC_PROBLEM_NORMAL, FC_PROBLEM_TANGENTIAL, FC_PROBLEM_ROLLING, fc_normal_loading, &
         fc_contact_settings, fc_contact_result, fc_contact_loading, fc_contact_operators, fc_contact_state, &
-        FC_FROM_REST, FC_TRANSIENT_SHIFT, FC_TRANSIENT_ROLLING
+        FC_FROM_REST, FC_TRANSIENT_SHIFT, FC_TRANSIENT_ROLLING, set_influence_coefficients, take_influence_coefficients, &
+        clear_influence_coefficients
     use fc_influence, only: fc_ic_set, ic_set_kernel, ic_kernels_uncoupled, fc_bttb
     use fc_periodic, only: build_periodic_normal_operator, check_periodic_grid, periodic_images_default
     use fc_threads, only: fc_thread_count
@@ -158,61 +159,6 @@ contains
             end if
         end subroutine build_tangential_on
     end subroutine ensure_operators
-
-    !> Use the combined coefficients `ic` (content 'combined', validated) for every block
-    !! from now on; the operators are rebuilt at the next solve.  FMG, which needs
-    !! coefficients on coarser grids, is refused while a set is in use.
-    subroutine set_influence_coefficients(ops, ic, stat, errmsg)
-        type(fc_contact_operators), intent(inout) :: ops
-        type(fc_ic_set), intent(in) :: ic
-        integer, intent(out) :: stat
-        character(len=*), intent(out) :: errmsg
-        call check_combined(ic, stat, errmsg)
-        if (stat /= 0) return
-        ops%ic = ic
-        ops%ic_source = ''
-        call ops%normal%destroy(); call ops%tangential%destroy()
-    end subroutine set_influence_coefficients
-
-    !> [[set_influence_coefficients]] without a copy: the coefficients move from `ic` (left
-    !! unallocated) to `ops`, so that a large set is not held twice.  `source` names where
-    !! they came from ([[fc_contact_operators]]%ic_source; default '').
-    subroutine take_influence_coefficients(ops, ic, stat, errmsg, source)
-        type(fc_contact_operators), intent(inout) :: ops
-        type(fc_ic_set), intent(inout) :: ic
-        integer, intent(out) :: stat
-        character(len=*), intent(out) :: errmsg
-        character(len=*), intent(in), optional :: source
-        real(dp), allocatable :: a(:, :, :, :)
-        call check_combined(ic, stat, errmsg)
-        if (stat /= 0) return
-        if (allocated(ops%ic%a)) deallocate (ops%ic%a)
-        call ops%normal%destroy(); call ops%tangential%destroy()
-        call move_alloc(ic%a, a)
-        ops%ic = ic
-        call move_alloc(a, ops%ic%a)
-        ops%ic_source = ''
-        if (present(source)) ops%ic_source = source
-    end subroutine take_influence_coefficients
-
-    !> stat = FC_ERR_VALUE unless `ic` is a combined set with coefficients.
-    subroutine check_combined(ic, stat, errmsg)
-        type(fc_ic_set), intent(in) :: ic
-        integer, intent(out) :: stat
-        character(len=*), intent(out) :: errmsg
-        stat = 0; errmsg = ''
-        if (ic%content /= 'combined' .or. .not. allocated(ic%a)) then
-            stat = FC_ERR_VALUE; errmsg = "influence coefficients: a set of content 'combined' is needed (combine the bodies first)"
-        end if
-    end subroutine check_combined
-
-    !> Return to the half-space coefficients (operators rebuilt at the next solve).
-    subroutine clear_influence_coefficients(ops)
-        type(fc_contact_operators), intent(inout) :: ops
-        if (allocated(ops%ic%a)) deallocate (ops%ic%a)
-        ops%ic_source = ''
-        call ops%normal%destroy(); call ops%tangential%destroy()
-    end subroutine clear_influence_coefficients
 
     !> Solve one contact problem on `grid` with undeformed distance `h0` [mm] (without the
     !! approach).  Operators in `ops` are built or reused.  With `state`, the previous

@@ -2,9 +2,10 @@
 !! stages, the operators and state kept between solves, the result — apart from the
 !! orchestrator [[fc_contact]] that uses them, so that the case description ([[fc_scene]]),
 !! the outputs ([[fc_case_result]]) and the flat API's handle registry depend on the solver
-!! types only, not on the solve.  [[fc_contact]] re-exports everything here.
+!! types only, not on the solve; and the coefficient sets the operators use (set, taken or
+!! cleared here, beside the operators type).  [[fc_contact]] re-exports everything here.
 module fc_contact_types
-    use fc_kinds, only: dp, FC_ERROR
+    use fc_kinds, only: dp, FC_ERROR, FC_ERR_VALUE
     use fc_influence, only: fc_ic_set
     use fc_norm, only: fc_normal_settings, fc_normal_result, fc_normal_operator
     use fc_tangcg_operator, only: fc_tangential_operator
@@ -105,6 +106,8 @@ module fc_contact_types
         procedure :: reset => state_reset
     end type fc_contact_state
 
+    public :: set_influence_coefficients, take_influence_coefficients, clear_influence_coefficients
+
 contains
 
     subroutine operators_destroy(self)
@@ -112,6 +115,61 @@ contains
         call self%normal%destroy()
         call self%tangential%destroy()
     end subroutine operators_destroy
+
+    !> Use the combined coefficients `ic` (content 'combined', validated) for every block
+    !! from now on; the operators are rebuilt at the next solve.  FMG, which needs
+    !! coefficients on coarser grids, is refused while a set is in use.
+    subroutine set_influence_coefficients(ops, ic, stat, errmsg)
+        type(fc_contact_operators), intent(inout) :: ops
+        type(fc_ic_set), intent(in) :: ic
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        call check_combined(ic, stat, errmsg)
+        if (stat /= 0) return
+        ops%ic = ic
+        ops%ic_source = ''
+        call ops%normal%destroy(); call ops%tangential%destroy()
+    end subroutine set_influence_coefficients
+
+    !> [[set_influence_coefficients]] without a copy: the coefficients move from `ic` (left
+    !! unallocated) to `ops`, so that a large set is not held twice.  `source` names where
+    !! they came from ([[fc_contact_operators]]%ic_source; default '').
+    subroutine take_influence_coefficients(ops, ic, stat, errmsg, source)
+        type(fc_contact_operators), intent(inout) :: ops
+        type(fc_ic_set), intent(inout) :: ic
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        character(len=*), intent(in), optional :: source
+        real(dp), allocatable :: a(:, :, :, :)
+        call check_combined(ic, stat, errmsg)
+        if (stat /= 0) return
+        if (allocated(ops%ic%a)) deallocate (ops%ic%a)
+        call ops%normal%destroy(); call ops%tangential%destroy()
+        call move_alloc(ic%a, a)
+        ops%ic = ic
+        call move_alloc(a, ops%ic%a)
+        ops%ic_source = ''
+        if (present(source)) ops%ic_source = source
+    end subroutine take_influence_coefficients
+
+    !> stat = FC_ERR_VALUE unless `ic` is a combined set with coefficients.
+    subroutine check_combined(ic, stat, errmsg)
+        type(fc_ic_set), intent(in) :: ic
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        stat = 0; errmsg = ''
+        if (ic%content /= 'combined' .or. .not. allocated(ic%a)) then
+            stat = FC_ERR_VALUE; errmsg = "influence coefficients: a set of content 'combined' is needed (combine the bodies first)"
+        end if
+    end subroutine check_combined
+
+    !> Return to the half-space coefficients (operators rebuilt at the next solve).
+    subroutine clear_influence_coefficients(ops)
+        type(fc_contact_operators), intent(inout) :: ops
+        if (allocated(ops%ic%a)) deallocate (ops%ic%a)
+        ops%ic_source = ''
+        call ops%normal%destroy(); call ops%tangential%destroy()
+    end subroutine clear_influence_coefficients
 
     !> Forget the previous solution (keeps `warm_start`).
     subroutine state_reset(self)

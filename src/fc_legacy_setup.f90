@@ -17,12 +17,12 @@ module fc_legacy_setup
     use fc_influence
     use fc_contact_types
     use fc_tangcg_types
-    use fc_contact, only: take_influence_coefficients, clear_influence_coefficients
+    use fc_contact_types, only: take_influence_coefficients, clear_influence_coefficients
     use fc_strings, only: fmt_int, fmt_g6
     use fc_legacy_registry
     use fc_icfile, only: fc_ic_set
     use fc_icfile_load, only: load_influence_source, ic_source_header
-    use fc_memory, only: memory_fits, format_bytes, memory_env, ic_set_bytes
+    use fc_memory, only: memory_fits, format_bytes, memory_env, ic_set_bytes, ic_case_memory_bytes, memory_base_bytes
     use fc_threads, only: max_threads_allowed
     implicit none
     private
@@ -143,7 +143,7 @@ contains
             stat = 0; msg = ''; return
         end if
         set = ic_set_bytes(h%mx, h%my)
-        need = 2*set + set/2
+        need = ic_case_memory_bytes(0_i8, 0.0_dp, set) - memory_base_bytes   ! the load alone, no grid yet
         ! the host's own memory is not the library's to release: no resident size added
         call memory_fits(need, 1, 0_i8, .false., fits, limit, source, stat, msg)
         if (stat /= 0 .or. fits) return
