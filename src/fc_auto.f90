@@ -46,6 +46,10 @@
 !! This module holds the decisions and the refinement loop; the area's sizing is in
 !! [[fc_auto_area]], the answers without a grid (analytic Hertz, FASTSIM) in
 !! [[fc_auto_answers]], the error estimate in [[fc_auto_estimate]].
+!!
+!! Size (~650 lines, a sixth of them comments): the case's plan (model, grid), the
+!! refinement loop and the one solve it repeats share the outcome they fill, the
+!! prolongation of a coarse solution and the coefficient file's use.
 module fc_auto
     use fc_kinds, only: dp, i8, msg_len, FC_CONVERGED, status_name
     use fc_influence, only: fc_material, combine_material

@@ -18,9 +18,9 @@
 !! Exit code: 0 all cases converged; 1 a case had an input error (or the command line /
 !! case file was bad); 2 no input error but a solver did not converge or diverged.
 !!
-!! Size (~710 lines): the case loop with its three outcomes (error, sweep or sequence,
-!! single solve), its `--check` pass (each case's grid and memory, nothing solved) and the
-!! summary it fills; what the MPI package's drivers share with it (exit codes, command
+!! Size (~790 lines): the case loop with its three outcomes (error, sweep or sequence,
+!! single solve), its `--check` pass (each case's grid and memory, nothing solved), the
+!! `--case` selection and the summary it fills; what the MPI package's drivers share with it (exit codes, command
 !! line, case errors, output files, Hertz reference) lives in [[fc_driver_common]], the
 !! strip cases and the sequence tables in [[fc_driver_strip]] and [[fc_sequence_csv]].
 module fc_driver
@@ -59,13 +59,14 @@ contains
     function driver_usage() result(text)
         character(len=:), allocatable :: text
         character(len=*), parameter :: nl = new_line('a')
-        text = 'usage: fastcontact CASES.nml [--out DIR]'//nl// &
-            '       fastcontact CASES.nml --check   (check every case, estimate its memory; solve nothing)'//nl// &
+        text = 'usage: fastcontact CASES.nml [--out DIR] [--case NAME[,NAME...]]'//nl// &
+            '       fastcontact CASES.nml --check [--case NAME]   (check cases, estimate their memory; solve nothing)'//nl// &
             '       fastcontact --help | --version'//nl//nl// &
             'Solves every case of the namelist file CASES.nml in order: groups &case, &material,'//nl// &
             '&grid, &geometry, &normal, &tangential, &solver, &output; a later case repeats only'//nl// &
             'what changes.  &case problem = normal, normal+tangential, tangential, rolling (steady'//nl// &
             'creep forces; sweeps write DIR/<name>_creep.csv), transient_rolling, hertz, strip_mp1..3.'//nl// &
+            '--case solves only the cases of those names (the others are read for what they pass on).'//nl// &
             'Writes DIR/<name>.json (summary) and DIR/<name>.csv (one row per element) per case'//nl// &
             "(DIR: --out, else &output dir, else 'out').  Threads: &solver threads or"//nl// &
             'OMP_NUM_THREADS.  See doc/user_guide.md and doc/namelist.md.'//nl//nl// &
@@ -102,6 +103,7 @@ contains
         character(len=msg_len) :: errmsg
         type(fc_contact_operators) :: ops
         integer :: case_status, nused_before
+        character(len=case_name_len), allocatable :: selected(:), case_names(:)
         rep = output_unit; err = error_unit_default
         if (present(report_unit)) rep = report_unit
         if (present(error_unit)) err = error_unit
@@ -109,7 +111,11 @@ contains
         if (present(memory_share)) share = max(1, memory_share)
         exit_code = EXIT_OK
         ! ---- command line
-        call parse_driver_arguments(args, 'fastcontact', driver_usage(), case_file, out_dir, action, errtext)
+        if (present(only_case)) then
+            call parse_driver_arguments(args, 'fastcontact', driver_usage(), case_file, out_dir, action, errtext)
+        else
+            call parse_driver_arguments(args, 'fastcontact', driver_usage(), case_file, out_dir, action, errtext, selected)
+        end if
         select case (action)
         case ('help')
             write (rep, '(a)') driver_usage(); return
@@ -127,6 +133,12 @@ contains
         end if
         allocate (used(0), used_case(0))
         ncase_err = 0; ncase_fail = 0
+        if (allocated(selected)) then
+            call check_selection(stat)
+            if (stat /= 0) then
+                exit_code = EXIT_INPUT_ERROR; return
+            end if
+        end if
         if (present(statuses) .and. present(only_case)) then
             allocate (statuses(max(0, min(last_solved(), size(cases)) - only_case + 1)))
             statuses = -1
@@ -142,6 +154,9 @@ contains
                     call inherit_case(k); cycle
                 end if
             end if
+            if (.not. is_selected(k)) then
+                call inherit_case(k); cycle
+            end if
             call run_one_case(k, case_status)
             if (present(statuses) .and. present(only_case)) statuses(k - only_case + 1) = case_status
             select case (case_status)
@@ -151,9 +166,9 @@ contains
             end select
         end do
         call ops%destroy()
-        if (.not. present(only_case)) write (rep, '(a,i0,a,i0,a,i0,a,i0,a)') 'fastcontact: ', size(cases), &
-            ' case(s): ', size(cases) - ncase_err - ncase_fail, ' converged, ', ncase_fail, ' not converged, ', &
-            ncase_err, ' with input errors'
+        if (.not. present(only_case)) write (rep, '(a,i0,a,i0,a,i0,a,i0,a)') 'fastcontact: ', &
+            nsolved(), ' case(s)'//selection_note()//': ', nsolved() - ncase_err - ncase_fail, ' converged, ', &
+            ncase_fail, ' not converged, ', ncase_err, ' with input errors'
         if (ncase_err > 0) then
             exit_code = EXIT_INPUT_ERROR
         else if (ncase_fail > 0) then
@@ -168,6 +183,9 @@ contains
             integer :: nfit, nbig, nerr, status
             nfit = 0; nbig = 0; nerr = 0
             do k = 1, size(cases)
+                if (.not. is_selected(k)) then
+                    call inherit_case(k); cycle
+                end if
                 call check_one_case(k, status)
                 select case (status)
                 case (0); nfit = nfit + 1
@@ -175,7 +193,7 @@ contains
                 case default; nbig = nbig + 1
                 end select
             end do
-            write (rep, '(a,i0,a,i0,a,i0,a,i0,a)') 'fastcontact --check: ', size(cases), ' case(s): ', nfit, &
+            write (rep, '(a,i0,a,i0,a,i0,a,i0,a)') 'fastcontact --check: ', nsolved(), ' case(s)'//selection_note()//': ', nfit, &
                 ' to solve, ', nbig, ' too large for the memory, ', nerr, ' with input errors'
             if (nerr + nbig > 0) exit_code = EXIT_INPUT_ERROR
         end subroutine check_cases
@@ -520,6 +538,60 @@ contains
             last_solved = only_case
             if (present(last_case)) last_solved = max(only_case, last_case)
         end function last_solved
+
+        !> `--case`: every name given must name a case of the file (checked before anything is
+        !! solved); stat ≠ 0 with the message written otherwise.
+        subroutine check_selection(stat)
+            integer, intent(out) :: stat
+            integer :: j
+            character(len=:), allocatable :: known
+            stat = 0
+            allocate (case_names(size(cases)))
+            do j = 1, size(cases)
+                case_names(j) = chunk_case_name(j)
+            end do
+            do j = 1, size(selected)
+                if (any(case_names == selected(j))) cycle
+                known = ''
+                do k = 1, min(size(cases), 20)
+                    known = known//merge(', ', '  ', k > 1)//trim(case_names(k))
+                end do
+                if (size(cases) > 20) known = known//', …'
+                write (err, '(a)') "fastcontact: --case '"//trim(selected(j))//"': no case of that name in "// &
+                    case_file//' (its cases: '//known(3:)//')'
+                stat = 1; return
+            end do
+        end subroutine check_selection
+
+        !> The name case k gets (`&case name`, else case<k>); names are not inherited, so the
+        !! case's own groups decide it.
+        function chunk_case_name(k) result(nm)
+            integer, intent(in) :: k
+            character(len=case_name_len) :: nm
+            type(fc_case_input) :: scratch
+            call apply_case(cases(k), k, scratch, nm, stat, errmsg)
+        end function chunk_case_name
+
+        !> Whether case k is to be solved: every case without `--case`.
+        logical function is_selected(k)
+            integer, intent(in) :: k
+            is_selected = .true.
+            if (allocated(selected)) is_selected = any(selected == case_names(k))
+        end function is_selected
+
+        !> Cases solved (or checked) in this run.
+        integer function nsolved()
+            integer :: j
+            nsolved = size(cases)
+            if (allocated(selected)) nsolved = count([(is_selected(j), j = 1, size(cases))])
+        end function nsolved
+
+        !> Prefix of the closing summary line when `--case` chose the cases.
+        function selection_note() result(note)
+            character(len=:), allocatable :: note
+            note = ''
+            if (allocated(selected)) note = ' chosen by --case'
+        end function selection_note
 
         !> Apply and check case k without solving or writing: the state later cases inherit
         !! (as `run_one_case` leaves it, except after an error found only while solving).

@@ -15,6 +15,8 @@ module fc_driver_common
     integer, parameter, public :: EXIT_OK = 0           !! all cases converged
     integer, parameter, public :: EXIT_INPUT_ERROR = 1  !! bad command line, file or case input
     integer, parameter, public :: EXIT_NOT_CONVERGED = 2 !! a solver did not converge / diverged
+    integer, parameter, public :: case_name_len = 64       !! length of `&case name` (output file stem)
+    integer, parameter, public :: max_selected_cases = 10000 !! names given with `--case`, at most
 
     public :: make_directory, remove_file, parse_driver_arguments, write_case_error
     public :: case_output_dir, remove_case_outputs, hertz_reference
@@ -58,14 +60,18 @@ contains
         call remove_file(dir//'/'//trim(name)//'.csv')
     end subroutine remove_case_outputs
 
-    !> The drivers' command line: `CASES.nml [--out DIR | --out=DIR] | --help | --version`.
+    !> The drivers' command line: `CASES.nml [--out DIR | --out=DIR] | --help | --version`,
+    !! and, for a caller that passes `selected`, `--case NAME[,NAME…]` (repeatable).
     !! `action` is 'run' (case_file and, when given, out_dir set), 'help', 'version' or
     !! 'error' (`errtext`: the message lines, prefixed by `prog`, with `usage` where it helps).
-    subroutine parse_driver_arguments(args, prog, usage, case_file, out_dir, action, errtext)
+    subroutine parse_driver_arguments(args, prog, usage, case_file, out_dir, action, errtext, selected)
         character(len=*), intent(in) :: args(:)
         character(len=*), intent(in) :: prog    !! program name for the messages
         character(len=*), intent(in) :: usage   !! usage text
         character(len=:), allocatable, intent(out) :: case_file, out_dir, action, errtext
+        !> the case names given with `--case` (allocated only when some were given); without
+        !! this argument `--case` is an unexpected argument
+        character(len=case_name_len), allocatable, intent(out), optional :: selected(:)
         integer :: i
         action = 'run'; errtext = ''
         i = 1
@@ -88,6 +94,20 @@ contains
                         out_dir = trim(args(i)(7:)); i = i + 1; cycle
                     end if
                 end if
+                if (present(selected)) then
+                    if (trim(args(i)) == '--case') then
+                        if (i == size(args)) then
+                            call fail(prog//': --case needs a case name'//new_line('a')//usage); return
+                        end if
+                        if (.not. add_names(trim(args(i + 1)))) return
+                        i = i + 2; cycle
+                    else if (len_trim(args(i)) > 7) then
+                        if (args(i)(1:7) == '--case=') then
+                            if (.not. add_names(trim(args(i)(8:)))) return
+                            i = i + 1; cycle
+                        end if
+                    end if
+                end if
                 if (args(i)(1:1) == '-' .or. allocated(case_file)) then
                     call fail(prog//": unexpected argument '"//trim(args(i))//"'"//new_line('a')//usage); return
                 end if
@@ -106,6 +126,37 @@ contains
             character(len=*), intent(in) :: text
             action = 'error'; errtext = text
         end subroutine fail
+
+        !> Append the comma-separated names of `list` to `selected`; false (and the error
+        !! set) for an empty or over-long name or too many names.
+        logical function add_names(list) result(ok)
+            character(len=*), intent(in) :: list
+            character(len=256) :: buf
+            integer :: a, b
+            ok = .false.
+            if (.not. allocated(selected)) allocate (selected(0))
+            a = 1
+            do
+                b = index(list(a:), ',')
+                b = merge(len(list) + 1, a + b - 1, b == 0)
+                if (b == a) then
+                    call fail(prog//": --case '"//list//"': empty case name"); return
+                end if
+                if (b - a > case_name_len) then
+                    write (buf, '(a,i0,a)') ": --case '"//list(a:min(b - 1, a + 79))//"': a case name has at most ", &
+                        case_name_len, ' characters'
+                    call fail(prog//trim(buf)); return
+                end if
+                if (size(selected) >= max_selected_cases) then
+                    write (buf, '(a,i0,a)') ': --case: at most ', max_selected_cases, ' case names'
+                    call fail(prog//trim(buf)); return
+                end if
+                selected = [character(len=case_name_len) :: selected, list(a:b - 1)]
+                if (b > len(list)) exit
+                a = b + 1
+            end do
+            ok = .true.
+        end function add_names
     end subroutine parse_driver_arguments
 
     !> An input error of case `k` (at `line` of the file): the message on `err` and the

@@ -30,22 +30,30 @@ contains
     !! (`check_only`: `--check` too); its report goes to DIR/report.txt, its messages to
     !! DIR/errors.txt, returned in `errors` (lines ended by new lines).  `memory` sets
     !! FASTCONTACT_AVAILABLE_MEMORY for the run (unset after it); `share` is the driver's
-    !! `memory_share`.
-    subroutine run_namelist(dir, text, code, errors, memory, share, check_only)
+    !! `memory_share`; `extra` are more command-line arguments (e.g. `--case NAME`).
+    subroutine run_namelist(dir, text, code, errors, memory, share, check_only, extra)
         character(len=*), intent(in) :: dir, text
         integer, intent(out) :: code
         character(len=:), allocatable, intent(out), optional :: errors
         character(len=*), intent(in), optional :: memory
         integer, intent(in), optional :: share
         logical, intent(in), optional :: check_only
+        character(len=*), intent(in), optional :: extra(:)
         character(len=256), allocatable :: args(:)
-        integer :: u, urep, uerr
+        integer :: u, urep, uerr, i
+        character(len=256) :: arg
         open (newunit=u, file=dir//'/cases.nml', status='replace', action='write')
         write (u, '(a)') text
         close (u)
         args = [character(len=256) :: dir//'/cases.nml', '--out', dir]
         if (present(check_only)) then
             if (check_only) args = [args, [character(len=256) :: '--check']]
+        end if
+        if (present(extra)) then
+            do i = 1, size(extra)
+                arg = extra(i)   ! (a constructor of extra(i) itself trips gfortran over the lengths)
+                args = [args, arg]
+            end do
         end if
         if (present(memory)) call set_env(memory_env, memory)
         open (newunit=urep, file=dir//'/report.txt', status='replace', action='write')

@@ -2,12 +2,12 @@
 !! input giving a non-zero exit code, a message naming group and key, and no outputs.
 !! The driver runs in-process on small grids; files go to a unique directory under /tmp.
 !!
-!! Size (~1100 lines, 62 tests): one file per suite; most tests are a namelist text and the
+!! Size (~1180 lines, 65 tests): one file per suite; most tests are a namelist text and the
 !! message or outputs it must give.
 module test_driver
     use fc_kinds, only: dp
     use fc_testing, only: error_type, unittest_type, new_unittest, check, read_all => file_lines
-    use fc_driver, only: run_driver
+    use fc_driver, only: run_driver, parse_driver_arguments
     use fc_test_driver, only: fresh_dir, run_namelist, exists => file_exists
     use fc_namelist, only: fc_case_chunk, read_case_file
     use fc_input, only: fc_case_input, apply_case, max_dist_grid_elements
@@ -91,7 +91,8 @@ contains
             new_unittest('strip_needs_strip2d', test_strip_needs_kind), &
             new_unittest('radius_above_limit', test_radius_limit), &
             new_unittest('real_beyond_double_range', test_real_overflow), &
-            new_unittest('transient_rolling_cost_bound', test_transient_cost) &
+            new_unittest('transient_rolling_cost_bound', test_transient_cost), &
+            new_unittest('case_selection', test_case_selection) &
             ]
     end subroutine collect_driver
 
@@ -200,6 +201,93 @@ contains
         call check(error, count_lines(csv) == 1 + 20*12, 'CSV must have 1 + nx*ny lines')
         call cleanup(dir)
     end subroutine test_two_cases
+
+    !> `--case NAME[,NAME]`: only the named cases are solved, each exactly as in the whole
+    !! run (inheriting from the cases before it, with operators built afresh); unknown names
+    !! and a missing name are input errors before anything is solved; `--check` checks only
+    !! the named cases; the MPI drivers' command line (no `selected`) refuses the option.
+    subroutine test_case_selection(error)
+        type(error_type), allocatable, intent(out) :: error
+        integer :: code
+        character(len=:), allocatable :: errors, text, whole, one, report, case_file, out_dir, action, errtext
+        character(len=256) :: names(4)
+        integer :: i
+        names = [character(len=256) :: 'n1', 't2', 'r3', 'n4']
+        text = base_case('n1')// &
+            "&case name = 't2', problem = 'normal+tangential' /"//nl//'&grid nx = 20, ny = 14 /'//nl// &
+            '&tangential mu = 0.3, xi = 0.001, eta = 0.0, phi = 0.0 /'//nl// &
+            "&case name = 'r3', problem = 'rolling' /"//nl// &
+            '&material g1 = 200.0, g2 = 200.0, nu1 = 0.42, nu2 = 0.42 /'//nl// &
+            '&grid nx = 20, ny = 16, xmin = -1.3, xmax = 1.3, ymin = -1.3, ymax = 1.3 /'//nl// &
+            "&geometry kind = 'quadratic', rx = 50.0, ry = 50.0 /"//nl//'&normal fn = 9.1954 /'//nl// &
+            "&tangential mu = 0.4, xi = 0.001, eta = 0.001, phi = 0.003, sweep = 'xi', sweep_from = 0.0, "// &
+            'sweep_to = 0.004, sweep_n = 3 /'//nl// &
+            "&case name = 'n4', problem = 'normal' /"//nl//"&tangential sweep = '' /"//nl
+        whole = new_dir(); one = new_dir()
+        call run_namelist(whole, text, code, errors)
+        call check(error, code == 0, 'whole file: exit 0 expected, errors: '//errors)
+        if (allocated(error)) return
+        call run_namelist(one, text, code, errors, extra=[character(len=16) :: '--case', 'r3,t2'])
+        call check(error, code == 0, '--case r3,t2: exit 0 expected, errors: '//errors)
+        if (allocated(error)) return
+        call check(error, .not. exists(one//'/n1.json') .and. .not. exists(one//'/n4.json'), 'cases not named were solved')
+        do i = 2, 3
+            call check(error, read_all(one//'/'//trim(names(i))//'.csv') == read_all(whole//'/'//trim(names(i))//'.csv'), &
+                trim(names(i))//': element table differs from the whole run''s')
+            call check(error, same_json_values(trim(names(i))), trim(names(i))//': summary differs from the whole run''s')
+        end do
+        call check(error, exists(one//'/r3_creep.csv'), 'r3: creep-force curve missing')
+        report = read_all(one//'/report.txt')
+        call check(error, index(report, '2 case(s) chosen by --case: 2 converged') > 0, 'summary line: '//report)
+        if (allocated(error)) return
+        call cleanup(one); one = new_dir()
+        call run_namelist(one, text, code, errors, extra=[character(len=16) :: '--case=n4'])
+        call check(error, code == 0 .and. exists(one//'/n4.json') .and. .not. exists(one//'/t2.json'), '--case=n4: '//errors)
+        call check(error, same_json_values('n4'), 'n4: summary differs from the whole run''s')
+        ! an unknown name: nothing solved, the file's names listed
+        call cleanup(one); one = new_dir()
+        call run_namelist(one, text, code, errors, extra=[character(len=16) :: '--case', 't2,nosuch'])
+        call check(error, code == 1, '--case nosuch: exit 1 expected')
+        call check(error, index(errors, "--case 'nosuch': no case of that name") > 0 .and. &
+            index(errors, '(its cases: n1, t2, r3, n4)') > 0, 'message must name nosuch and list the cases: '//errors)
+        call check(error, .not. exists(one//'/t2.json'), 'nothing may be solved when a name is unknown')
+        call run_namelist(one, text, code, errors, extra=[character(len=16) :: '--case'])
+        call check(error, code == 1 .and. index(errors, '--case needs a case name') > 0, '--case without a name: '//errors)
+        call run_namelist(one, text, code, errors, extra=[character(len=16) :: '--case', 'n1,,t2'])
+        call check(error, code == 1 .and. index(errors, 'empty case name') > 0, '--case n1,,t2: '//errors)
+        ! --check of one case
+        call run_namelist(one, text, code, errors, check_only=.true., extra=[character(len=16) :: '--case', 't2'])
+        report = read_all(one//'/report.txt')
+        call check(error, code == 0 .and. index(report, ' case t2: ') > 0 .and. index(report, ' case n1: ') == 0 .and. &
+            index(report, '1 case(s) chosen by --case: 1 to solve') > 0, '--check --case t2: '//report//errors)
+        ! the MPI drivers' command line has no --case
+        call parse_driver_arguments([character(len=16) :: 'x.nml', '--case', 'n1'], 'fastcontact-mpi', 'usage', &
+            case_file, out_dir, action, errtext)
+        call check(error, action == 'error' .and. index(errtext, "unexpected argument '--case'") > 0, &
+            'without selected, --case must be refused: '//errtext)
+        call cleanup(one); call cleanup(whole)
+    contains
+        !> The summary of case `nm` in both runs, without its times and its operator-reuse flags.
+        logical function same_json_values(nm)
+            character(len=*), intent(in) :: nm
+            same_json_values = without_times(read_all(one//'/'//nm//'.json')) == without_times(read_all(whole//'/'//nm//'.json'))
+        end function same_json_values
+    end subroutine test_case_selection
+
+    !> `text` without its lines that hold seconds or the operator-reuse flags.
+    function without_times(text) result(out)
+        character(len=*), intent(in) :: text
+        character(len=:), allocatable :: out
+        integer :: a, b
+        out = ''
+        a = 1
+        do while (a <= len(text))
+            b = index(text(a:), nl)
+            b = merge(len(text), a + b - 1, b == 0)
+            if (index(text(a:b), 'seconds') == 0 .and. index(text(a:b), 'operator_built') == 0) out = out//text(a:b)
+            a = b + 1
+        end do
+    end function without_times
 
     integer function count_lines(text)
         character(len=*), intent(in) :: text
