@@ -5,7 +5,7 @@ The driver keeps operators, coefficient sets and FFT plans from case to case and
 them while grid and material match.  Each case must still give exactly what it gives when
 solved alone.  This script writes random multi-case namelists (normal, normal+tangential,
 tangential, steady rolling with and without creep-force sweeps, transient rolling,
-periodic cells; different grids, materials, loads, solvers, preconditioner forms and
+periodic cells with and without friction; different grids, materials, loads, solvers, preconditioner forms and
 thread counts, small grids), runs each file whole, then every case of it alone with
 `--case NAME` (which reads the cases before it only for what they pass on and builds its
 operators afresh), and compares the outputs:
@@ -44,13 +44,17 @@ HEAD = [
 
 
 def periodic_case(rnd, i):
-    """A periodic wavy cell (normal only): its own grid, geometry and force."""
+    """A periodic wavy cell (normal, or with a tangential force): its own material, grid, geometry, loads."""
     n = rnd.choice([16, 24, 32])
-    return [f"&case name = 'c{i}', problem = 'normal' /",
+    prob = rnd.choice(['normal', 'normal+tangential'])
+    nu = rnd.choice([0.0, 0.3])   # identical bodies: K = 0, as friction on a cell needs
+    return [f"&case name = 'c{i}', problem = '{prob}' /",
+            f"&material g1 = 200.0, g2 = 200.0, nu1 = {nu}, nu2 = {nu} /",
             f"&grid nx = {n}, ny = {n}, xmin = 0.0, xmax = 1.0, ymin = 0.0, ymax = 1.0, periodic = .true. /",
             f"&geometry kind = 'wavy', amplitude = 0.001, wavelength_x = 1.0, wavelength_y = {rnd.choice([0.0, 1.0])} /",
-            f"&normal fn = {rnd.choice([0.5, 5.0])} /", "&tangential sweep = '' /",
-            f"&solver normal = '{rnd.choice(['bccg', 'norm'])}' /"]
+            f"&normal fn = {rnd.choice([0.5, 5.0])} /",
+            f"&tangential sweep = '', mu = 0.3, fx = {rnd.choice([0.03, 0.1])}, fy = {rnd.choice([0.0, -0.05])} /",
+            f"&solver normal = '{rnd.choice(['bccg', 'norm'])}', tangential = 'tangcg' /"]
 
 
 def case_groups(rnd, i, periodic_before):
@@ -59,8 +63,8 @@ def case_groups(rnd, i, periodic_before):
         return periodic_case(rnd, i), True
     prob = rnd.choice(['normal', 'normal+tangential', 'tangential', 'rolling', 'rolling', 'transient_rolling'])
     g = [f"&case name = 'c{i}', problem = '{prob}' /"]
-    if periodic_before:   # back to the quadratic scene of the head
-        g += HEAD[1:4]
+    if periodic_before:   # back to the quadratic scene of the head, on the half-space
+        g += [HEAD[1].replace(' /', ', periodic = .false. /')] + HEAD[2:4]
     if rnd.random() < 0.25:   # identical bodies (K = 0): often the same G with another ν
         gg, nu = rnd.choice([200.0, 82000.0]), rnd.choice([0.28, 0.42, 0.3])
         g.append(f"&material g1 = {gg}, g2 = {gg}, nu1 = {nu}, nu2 = {nu} /")

@@ -48,7 +48,8 @@ module fc_contact
         FC_FROM_REST, FC_TRANSIENT_SHIFT, FC_TRANSIENT_ROLLING, set_influence_coefficients, take_influence_coefficients, &
         clear_influence_coefficients
     use fc_influence, only: fc_ic_set, ic_set_kernel, ic_kernels_uncoupled, fc_bttb
-    use fc_periodic, only: build_periodic_normal_operator, check_periodic_grid, periodic_images_default
+    use fc_periodic, only: build_periodic_normal_operator, build_periodic_tangential_operator, check_periodic_grid, &
+        periodic_images_default
     use fc_threads, only: fc_thread_count
     use fc_strings, only: fmt_int, fmt_real
     implicit none
@@ -86,7 +87,8 @@ contains
         build_n = .false.; build_t = .false.
         if (normal) build_n = .not. (ops%reuse .and. ops%normal%matches(grid, material) .and. &
             (ops%built_periodic .eqv. ops%periodic))
-        if (tangential) build_t = .not. (ops%reuse .and. ops%tangential%matches(grid, material))
+        if (tangential) build_t = .not. (ops%reuse .and. ops%tangential%matches(grid, material) .and. &
+            (ops%tangential%periodic .eqv. ops%periodic))
         shared_kernels = .false.
         if (build_n .and. build_t .and. fc_thread_count() > 1) then
             ! The two builds are independent: with several threads they run side by side, each
@@ -137,7 +139,16 @@ contains
         !! products never run at the same time), else they get their own.
         subroutine build_tangential(share_plans)
             logical, intent(in) :: share_plans
-            if (share_plans .and. ops%normal%a_zz%built()) then
+            integer :: stat
+            character(len=256) :: errmsg   ! the cell and K = 0 are checked by [[solve_contact]]
+            if (ops%periodic) then
+                if (share_plans .and. ops%normal%a_zz%built() .and. ops%built_periodic) then
+                    call build_periodic_tangential_operator(ops%tangential, material, grid, stat, errmsg, &
+                        plans_from=ops%normal%a_zz)
+                else
+                    call build_periodic_tangential_operator(ops%tangential, material, grid, stat, errmsg)
+                end if
+            else if (share_plans .and. ops%normal%a_zz%built()) then
                 call build_tangential_on(ops%normal%a_zz)
             else
                 call build_tangential_on()
@@ -206,9 +217,20 @@ contains
                 return
             end if
             call check_periodic_grid(grid, periodic_images_default, stat, errmsg)
-            if (stat == 0 .and. (tangential .or. use_fmg)) then
-                stat = FC_ERR_UNSUPPORTED
-                errmsg = "solve_contact: the periodic half-space is available for normal contact with 'bccg' or 'norm'"
+            if (stat /= 0) return
+            stat = FC_ERR_UNSUPPORTED
+            if (use_fmg) then
+                errmsg = "solve_contact: the periodic half-space is solved by 'bccg' or 'norm', not FMG"
+            else if (load%problem == FC_PROBLEM_ROLLING .or. load%transient == FC_TRANSIENT_ROLLING) then
+                errmsg = 'solve_contact: the periodic half-space has no rolling (steady or transient); '// &
+                    'shifts and prescribed tangential forces only'
+            else if (tangential .and. settings%tangential%solver /= 'tangcg') then
+                errmsg = "solve_contact: the periodic half-space's tangential problem is solved by 'tangcg' only"
+            else if (tangential .and. material%k /= 0) then
+                errmsg = 'solve_contact: the periodic half-space has no tangential problem for dissimilar bodies '// &
+                    '(K /= 0): its coupling blocks are not built; use quasi-identical materials'
+            else
+                stat = 0
             end if
             if (stat /= 0) return
         end if

@@ -74,7 +74,7 @@ module fc_contact_types
         type(fc_normal_operator) :: normal          !! A^zz and its preconditioner
         type(fc_tangential_operator) :: tangential  !! tangential (and coupling) blocks
         logical :: reuse = .true.                   !! .false.: rebuild at every solve (checks, benchmarks)
-        logical :: periodic = .false.               !! normal operator of the periodic half-space ([[fc_periodic]])
+        logical :: periodic = .false.               !! operators of the periodic half-space ([[fc_periodic]])
         logical :: built_periodic = .false.         !! the normal operator held is the periodic one
         integer :: builds_normal = 0                !! normal operator builds so far
         integer :: builds_tangential = 0            !! tangential operator builds so far

@@ -1,5 +1,5 @@
-!> Periodic half-space for the normal problem: a rough-surface cell (representative volume
-!! element) repeated in x and y with periods Lx = nx·dx, Ly = ny·dy.
+!> Periodic half-space for the normal and the tangential problem: a rough-surface cell
+!! (representative volume element) repeated in x and y with periods Lx = nx·dx, Ly = ny·dy.
 !!
 !! Kernel.  The displacement at offset (i·dx, j·dy) due to unit pressure on one element and
 !! all its periodic images is the lattice sum of the element coefficient A^zz over the
@@ -20,20 +20,24 @@
 !! The window of images is centred on the offset taken in (−n/2, n/2], so w is exactly even
 !! in x and in y: only the quadrant 0 ≤ i ≤ nx/2, 0 ≤ j ≤ ny/2 is computed (nx, ny even),
 !! and its Fourier symbol is real — the same values serve the serial operator built here
-!! and the distributed one of the MPI package (cosine transforms of the quadrant).
+!! and the distributed one of the MPI package (cosine transforms of the quadrant).  The
+!! tangential blocks A^xx, A^yy (even) and A^xy (odd in x and in y) are summed the same way
+!! ([[periodic_wrapped_kernel]]), so their symbols are real too.
 !!
 !! Operators.  The periodic product is a circular convolution: the serial operator is the
 !! circulant of w on the grid itself ([[build_bttb_periodic]]: nx×ny transforms, a quarter
 !! of the doubled grid's work and memory; [[fc_norm]]'s column updates of clipped elements
 !! take the offsets modulo the grid).  The preconditioner is the exact inverse of the
 !! circulant on mean-free vectors: symbol 1/ŵ (zero mode 0, values floored at 1e−8 of the
-!! largest as in [[inverse_toeplitz_from_kernel]]), on the same plans.
+!! largest as in [[inverse_toeplitz_from_kernel]]), on the same plans; for the tangential
+!! operator the inverse of the 2×2 block symbol ([[build_periodic_tangential_operator]]).
 module fc_periodic
-    use fc_kinds, only: dp, i8, msg_len, FC_ERR_VALUE, FC_ERR_AREA
+    use fc_kinds, only: dp, i8, msg_len, FC_ERR_VALUE, FC_ERR_AREA, FC_ERR_UNSUPPORTED
     use fc_geometry, only: fc_grid
-    use fc_influence, only: fc_material, element_coefficient, IC_ZZ
-    use fc_toeplitz, only: build_bttb_periodic
+    use fc_influence, only: fc_material, element_coefficient, IC_ZZ, IC_XX, IC_YY, IC_XY
     use fc_norm, only: fc_normal_operator
+    use fc_toeplitz, only: fc_bttb, build_bttb_periodic, kernel_of_real_symbol
+    use fc_tangcg_operator, only: fc_tangential_operator
     use fc_fftw
     implicit none
     private
@@ -42,6 +46,7 @@ module fc_periodic
     integer, parameter, public :: periodic_images_max = 50     !! bound on `images` (cost ∝ (2m+1)²)
 
     public :: periodic_kernel_block, build_periodic_normal_operator, check_periodic_grid
+    public :: periodic_wrapped_kernel, build_periodic_tangential_operator
 
 contains
 
@@ -64,15 +69,20 @@ contains
     end subroutine check_periodic_grid
 
     !> Periodic kernel w(i, j) (mean not removed) for 0-based offsets i0 ≤ i ≤ i1, j0 ≤ j ≤ j1,
-    !! each within [0, n/2] [mm per N/mm²].  Rows are independent: a distributed run computes
-    !! its own rows, threads share the rows of one call.
-    subroutine periodic_kernel_block(mat, grid, images, i0, i1, j0, j1, w)
+    !! each within [0, n/2] [mm per N/mm²], of influence block `block` (default A^zz; the
+    !! tangential blocks A^xx, A^xy, A^yy are summed the same way: the far images' uniform
+    !! load displaces every point alike but for the box's own term).  Rows are independent:
+    !! a distributed run computes its own rows, threads share the rows of one call.
+    subroutine periodic_kernel_block(mat, grid, images, i0, i1, j0, j1, w, block)
         type(fc_material), intent(in) :: mat
         type(fc_grid), intent(in) :: grid
         integer, intent(in) :: images, i0, i1, j0, j1
         real(dp), intent(out) :: w(i0:, j0:)
+        integer, intent(in), optional :: block   !! IC_ZZ (default), IC_XX, IC_YY or IC_XY
         real(dp) :: lx, ly, bx, by, dens, acc, r
-        integer :: i, j, s, t, mxi, myi
+        integer :: i, j, s, t, mxi, myi, blk
+        blk = IC_ZZ
+        if (present(block)) blk = block
         lx = grid%nx*grid%dx; ly = grid%ny*grid%dy
         ! a square box of summed cells (half-width r) also for elongated cells
         r = (images + 0.5_dp)*max(lx, ly)
@@ -85,10 +95,10 @@ contains
                 acc = 0
                 do t = -myi, myi
                     do s = -mxi, mxi
-                        acc = acc + element_coefficient(IC_ZZ, mat, i*grid%dx + s*lx, j*grid%dy + t*ly, grid%dx, grid%dy)
+                        acc = acc + element_coefficient(blk, mat, i*grid%dx + s*lx, j*grid%dy + t*ly, grid%dx, grid%dy)
                     end do
                 end do
-                w(i, j) = acc - dens*element_coefficient(IC_ZZ, mat, i*grid%dx, j*grid%dy, bx, by)
+                w(i, j) = acc - dens*element_coefficient(blk, mat, i*grid%dx, j*grid%dy, bx, by)
             end do
         end do
         !$omp end parallel do
@@ -104,7 +114,7 @@ contains
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
         integer, intent(in), optional :: images   !! image rings (default [[fc_periodic:periodic_images_default]])
-        real(dp), allocatable :: q(:, :), w(:, :), rb(:, :)
+        real(dp), allocatable :: w(:, :), rb(:, :)
         complex(dp), allocatable :: cb(:, :)
         type(c_ptr) :: plan_f, plan_b
         real(dp) :: smax, s
@@ -119,14 +129,7 @@ contains
         call nop%destroy()
         nop%grid = grid
         nop%material = material
-        allocate (q(0:nx/2, 0:ny/2), w(0:nx - 1, 0:ny - 1))
-        call periodic_kernel_block(material, grid, nim, 0, nx/2, 0, ny/2, q)
-        do j = 0, ny - 1
-            do i = 0, nx - 1
-                w(i, j) = q(min(i, nx - i), min(j, ny - j))
-            end do
-        end do
-        w = w - sum(w)/size(w)
+        call periodic_wrapped_kernel(material, grid, nim, IC_ZZ, w)
         call build_bttb_periodic(nop%a_zz, w)
         ! exact inverse on mean-free vectors: symbol 1/ŵ, zero mode dropped
         allocate (rb(nx, ny), cb(nx/2 + 1, ny))
@@ -153,6 +156,130 @@ contains
         call system_clock(t1)
         nop%setup_seconds = real(t1 - t0, dp)/rate
     end subroutine build_periodic_normal_operator
+
+    !> The periodic kernel of `block` on the whole cell, w(0:nx−1, 0:ny−1) with offsets
+    !! taken in (−n/2, n/2]: the quadrant 0 ≤ i ≤ nx/2, 0 ≤ j ≤ ny/2 summed
+    !! ([[periodic_kernel_block]]) and mirrored — A^zz, A^xx, A^yy are even in x and in y,
+    !! A^xy odd in both (zero on the lines i = 0, nx/2 and j = 0, ny/2, where an odd
+    !! periodic function vanishes) — so that w is exactly point-symmetric and its symbol
+    !! real.  The mean is removed (displacements of a periodic cell are defined up to a
+    !! constant; A^xy's is zero already).
+    subroutine periodic_wrapped_kernel(mat, grid, images, block, w)
+        type(fc_material), intent(in) :: mat
+        type(fc_grid), intent(in) :: grid
+        integer, intent(in) :: images, block
+        real(dp), allocatable, intent(out) :: w(:, :)
+        real(dp), allocatable :: q(:, :)
+        real(dp) :: sx, sy
+        integer :: nx, ny, i, j
+        logical :: odd
+        nx = grid%nx; ny = grid%ny
+        odd = block == IC_XY
+        allocate (q(0:nx/2, 0:ny/2), w(0:nx - 1, 0:ny - 1))
+        call periodic_kernel_block(mat, grid, images, 0, nx/2, 0, ny/2, q, block)
+        if (odd) then
+            q(0, :) = 0; q(nx/2, :) = 0; q(:, 0) = 0; q(:, ny/2) = 0
+        end if
+        do j = 0, ny - 1
+            sy = 1
+            if (odd .and. j > ny/2) sy = -1
+            do i = 0, nx - 1
+                sx = 1
+                if (odd .and. i > nx/2) sx = -1
+                w(i, j) = sx*sy*q(min(i, nx - i), min(j, ny - j))
+            end do
+        end do
+        if (.not. odd) w = w - sum(w)/size(w)
+    end subroutine periodic_wrapped_kernel
+
+    !> Build the tangential blocks A^xx, A^xy, A^yy of the periodic half-space into `top` (the
+    !! operator type of [[fc_tangcg_operator]]: TangCG then solves the periodic cell) and, as
+    !! its FFT preconditioner, the exact inverse of the 2×2 block circulant on mean-free
+    !! vectors (per frequency the inverse of the real symmetric 2×2 symbol, frequencies whose
+    !! determinant is below 1e−12 of the largest 0; the zero mode, A's null direction, the
+    !! largest of the inverse's values), applied by
+    !! [[apply_block_inverse]] in either form.  Quasi-identical bodies only (K = 0: a
+    !! dissimilar pair needs the coupling blocks, not built here): stat = FC_ERR_UNSUPPORTED
+    !! otherwise.  Rigid shifts are relative to the cell's mean displacement.
+    subroutine build_periodic_tangential_operator(top, material, grid, stat, errmsg, images, plans_from)
+        type(fc_tangential_operator), intent(inout) :: top
+        type(fc_material), intent(in) :: material
+        type(fc_grid), intent(in) :: grid
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        integer, intent(in), optional :: images   !! image rings (default [[fc_periodic:periodic_images_default]])
+        !> a periodic operator of the same cell whose FFT plans the blocks share (the normal one)
+        type(fc_bttb), intent(in), optional :: plans_from
+        real(dp), allocatable :: w(:, :), mxx(:, :), mxy(:, :), myy(:, :)
+        real(dp) :: det, dmax, a, b, c, scale
+        integer :: nx, ny, nim, i, j
+        integer(i8) :: t0, t1, rate
+        call system_clock(t0, rate)
+        nim = periodic_images_default
+        if (present(images)) nim = images
+        call check_periodic_grid(grid, nim, stat, errmsg)
+        if (stat /= 0) return
+        if (material%k /= 0) then
+            stat = FC_ERR_UNSUPPORTED
+            errmsg = 'periodic half-space: the tangential problem needs quasi-identical bodies (K = 0); '// &
+                'a dissimilar pair couples normal and tangential loads through blocks not built for a periodic cell'
+            return
+        end if
+        nx = grid%nx; ny = grid%ny
+        call top%destroy()
+        top%grid = grid
+        top%material = material
+        call periodic_wrapped_kernel(material, grid, nim, IC_XX, w)
+        call build_bttb_periodic(top%a_xx, w, plans_from)
+        call periodic_wrapped_kernel(material, grid, nim, IC_XY, w)
+        call build_bttb_periodic(top%a_xy, w, top%a_xx)
+        call periodic_wrapped_kernel(material, grid, nim, IC_YY, w)
+        call build_bttb_periodic(top%a_yy, w, top%a_xx)
+        ! the exact block inverse: the three symbols are real (point-symmetric kernels).
+        ! Stored symbols are scaled by 1/N (N = nx·ny: the unnormalised transforms), so A's
+        ! eigenvalues are N·s and M's stored symbol is their inverse over N: s⁻¹/N²
+        scale = 1/(real(nx, dp)*real(ny, dp))**2
+        associate (sxx => top%a_xx%rsymbol, sxy => top%a_xy%rsymbol, syy => top%a_yy%rsymbol)
+            allocate (mxx, mxy, myy, mold=sxx)
+            dmax = maxval(sxx*syy - sxy**2)
+            do j = 1, size(sxx, 2)
+                do i = 1, size(sxx, 1)
+                    a = sxx(i, j); b = sxy(i, j); c = syy(i, j)
+                    det = a*c - b*b
+                    if ((i == 1 .and. j == 1) .or. det <= 1.0e-12_dp*dmax) then
+                        mxx(i, j) = 0; mxy(i, j) = 0; myy(i, j) = 0
+                    else
+                        mxx(i, j) = scale*c/det; mxy(i, j) = -scale*b/det; myy(i, j) = scale*a/det
+                    end if
+                end do
+            end do
+        end associate
+        ! uniform tractions (A's null direction on the whole cell) get the weight of A's
+        ! softest other mode, so that TangCG can move along them when every element of the
+        ! cell is in adhesion (its step then goes to the first traction bound)
+        mxx(1, 1) = max(maxval(mxx), maxval(myy)); myy(1, 1) = mxx(1, 1)
+        call periodic_from_symbol(mxx, top%c_xx, top%a_xx)
+        call periodic_from_symbol(mxy, top%c_xy, top%a_xx)
+        call periodic_from_symbol(myy, top%c_yy, top%a_xx)
+        allocate (top%spec_x(top%a_xx%mx/2 + 1, top%a_xx%my))
+        allocate (top%spec_y, top%work, top%work2, top%cspec_x, top%cspec_y, top%cwork, top%cwork2, mold=top%spec_x)
+        top%periodic = .true.
+        top%nproducts = 0
+        call system_clock(t1)
+        top%setup_seconds = real(t1 - t0, dp)/rate
+    contains
+        !> A periodic operator on the cell whose (normalised) real symbol is `sym`, on the
+        !! plans of `plans_from`.
+        subroutine periodic_from_symbol(sym, op, plans_from)
+            real(dp), intent(in) :: sym(:, :)
+            type(fc_bttb), intent(inout) :: op
+            type(fc_bttb), intent(inout) :: plans_from
+            real(dp), allocatable :: kern(:, :)
+            allocate (kern(0:nx - 1, 0:ny - 1))
+            call kernel_of_real_symbol(plans_from, sym, kern)
+            call build_bttb_periodic(op, kern, plans_from, keep_kernel=.false.)
+        end subroutine periodic_from_symbol
+    end subroutine build_periodic_tangential_operator
 
 
 end module fc_periodic

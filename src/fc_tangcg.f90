@@ -51,6 +51,11 @@ module fc_tangcg
     public :: circle_newton   ! shared with the steady rolling solver (fc_rolling)
     public :: finish_force_loop, finish_status, traction_change   ! shared with the rolling solvers
 
+    !> TangCG's step: a direction whose curvature v·Jv is below this fraction of A^xx_II·|v|²
+    !! has none (a periodic cell's uniform tractions): the step goes to the first traction
+    !! bound instead of num/denom.  The half-space's smallest curvatures are ~1/n of A^xx_II.
+    real(dp), parameter :: zero_curvature = 1.0e-13_dp
+
 contains
 
     !> Solve the tangential problem for pressure `pn` [N/mm²] and friction `mu`, with the
@@ -162,8 +167,8 @@ contains
         type(fc_tangential_result) :: trial
         type(fc_tangential_settings) :: inner
         type(fc_force_newton_t) :: nw
-        real(dp) :: fn, flimit, k0, a, jac(2, 2), x(2)
-        integer :: nx, ny
+        real(dp) :: fn, flimit, k0, a, jac(2, 2), x(2), probe_s
+        integer :: nx, ny, k, probe_it, probe_mv
         logical :: accepted, done
         nx = size(pn, 1); ny = size(pn, 2)
         if (.not. load%force_prescribed) then
@@ -191,6 +196,7 @@ contains
         if (present(px_start)) qx = px_start
         if (present(py_start)) qy = py_start
         stat = 0; errmsg = ''
+        probe_it = 0; probe_mv = 0; probe_s = 0
         fn = sum(max(pn, 0.0_dp))*top%grid%area()
         flimit = load%mu*fn
         if (.not. (hypot(load%fx, load%fy) < flimit)) then
@@ -199,14 +205,35 @@ contains
                 ' must be < mu*fn = ', flimit, ' (full slip has no unique shift)'
             return
         end if
+        if (top%periodic .and. all(pn > 0)) then
+            call periodic_full_stick(done)
+            if (done) return
+        end if
         a = sqrt(count(pn > 0)*top%grid%area()/pi)
         k0 = 8*top%material%g*a/(2 - top%material%nu)
         jac = 0; jac(1, 1) = -k0; jac(2, 2) = -k0       ! dF/d(ξ,η): traction opposes the shift
         x = [-load%fx/k0, -load%fy/k0]
         if (present(xi_start)) x(1) = xi_start
         if (present(eta_start)) x(2) = eta_start
+        if (top%periodic .and. .not. (present(xi_start) .and. present(eta_start))) then
+            ! many small contacts are stiffer than Mindlin's one patch of their total area,
+            ! and a cell in contact everywhere far stiffer: a shift that slips every element
+            ! leaves the loop no slope to follow.  Shrink it until some element sticks.
+            do k = 1, 12
+                call solve_tangential(top, pn, load%mu, settings, trial, stat, errmsg, x(1), x(2), &
+                                      load%phi, zx, zy, qx, qy, ox, oy)
+                if (stat /= 0) return
+                probe_it = probe_it + trial%iterations; probe_mv = probe_mv + trial%matvecs
+                probe_s = probe_s + trial%cpu_seconds
+                if (trial%nadh > 0) exit
+                x = x/8; k0 = 8*k0
+            end do
+            jac = 0; jac(1, 1) = -k0; jac(2, 2) = -k0
+        end if
         inner = settings
         call nw%start(x, jac, settings%tol, hypot(load%fx, load%fy), flimit)
+        ! the probes' cost counts with the loop's
+        nw%iterations = probe_it; nw%matvecs = probe_mv; nw%cpu_seconds = probe_s
         do
             inner%tol = nw%tol_inner
             call solve_tangential(top, pn, load%mu, inner, trial, stat, errmsg, nw%x_trial(1), nw%x_trial(2), &
@@ -219,6 +246,37 @@ contains
             if (done) exit
         end do
         call finish_force_loop(res, nw, 'force loop')
+    contains
+        !> A periodic cell in contact everywhere: uniform tractions displace nothing, so while
+        !! the whole cell can carry the force in adhesion the shift is not found by the force
+        !! loop (the force jumps across the target at one shift).  Adhesion everywhere needs
+        !! A·q = −(w + r) on the whole cell (r: spin, previous displacements, offset): the shift
+        !! w is minus the mean of r, q = A⁺(−(r − mean r)) + F/(cell area) by the exact inverse.
+        !! `found` when that q lies within every bound; the solve from it (converged at once)
+        !! then fills the result.  Otherwise some element slips and the loop takes over.
+        subroutine periodic_full_stick(found)
+            logical, intent(out) :: found
+            real(dp), allocatable :: rx(:, :), ry(:, :), tx(:, :), ty(:, :)
+            real(dp) :: xi0, eta0, xc(nx), cell
+            integer :: i, j
+            found = .false.
+            allocate (rx(nx, ny), ry(nx, ny), tx(nx, ny), ty(nx, ny))
+            xc = top%grid%x([(i, i=1, nx)])
+            do j = 1, ny
+                rx(:, j) = -load%phi*top%grid%y(j) - zx(:, j) + ox(:, j)
+                ry(:, j) = load%phi*xc - zy(:, j) + oy(:, j)
+            end do
+            xi0 = -sum(rx)/size(rx); eta0 = -sum(ry)/size(ry)
+            rx = -(rx + xi0); ry = -(ry + eta0)
+            call apply_block_inverse(top, rx, ry, tx, ty, circulant=.true.)
+            cell = real(nx, dp)*real(ny, dp)*top%grid%area()
+            tx = tx + load%fx/cell; ty = ty + load%fy/cell
+            if (any(tx**2 + ty**2 > (load%mu*pn)**2)) return
+            call solve_tangential(top, pn, load%mu, settings, res, stat, errmsg, xi0, eta0, load%phi, &
+                                  zx, zy, tx, ty, ox, oy)
+            found = stat /= 0 .or. res%status == FC_CONVERGED
+            if (found) res%outer_iterations = 1
+        end subroutine periodic_full_stick
     end subroutine solve_tangential_loading
 
     !> Totals of a prescribed-force loop ([[fc_force_newton]]) into its last accepted result:
@@ -309,7 +367,7 @@ contains
         real(dp), dimension(size(g, 1), size(g, 2)) :: px, py, sx, sy, ux, uy, dax, day, zx, zy, vax, vay, &
             vsx, vsy, qsx, qsy, qax, qay, pox, poy, dox, doy, mx, my
         logical, dimension(size(g, 1), size(g, 2)) :: adh, slp
-        real(dp) :: axx, ayy, alpha, beta, zd_old, zd, denom, change, num, t
+        real(dp) :: axx, ayy, alpha, beta, zd_old, zd, denom, change, num, t, vv
         integer :: it, inner, nmoved, i, j, nx, ny
         logical :: changed, converged, check_now, fft_prec, par, circulant
         real(dp), allocatable :: hist(:)
@@ -446,10 +504,11 @@ contains
             ! steps 6–7: change of slip and of the primary defect
             call top%apply(vsx, vsy, qsx, qsy)
             ! step 8 (sums): denominator and numerator of the step length
-            denom = 0; num = 0
-            !$omp parallel do default(shared) private(i) reduction(+:denom, num) schedule(static) if(par)
+            denom = 0; num = 0; vv = 0
+            !$omp parallel do default(shared) private(i) reduction(+:denom, num, vv) schedule(static) if(par)
             do j = 1, ny
                 do i = 1, nx
+                    vv = vv + (vsx(i, j)**2 + vsy(i, j)**2)
                     if (adh(i, j)) then
                         qax(i, j) = qsx(i, j); qay(i, j) = qsy(i, j)
                     else if (slp(i, j)) then
@@ -464,17 +523,29 @@ contains
             end do
             !$omp end parallel do
             ! step 8: step length
-            if (.not. (abs(denom) > 0)) then
-                if (zd == 0) then       ! nothing to do: the defect vanishes
-                    change = 0
-                else
+            if (abs(denom) > zero_curvature*axx*vv) then
+                alpha = num/denom
+            else if (zd == 0) then      ! nothing to do: the defect vanishes
+                change = 0
+                alpha = 0
+            else if (maxval(abs(dax)) + maxval(abs(day)) <= settings%tol*axx*maxval(g)) then
+                ! no curvature and a defect below the slip one bound traction makes at this
+                ! tolerance: nothing to gain (a periodic cell in adhesion everywhere carries any
+                ! uniform traction at no slip)
+                change = 0
+                alpha = 0
+            else
+                ! no curvature along the direction: the elastic energy does not grow, only the
+                ! traction bounds stop the step (the periodic half-space's uniform tractions,
+                ! whose displacement is defined up to a constant).  Step to the first bound an
+                ! adhesion element reaches, just past it, and check the subdivision at once.
+                alpha = step_to_bound()
+                if (.not. (alpha > 0 .and. alpha < huge(1.0_dp))) then
                     res%status = FC_DIVERGED
                     res%message = 'TangCG: zero curvature along the search direction'
                     exit
                 end if
-                alpha = 0
-            else
-                alpha = num/denom
+                inner = settings%inner_k
             end if
             ! step 9: update and project slip tractions on the circle
             !$omp parallel do default(shared) private(i, t) schedule(static) if(par)
@@ -606,6 +677,25 @@ contains
         !! The candidate with the lowest energy J = ½pᵀAp + wᵀp (the functional the
         !! tangential problem minimises on |p_I| ≤ g_I) is kept.  Cost: one product with M
         !! and six with A.
+        !> The smallest α > 0 at which an adhesion traction p + α·v reaches its bound g, times
+        !! (1 + 1e−9) so that the element is past it (huge when no adhesion element moves).
+        real(dp) function step_to_bound() result(a)
+            real(dp) :: pv, v2, pp, ai
+            a = huge(1.0_dp)
+            do j = 1, ny
+                do i = 1, nx
+                    if (.not. adh(i, j)) cycle
+                    v2 = vsx(i, j)**2 + vsy(i, j)**2
+                    if (.not. (v2 > 0)) cycle
+                    pv = px(i, j)*vsx(i, j) + py(i, j)*vsy(i, j)
+                    pp = px(i, j)**2 + py(i, j)**2
+                    ai = (-pv + sqrt(max(0.0_dp, pv**2 + v2*(g(i, j)**2 - pp))))/v2
+                    a = min(a, max(ai, 0.0_dp))
+                end do
+            end do
+            if (a < huge(1.0_dp)) a = a*(1 + 1.0e-9_dp) + tiny(1.0_dp)
+        end function step_to_bound
+
         subroutine cold_start()
             logical, allocatable :: qadh(:, :), qslp(:, :)
             real(dp) :: c, scl, zu, zw

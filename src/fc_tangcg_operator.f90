@@ -30,6 +30,9 @@ module fc_tangcg_operator
         complex(dp), allocatable :: cspec_x(:, :), cspec_y(:, :), cwork(:, :), cwork2(:, :)
         integer :: nproducts = 0            !! combined 2×2 block products
         real(dp) :: setup_seconds = 0
+        !> the blocks of the periodic half-space on the grid itself, preconditioned by their
+        !! exact inverse in c_xx, c_xy, c_yy (fc_periodic); `prec` is then not built
+        logical :: periodic = .false.
     contains
         procedure :: apply => tangential_apply
         procedure :: destroy => tangential_destroy
@@ -126,6 +129,7 @@ contains
         self%prec = fc_block_inverse()
         call self%c_xx%destroy(); call self%c_xy%destroy(); call self%c_yy%destroy()
         if (allocated(self%cspec_x)) deallocate (self%cspec_x, self%cspec_y, self%cwork, self%cwork2)
+        self%periodic = .false.
     end subroutine tangential_destroy
 
     !> Whether the built blocks serve `grid` and `material`: same element count and size
@@ -150,6 +154,7 @@ contains
         lhs%material = rhs%material
         lhs%nproducts = rhs%nproducts
         lhs%setup_seconds = rhs%setup_seconds
+        lhs%periodic = rhs%periodic
         call copy_bttb(lhs%a_xx, rhs%a_xx)
         call copy_bttb(lhs%a_xy, rhs%a_xy, plans_from=lhs%a_xx)
         call copy_bttb(lhs%a_yy, rhs%a_yy, plans_from=lhs%a_xx)
@@ -174,13 +179,14 @@ contains
     !> (zx, zy) = M (dx, dy), M the FFT block preconditioner of [[fc_tangprec]] (TangCG's, and
     !! the steady rolling solver's): with `circulant`, M's Strang circulant on the grid
     !! (periodic transforms of nx×ny points; made on first use), else M itself on the doubled
-    !! grid.  Two forward and two inverse transforms either way.
+    !! grid.  Two forward and two inverse transforms either way.  A periodic operator has
+    !! one form only, the exact inverse on the grid.
     subroutine apply_block_inverse(top, dx, dy, zx, zy, circulant)
         type(fc_tangential_operator), intent(inout) :: top
         real(dp), intent(in) :: dx(:, :), dy(:, :)
         real(dp), intent(out) :: zx(:, :), zy(:, :)
         logical, intent(in) :: circulant
-        if (circulant) then
+        if (circulant .or. top%periodic) then
             call prepare_block_inverse_circulant(top)
             call block_product(top%c_xx, top%c_xy, top%c_yy, top%cspec_x, top%cspec_y, top%cwork, top%cwork2, &
                                dx, dy, zx, zy)

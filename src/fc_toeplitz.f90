@@ -116,6 +116,7 @@ module fc_toeplitz
     end type fc_bttb
 
     public :: build_bttb_from_kernel, build_bttb_taking_kernel, build_bttb_periodic, inverse_toeplitz_from_kernel
+    public :: kernel_of_real_symbol
     public :: fft_symbol_of_kernel, even_circulant_symbol
     public :: strang_circulant, strang_circulant_of_symbol
     public :: copy_bttb, spectrum_pair_product, block_symbol_product_in_place, block_product
@@ -258,6 +259,27 @@ contains
         call wrap_strang(kernel(-(px/2):px/2, -(py/2):py/2), px, py, wrapped)
         call build_bttb_periodic(circ, wrapped, plans_from, keep_kernel, grid=[nx, ny])
     end subroutine strang_circulant
+
+    !> The coefficients kern(0:mx−1, 0:my−1) of the periodic operator on `op`'s period whose
+    !! symbol, scaled as `op`'s (1/(mx·my) included), is the real `rsymbol`: one inverse
+    !! transform on `op`'s plans and buffers (which must not be in use), the two rounded
+    !! values of each pair ±offset averaged, so that the result is exactly point-symmetric
+    !! (its symbol real again).  Used for exact inverses of periodic operators.
+    subroutine kernel_of_real_symbol(op, rsymbol, kern)
+        type(fc_bttb), intent(inout) :: op
+        real(dp), intent(in) :: rsymbol(:, :)
+        real(dp), intent(out) :: kern(0:, 0:)
+        integer :: i, j
+        associate (w => op%fft)
+            w%cbuf = cmplx(rsymbol, 0.0_dp, dp)
+            call full_backward(w)
+            do j = 0, op%my - 1
+                do i = 0, op%mx - 1
+                    kern(i, j) = 0.5_dp*(w%rbuf(i + 1, j + 1) + w%rbuf(modulo(-i, op%mx) + 1, modulo(-j, op%my) + 1))
+                end do
+            end do
+        end associate
+    end subroutine kernel_of_real_symbol
 
     !> Period of the Strang circulants on an nx×ny grid: the grid itself, or in a direction
     !! whose size FFTW transforms slowly (a large prime factor) the next size it transforms

@@ -18,6 +18,7 @@ program tester
     use test_operators, only: collect_operators
     use test_fem_ic, only: collect_fem_ic
     use test_parallel, only: collect_parallel
+    use test_periodic, only: collect_periodic
     use test_api_fuzz, only: collect_api_fuzz
     use test_reliability, only: collect_reliability
     use test_readme, only: collect_readme
@@ -56,6 +57,9 @@ program tester
     end if
     if (want('api_fuzz')) then
         call collect_api_fuzz(tests); call run_suite('api_fuzz', tests, only, npass, nfail)
+    end if
+    if (want('periodic')) then
+        call collect_periodic(tests); call run_suite('periodic', tests, only, npass, nfail)
     end if
     if (want('reliability')) then
         call collect_reliability(tests); call run_suite('reliability', tests, only, npass, nfail)

@@ -654,8 +654,9 @@ contains
             " &normal fn = 4.0 /", code, err)
         call check(error, code == 1 .and. index(err, 'nx = 63') > 0, 'odd nx rejected naming it: '//err)
         call drive(base//"&grid nx = 64, ny = 4, xmin = 0.0, xmax = 2.0, ymin = 0.0, ymax = 0.125, periodic = .true. /"// &
-            " &normal fn = 4.0 / &case problem = 'normal+tangential' / &tangential mu = 0.3, xi = 1.0e-4 /", code, err)
-        call check(error, code == 1 .and. index(err, 'normal contact only') > 0, 'periodic tangential rejected: '//err)
+            " &normal fn = 4.0 / &case problem = 'rolling' / &tangential mu = 0.3, xi = 1.0e-4 /", code, err)
+        call check(error, code == 1 .and. index(err, "problem = 'rolling'") > 0 .and. index(err, 'periodic') > 0, &
+            'periodic rolling rejected: '//err)
     end subroutine test_driver_periodic_errors
 
     !> &solver threads: bounds checked; 2 threads give the 1-thread result to round-off.

@@ -1,0 +1,411 @@
+!> Suite `periodic`: the tangential problem on the periodic half-space (a rough-surface cell
+!! repeated in x and y) — its kernels, its exact block inverse, the discrete
+!! Ciavarella–Jäger identity, translation invariance across the cell's edges, and the
+!! driver's and flat API's checks.  (The periodic normal problem is tested in `parallel`.)
+module test_periodic
+    use fc_kinds, only: dp, FC_CONVERGED, FC_ERR_UNSUPPORTED
+    use fc_geometry, only: fc_grid, make_grid, wavy_gap, quadratic_gap
+    use fc_influence, only: fc_material, combine_material, element_coefficient, IC_ZZ, IC_XX, IC_YY, IC_XY
+    use fc_periodic, only: periodic_wrapped_kernel, build_periodic_tangential_operator
+    use fc_tangcg_operator, only: fc_tangential_operator, apply_block_inverse
+    use fc_tangcg_types, only: EL_ADHESION
+    use fc_contact, only: fc_contact_operators, fc_contact_loading, fc_contact_settings, fc_contact_result, solve_contact, &
+        FC_PROBLEM_NORMAL, FC_PROBLEM_TANGENTIAL
+    use fc_test_driver, only: fresh_dir, run_namelist
+    use, intrinsic :: iso_c_binding, only: c_int, c_double, c_char, c_null_char
+    use fc_legacy, only: fc_init, fc_finalize, fc_set_material, fc_set_grid, fc_set_gap_array, fc_set_normal_force, &
+        fc_set_friction, fc_set_forces, fc_set_rolling, fc_set_periodic, fc_calculate, fc_get_forces, fc_get_tractions, &
+        fc_get_error_message, FCL_OK
+    use fc_testing
+    implicit none
+    private
+    public :: collect_periodic
+
+contains
+
+    subroutine collect_periodic(tests)
+        type(unittest_type), allocatable, intent(out) :: tests(:)
+        tests = [ &
+            new_unittest('tangential_kernels', test_kernels), &
+            new_unittest('tangential_exact_block_inverse', test_block_inverse), &
+            new_unittest('tangential_ciavarella_jaeger', test_ciavarella_jaeger), &
+            new_unittest('tangential_full_contact', test_full_contact), &
+            new_unittest('tangential_translation_invariance', test_translation), &
+            new_unittest('tangential_far_images', test_far_images), &
+            new_unittest('driver_periodic_tangential', test_driver), &
+            new_unittest('api_periodic_tangential', test_api) ]
+    end subroutine collect_periodic
+
+    subroutine material(mat, nu)
+        type(fc_material), intent(out) :: mat
+        real(dp), intent(in) :: nu
+        integer :: stat
+        character(len=200) :: m
+        mat%g1 = 200; mat%g2 = 200; mat%nu1 = nu; mat%nu2 = nu
+        call combine_material(mat, stat, m)
+    end subroutine material
+
+    !> The periodic kernels of a 16×12 cell: A^xx, A^yy even in x and y, A^xy odd in both
+    !! (so every kernel point-symmetric and its symbol real); A^xy near the origin of a
+    !! 48×48 cell within 1e−3 of the half-space's (its images' odd parts cancel there to
+    !! order (r/L)³), with its sign on the 16×12 cell; the sums
+    !! with 2 image rings within 2e−4 of those with 20 (the far images' smeared tail); with
+    !! ν = 0, A^xx equal to A^zz and A^xy zero.
+    subroutine test_kernels(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_material) :: mat
+        type(fc_grid) :: grid
+        real(dp), allocatable :: wxx(:, :), wyy(:, :), wxy(:, :), w20(:, :), wzz(:, :)
+        real(dp) :: d, near
+        integer :: stat, i, j, nx, ny
+        character(len=256) :: em
+        nx = 16; ny = 12
+        call material(mat, 0.3_dp)
+        call make_grid(grid, nx, ny, 0.0_dp, 1.6_dp, 0.0_dp, 1.0_dp, stat, em)
+        call periodic_wrapped_kernel(mat, grid, 2, IC_XX, wxx)
+        call periodic_wrapped_kernel(mat, grid, 2, IC_YY, wyy)
+        call periodic_wrapped_kernel(mat, grid, 2, IC_XY, wxy)
+        d = 0
+        do j = 0, ny - 1
+            do i = 0, nx - 1
+                d = max(d, abs(wxx(i, j) - wxx(modulo(-i, nx), j)), abs(wxx(i, j) - wxx(i, modulo(-j, ny))), &
+                    abs(wyy(i, j) - wyy(modulo(-i, nx), j)), abs(wxy(i, j) + wxy(modulo(-i, nx), j)), &
+                    abs(wxy(i, j) + wxy(i, modulo(-j, ny))))
+            end do
+        end do
+        call check(error, d, 0.0_dp, 'A^xx, A^yy even, A^xy odd in x and in y', abs=0.0_dp)
+        block
+            type(fc_grid) :: big
+            real(dp), allocatable :: bxy(:, :)
+            call make_grid(big, 48, 48, 0.0_dp, 4.8_dp, 0.0_dp, 4.8_dp, stat, em)
+            call periodic_wrapped_kernel(mat, big, 2, IC_XY, bxy)
+            near = 0
+            do j = 1, 2
+                do i = 1, 2
+                    near = max(near, abs(bxy(i, j) - element_coefficient(IC_XY, mat, i*big%dx, j*big%dy, big%dx, big%dy)))
+                end do
+            end do
+            call check(error, near, 0.0_dp, 'A^xy near the origin as on the half-space (48 x 48 cell)', &
+                abs=1e-3_dp*maxval(abs(bxy)))
+        end block
+        call check(error, wxy(1, 1)*element_coefficient(IC_XY, mat, grid%dx, grid%dy, grid%dx, grid%dy) > 0, &
+            'A^xy has the half-space sign')
+        call periodic_wrapped_kernel(mat, grid, 20, IC_XX, w20)
+        call check(error, maxval(abs(w20 - wxx)), 0.0_dp, 'A^xx: 2 image rings as 20', abs=2e-4_dp*maxval(abs(wxx)))
+        call periodic_wrapped_kernel(mat, grid, 20, IC_XY, w20)
+        call check(error, maxval(abs(w20 - wxy)), 0.0_dp, 'A^xy: 2 image rings as 20', abs=2e-4_dp*maxval(abs(wxy)))
+        call material(mat, 0.0_dp)
+        call periodic_wrapped_kernel(mat, grid, 2, IC_XX, wxx)
+        call periodic_wrapped_kernel(mat, grid, 2, IC_ZZ, wzz)
+        call periodic_wrapped_kernel(mat, grid, 2, IC_XY, wxy)
+        call check(error, maxval(abs(wxx - wzz)) == 0 .and. maxval(abs(wxy)) == 0, 'nu = 0: A^xx = A^zz, A^xy = 0')
+    end subroutine test_kernels
+
+    !> The preconditioner of the periodic tangential operator is A's exact inverse on
+    !! mean-free tractions: M·A·v = v for v of zero mean in x and in y (to rounding), on
+    !! either form asked for; products against the direct circular sums.
+    subroutine test_block_inverse(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_material) :: mat
+        type(fc_grid) :: grid
+        type(fc_tangential_operator) :: top
+        real(dp) :: vx(16, 12), vy(16, 12), ux(16, 12), uy(16, 12), zx(16, 12), zy(16, 12), dx(16, 12)
+        integer :: stat, i, j
+        character(len=256) :: em
+        call material(mat, 0.3_dp)
+        call make_grid(grid, 16, 12, 0.0_dp, 1.6_dp, 0.0_dp, 1.0_dp, stat, em)
+        call build_periodic_tangential_operator(top, mat, grid, stat, em)
+        call check(error, stat == 0 .and. top%periodic, 'built: '//trim(em))
+        if (allocated(error)) return
+        do j = 1, 12
+            do i = 1, 16
+                vx(i, j) = modulo(0.37_dp*i + 0.61_dp*j*j, 1.0_dp)
+                vy(i, j) = modulo(0.73_dp*i*i + 0.19_dp*j, 1.0_dp)
+            end do
+        end do
+        vx = vx - sum(vx)/size(vx); vy = vy - sum(vy)/size(vy)
+        call top%apply(vx, vy, ux, uy)
+        call top%a_xx%apply_direct(vx, dx)
+        call top%a_xy%apply_direct(vy, zx)
+        call check(error, maxval(abs(dx + zx - ux)), 0.0_dp, 'A v against the direct circular sums', &
+            abs=1e-12_dp*maxval(abs(ux)))
+        call apply_block_inverse(top, ux, uy, zx, zy, circulant=.false.)
+        call check(error, max(maxval(abs(zx - vx)), maxval(abs(zy - vy))), 0.0_dp, 'M A v = v (toeplitz form asked)', &
+            abs=1e-10_dp*maxval(abs(vx)))
+        call apply_block_inverse(top, ux, uy, zx, zy, circulant=.true.)
+        call check(error, max(maxval(abs(zx - vx)), maxval(abs(zy - vy))), 0.0_dp, 'M A v = v (circulant form)', &
+            abs=1e-10_dp*maxval(abs(vx)))
+        call material(mat, 0.3_dp)
+        mat%g1 = 100; call combine_material(mat, stat, em)
+        call build_periodic_tangential_operator(top, mat, grid, stat, em)
+        call check(error, stat == FC_ERR_UNSUPPORTED .and. index(em, 'K = 0') > 0, 'dissimilar bodies refused: '//trim(em))
+    end subroutine test_block_inverse
+
+    !> With ν = 0 the tangential kernel A^xx equals A^zz and A^xy vanishes, so the solution of
+    !! the periodic problem under a tangential force Q < μP is, element by element,
+    !! q = μ(p(P) − p(P*)) with P* = P − Q/μ, and the adhesion area is the contact area at P*
+    !! (Ciavarella; Jäger): exact for the discrete problems too.  A 2D wavy cell in partial
+    !! contact, tolerances 1e−10: tractions to 1e−7 of μ·pmax (measured 6e−10 on 64²).
+    subroutine test_ciavarella_jaeger(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_material) :: mat
+        type(fc_grid) :: grid
+        type(fc_contact_operators) :: ops
+        type(fc_contact_loading) :: load
+        type(fc_contact_settings) :: set
+        type(fc_contact_result) :: rt, rs
+        real(dp), allocatable :: h0(:, :)
+        real(dp), parameter :: mu = 0.3_dp, p = 0.05_dp, q = 0.01_dp
+        integer :: stat
+        character(len=256) :: em
+        call material(mat, 0.0_dp)
+        call make_grid(grid, 32, 32, 0.0_dp, 1.0_dp, 0.0_dp, 1.0_dp, stat, em)
+        h0 = wavy_gap(grid, 0.001_dp, 1.0_dp, 1.0_dp)
+        ops%periodic = .true.
+        set%normal%tol = 1e-10_dp; set%tangential%tol = 1e-10_dp
+        load%problem = FC_PROBLEM_TANGENTIAL
+        load%normal%force_prescribed = .true.; load%normal%fn = p
+        load%tangential%mu = mu; load%tangential%force_prescribed = .true.; load%tangential%fx = q
+        call solve_contact(ops, grid, mat, h0, load, set, rt, stat, em)
+        call check(error, stat == 0 .and. rt%status == FC_CONVERGED, 'tangential solve: '//trim(em))
+        if (allocated(error)) return
+        load%problem = FC_PROBLEM_NORMAL; load%normal%fn = p - q/mu
+        call solve_contact(ops, grid, mat, h0, load, set, rs, stat, em)
+        call check(error, stat == 0 .and. rs%status == FC_CONVERGED, 'normal solve at P*: '//trim(em))
+        if (allocated(error)) return
+        call check(error, count(rt%tangential%state == EL_ADHESION) > 0 .and. &
+            count(rt%tangential%state == EL_ADHESION) < count(rt%normal%pn > 0), 'partial slip')
+        call check(error, maxval(abs(rt%tangential%px - mu*(rt%normal%pn - rs%normal%pn))), 0.0_dp, &
+            'q = mu (p(P) - p(P*))', abs=1e-7_dp*mu*rt%normal%pmax)
+        call check(error, maxval(abs(rt%tangential%py)), 0.0_dp, 'no lateral traction', abs=1e-12_dp*mu*rt%normal%pmax)
+        call check(error, all((rt%tangential%state == EL_ADHESION) .eqv. (rs%normal%pn > 0)), &
+            'adhesion area = contact area at P*')
+    end subroutine test_ciavarella_jaeger
+
+    !> A cell in contact everywhere (ν = 0, wavy cell 32² at P = 5 N, 3.5× the load of full
+    !! contact): uniform tractions displace nothing there, so
+    !! (a) a force the whole cell carries in adhesion, Q = 0.1 N, gives q = Q/(cell area)
+    !!     everywhere in adhesion at zero shift;
+    !! (b) Q = 1.44 N (P* = P − Q/μ = 0.2 N, in partial contact) gives the Ciavarella–Jäger
+    !!     tractions μ(p(P) − p(P*)), adhesion on the contact at P*, and the shift
+    !!     −μ(δ(P) − δ(P*)) (approaches relative to the cell's mean displacement);
+    !! (c) that shift prescribed gives the same tractions and Q.
+    !! Tolerances 1e−7 of μ·pmax (measured 1e−10).
+    subroutine test_full_contact(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_material) :: mat
+        type(fc_grid) :: grid
+        type(fc_contact_operators) :: ops
+        type(fc_contact_loading) :: load
+        type(fc_contact_settings) :: set
+        type(fc_contact_result) :: ra, rb, rc, rp, rs
+        real(dp), allocatable :: h0(:, :), ref(:, :)
+        real(dp), parameter :: mu = 0.3_dp, p = 5.0_dp
+        real(dp) :: w
+        integer :: stat
+        character(len=256) :: em
+        call material(mat, 0.0_dp)
+        call make_grid(grid, 32, 32, 0.0_dp, 1.0_dp, 0.0_dp, 1.0_dp, stat, em)
+        h0 = wavy_gap(grid, 0.001_dp, 1.0_dp, 1.0_dp)
+        ops%periodic = .true.
+        set%normal%tol = 1e-10_dp; set%tangential%tol = 1e-10_dp
+        load%normal%force_prescribed = .true.
+        load%problem = FC_PROBLEM_NORMAL; load%normal%fn = p
+        call solve_contact(ops, grid, mat, h0, load, set, rp, stat, em)
+        load%normal%fn = p - 1.44_dp/mu
+        call solve_contact(ops, grid, mat, h0, load, set, rs, stat, em)
+        call check(error, all(rp%normal%pn > 0) .and. count(rs%normal%pn > 0) < size(h0), &
+            'full contact at P, partial at P*')
+        if (allocated(error)) return
+        ref = mu*(rp%normal%pn - rs%normal%pn)
+        w = -mu*(rp%normal%approach - rs%normal%approach)
+        load%problem = FC_PROBLEM_TANGENTIAL; load%normal%fn = p
+        load%tangential%mu = mu; load%tangential%force_prescribed = .true.; load%tangential%fx = 0.1_dp
+        call solve_contact(ops, grid, mat, h0, load, set, ra, stat, em)
+        call check(error, stat == 0 .and. ra%status == FC_CONVERGED, '(a) solved: '//trim(em)//' '//trim(ra%tangential%message))
+        if (allocated(error)) return
+        call check(error, all(ra%tangential%state == EL_ADHESION) .and. ra%tangential%xi == 0, &
+            '(a) adhesion everywhere at zero shift')
+        call check(error, maxval(abs(ra%tangential%px - 0.1_dp)), 0.0_dp, '(a) q = Q / cell area', &
+            abs=1e-7_dp*mu*rp%normal%pmax)
+        load%tangential%fx = 1.44_dp
+        call solve_contact(ops, grid, mat, h0, load, set, rb, stat, em)
+        call check(error, stat == 0 .and. rb%status == FC_CONVERGED, '(b) solved: '//trim(em)//' '//trim(rb%tangential%message))
+        if (allocated(error)) return
+        call check(error, maxval(abs(rb%tangential%px - ref)), 0.0_dp, '(b) q = mu (p(P) - p(P*))', &
+            abs=1e-7_dp*mu*rp%normal%pmax)
+        call check(error, all((rb%tangential%state == EL_ADHESION) .eqv. (rs%normal%pn > 0)), &
+            '(b) adhesion area = contact area at P*')
+        call check(error, rb%tangential%xi, w, '(b) shift', rel=1e-6_dp)
+        load%tangential%force_prescribed = .false.; load%tangential%xi = w
+        call solve_contact(ops, grid, mat, h0, load, set, rc, stat, em)
+        call check(error, stat == 0 .and. rc%status == FC_CONVERGED, '(c) solved: '//trim(em))
+        if (allocated(error)) return
+        call check(error, maxval(abs(rc%tangential%px - ref)), 0.0_dp, '(c) shift prescribed: the same tractions', &
+            abs=1e-7_dp*mu*rp%normal%pmax)
+        call check(error, rc%tangential%fx, 1.44_dp, '(c) the same force', rel=1e-6_dp)
+    end subroutine test_full_contact
+
+    !> A cell is a cell wherever it starts: the same rough cell shifted by (5, −3) elements
+    !! gives the shifted tractions (ν = 0.3, a force with both components, so every block
+    !! acts across the cell's edges).  Solved after a half-space case of the same grid and
+    !! material on the same operators, which must not be reused for the periodic cell.
+    subroutine test_translation(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_material) :: mat
+        type(fc_grid) :: grid
+        type(fc_contact_operators) :: ops
+        type(fc_contact_loading) :: load
+        type(fc_contact_settings) :: set
+        type(fc_contact_result) :: r0, r1, rh
+        real(dp), allocatable :: h0(:, :)
+        real(dp) :: pm
+        integer :: stat, i, j
+        character(len=256) :: em
+        call material(mat, 0.3_dp)
+        call make_grid(grid, 24, 20, 0.0_dp, 1.2_dp, 0.0_dp, 1.0_dp, stat, em)
+        allocate (h0(24, 20))
+        do j = 1, 20
+            do i = 1, 24
+                h0(i, j) = 1e-3_dp*(1 - cos(2*acos(-1.0_dp)*grid%x(i)/1.2_dp)*cos(2*acos(-1.0_dp)*grid%y(j))) &
+                    + 2e-4_dp*sin(4*acos(-1.0_dp)*(grid%x(i)/1.2_dp + 2*grid%y(j)))
+            end do
+        end do
+        set%normal%tol = 1e-10_dp; set%tangential%tol = 1e-10_dp
+        load%problem = FC_PROBLEM_TANGENTIAL
+        load%normal%force_prescribed = .true.; load%normal%fn = 0.05_dp
+        load%tangential%mu = 0.3_dp; load%tangential%force_prescribed = .true.
+        load%tangential%fx = 0.006_dp; load%tangential%fy = -0.004_dp
+        ! a half-space case first (same grid and material): its operators must not serve the cell
+        call solve_contact(ops, grid, mat, quadratic_gap(grid, 50.0_dp, 50.0_dp) - 5e-3_dp, load, set, rh, stat, em)
+        ops%periodic = .true.
+        call solve_contact(ops, grid, mat, h0, load, set, r0, stat, em)
+        call check(error, stat == 0 .and. r0%status == FC_CONVERGED, 'cell: '//trim(em))
+        call solve_contact(ops, grid, mat, cshift(cshift(h0, 5, 1), -3, 2), load, set, r1, stat, em)
+        call check(error, stat == 0 .and. r1%status == FC_CONVERGED, 'shifted cell: '//trim(em))
+        if (allocated(error)) return
+        call check(error, ops%builds_tangential == 2, 'the periodic cell gets its own tangential operator')
+        pm = 0.3_dp*r0%normal%pmax
+        call check(error, count(r0%tangential%state == EL_ADHESION) > 0 .and. r0%tangential%nslip > 0, 'partial slip')
+        call check(error, max(maxval(abs(r1%tangential%px - cshift(cshift(r0%tangential%px, 5, 1), -3, 2))), &
+            maxval(abs(r1%tangential%py - cshift(cshift(r0%tangential%py, 5, 1), -3, 2)))), 0.0_dp, &
+            'shifted tractions', abs=1e-7_dp*pm)
+        call check(error, maxval(abs(r0%tangential%py)) > 0.05_dp*pm, 'lateral tractions present')
+    end subroutine test_translation
+
+    !> A small circular contact in a cell eight times its diameter hardly feels its images:
+    !! the periodic tractions under a tangential force (ν = 0.3) are those of the half-space
+    !! on the same grid within 3 % of μ·pmax (the images' pressure and traction fields are
+    !! of order (a/L)³ near the contact; measured below 1 %), with the same slip area.
+    subroutine test_far_images(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_material) :: mat
+        type(fc_grid) :: grid
+        type(fc_contact_operators) :: ops, opsp
+        type(fc_contact_loading) :: load
+        type(fc_contact_settings) :: set
+        type(fc_contact_result) :: rh, rp
+        real(dp), allocatable :: h0(:, :)
+        real(dp) :: pm
+        integer :: stat
+        character(len=256) :: em
+        call material(mat, 0.3_dp)
+        call make_grid(grid, 64, 64, -4.0_dp, 4.0_dp, -4.0_dp, 4.0_dp, stat, em)
+        h0 = quadratic_gap(grid, 50.0_dp, 50.0_dp)
+        load%problem = FC_PROBLEM_TANGENTIAL
+        load%normal%force_prescribed = .true.; load%normal%fn = 9.1954_dp
+        load%tangential%mu = 0.4_dp; load%tangential%force_prescribed = .true.
+        load%tangential%fx = 2.0_dp; load%tangential%fy = 1.0_dp
+        call solve_contact(ops, grid, mat, h0, load, set, rh, stat, em)
+        opsp%periodic = .true.
+        call solve_contact(opsp, grid, mat, h0, load, set, rp, stat, em)
+        call check(error, stat == 0 .and. rh%status == FC_CONVERGED .and. rp%status == FC_CONVERGED, 'solved: '//trim(em))
+        if (allocated(error)) return
+        pm = 0.4_dp*rh%normal%pmax
+        call check(error, max(maxval(abs(rp%tangential%px - rh%tangential%px)), &
+            maxval(abs(rp%tangential%py - rh%tangential%py))), 0.0_dp, 'tractions as on the half-space', abs=0.03_dp*pm)
+        call check(error, real(abs(rp%tangential%nslip - rh%tangential%nslip), dp), 0.0_dp, 'slip area', &
+            abs=0.05_dp*rh%tangential%nslip)
+    end subroutine test_far_images
+
+    !> The driver solves a periodic 'normal+tangential' case (shifts and forces) and refuses
+    !! rolling, ConvexGS and dissimilar bodies on a periodic cell, naming the keys.
+    subroutine test_driver(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: dir, errors, base
+        integer :: code
+        base = "&case name = 'cell', problem = 'normal+tangential' /"//new_line('a')// &
+            '&material g1 = 200.0, g2 = 200.0, nu1 = 0.3, nu2 = 0.3 /'//new_line('a')// &
+            '&grid nx = 32, ny = 32, xmin = 0.0, xmax = 1.0, ymin = 0.0, ymax = 1.0, periodic = .true. /'//new_line('a')// &
+            "&geometry kind = 'wavy', amplitude = 0.001, wavelength_x = 1.0, wavelength_y = 1.0 /"//new_line('a')// &
+            '&normal fn = 0.05 /'//new_line('a')//'&tangential mu = 0.3, fx = 0.01, fy = 0.0 /'//new_line('a')
+        dir = fresh_dir('periodic')
+        call run_namelist(dir, base//"&case name = 'cell_shift' /"//new_line('a')// &
+            '&tangential mu = 0.3, xi = -1.0e-4, eta = 0.0 /'//new_line('a'), code, errors)
+        call check(error, code == 0, 'periodic tangential cases solved: '//errors)
+        call run_namelist(dir, base//"&case name = 'r', problem = 'rolling' /"//new_line('a'), code, errors)
+        call check(error, code == 1 .and. index(errors, 'periodic') > 0 .and. index(errors, "'rolling'") > 0, &
+            'rolling refused: '//errors)
+        call run_namelist(dir, base//"&solver tangential = 'convexgs' /"//new_line('a'), code, errors)
+        call check(error, code == 1 .and. index(errors, "'convexgs'") > 0, 'ConvexGS refused: '//errors)
+        call run_namelist(dir, base//'&material g1 = 100.0 /'//new_line('a'), code, errors)
+        call check(error, code == 1 .and. index(errors, 'K = 0') > 0 .and. index(errors, '&material') > 0, &
+            'dissimilar bodies refused: '//errors)
+        call execute_command_line("rm -rf '"//dir//"'")
+    end subroutine test_driver
+
+    !> The flat API solves the periodic tangential problem as the library does (the same
+    !! tractions to 1e−12 of μ·pmax) and refuses steady rolling on a periodic cell with a
+    !! message that says so.
+    subroutine test_api(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_material) :: mat
+        type(fc_grid) :: grid
+        type(fc_contact_operators) :: ops
+        type(fc_contact_loading) :: load
+        type(fc_contact_settings) :: set
+        type(fc_contact_result) :: r
+        integer(c_int) :: h, ierr, ierr2
+        real(c_double) :: fn, fx, fy, mz, pn(32*32), px(32*32), py(32*32)
+        real(dp), allocatable :: h0(:, :)
+        character(kind=c_char, len=512) :: buf
+        integer :: stat
+        character(len=256) :: em
+        call material(mat, 0.3_dp)
+        call make_grid(grid, 32, 32, 0.0_dp, 1.0_dp, 0.0_dp, 1.0_dp, stat, em)
+        h0 = wavy_gap(grid, 0.001_dp, 1.0_dp, 1.0_dp)
+        call fc_init(h, ierr)
+        call fc_set_material(h, 200.0_c_double, 200.0_c_double, 0.3_c_double, 0.3_c_double, ierr)
+        call fc_set_grid(h, 32_c_int, 32_c_int, 0.0_c_double, 1.0_c_double, 0.0_c_double, 1.0_c_double, ierr)
+        call fc_set_gap_array(h, 1024_c_int, reshape(h0, [1024]), ierr)
+        call fc_set_periodic(h, 1_c_int, ierr)
+        call fc_set_normal_force(h, 0.05_c_double, ierr)
+        call fc_set_friction(h, 0.3_c_double, ierr)
+        call fc_set_forces(h, 0.01_c_double, -0.004_c_double, 0.0_c_double, ierr)
+        call fc_calculate(h, ierr)
+        call check(error, ierr == FCL_OK, 'periodic tangential calculation')
+        if (allocated(error)) return
+        call fc_get_forces(h, fn, fx, fy, mz, ierr)
+        call fc_get_tractions(h, 1024_c_int, pn, px, py, ierr)
+        ops%periodic = .true.
+        load%problem = FC_PROBLEM_TANGENTIAL
+        load%normal%force_prescribed = .true.; load%normal%fn = 0.05_dp
+        load%tangential%mu = 0.3_dp; load%tangential%force_prescribed = .true.
+        load%tangential%fx = 0.01_dp; load%tangential%fy = -0.004_dp
+        call solve_contact(ops, grid, mat, h0, load, set, r, stat, em)
+        call check(error, stat == 0 .and. r%status == FC_CONVERGED, 'library solve: '//trim(em))
+        if (allocated(error)) return
+        call check(error, real(fx, dp), 0.01_dp, 'Fx', rel=1e-4_dp)
+        call check(error, real(fy, dp), -0.004_dp, 'Fy', rel=1e-4_dp)
+        call check(error, max(maxval(abs(px - reshape(r%tangential%px, [1024]))), &
+            maxval(abs(py - reshape(r%tangential%py, [1024])))), 0.0_dp, 'tractions as the library''s', &
+            abs=1e-12_dp*0.3_dp*r%normal%pmax)
+        call fc_set_rolling(h, 0.001_c_double, 0.0_c_double, 0.0_c_double, ierr)
+        call fc_calculate(h, ierr)
+        call fc_get_error_message(h, buf, int(len(buf), c_int), ierr2)
+        call check(error, ierr /= FCL_OK .and. index(buf, 'periodic') > 0 .and. index(buf, 'rolling') > 0, &
+            'steady rolling on a periodic cell refused: '//buf(1:max(1, index(buf, c_null_char) - 1)))
+        call fc_finalize(h, ierr)
+    end subroutine test_api
+
+end module test_periodic
