@@ -1,9 +1,11 @@
 #!/usr/bin/env python3
 """Periodic half-space: fastcontact (&grid periodic = .true.) against tamaas' periodic
-Polonsky-Keer solver and against Johnson's wavy-surface solution (doc/parallel.md).
+Polonsky-Keer solvers (normal: PolonskyKeerRey; with Coulomb friction: PolonskyKeerTan) and
+against Johnson's wavy-surface solution (doc/parallel.md).
 
     python3 -m venv /tmp/tv && /tmp/tv/bin/pip install tamaas numpy
     /tmp/tv/bin/python scripts/peers_periodic.py [--fastcontact PATH] [--out doc/peers_periodic.csv]
+        [--friction-out doc/peers_periodic_friction.csv]
 
 Cases (same heights, same mean pressure, same combined modulus E* = G/(1-nu)):
   wavy_partial  1D wavy surface, amplitude A, one wavelength per cell, mean pressure 0.45 p*
@@ -11,6 +13,8 @@ Cases (same heights, same mean pressure, same combined modulus E* = G/(1-nu)):
                 sin^2(pi a/lambda) = pbar/p*)
   rough_cell    random-phase rough cell (numpy seed 16), power-law spectrum, 128^2, mean
                 pressure giving ~10 % contact
+  wavy2d_friction  2D wavy cell A cos(2 pi x/L) cos(2 pi y/L) under a mean pressure and a
+                mean tangential traction with Coulomb friction, 32^2 ... 256^2 (friction_case)
 Discretisations differ: fastcontact uses piecewise-constant pressure elements (influence
 coefficients of the element), tamaas point collocation with the continuous kernel 2/(E*|q|);
 the differences below are therefore discretisation differences, not solver errors.
@@ -68,6 +72,7 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument('--fastcontact', default=None, help='path of the fastcontact driver')
     ap.add_argument('--out', default='doc/peers_periodic.csv')
+    ap.add_argument('--friction-out', default='doc/peers_periodic_friction.csv')
     args = ap.parse_args()
     exe = args.fastcontact
     if exe is None:
@@ -108,12 +113,69 @@ def main():
             rows.append(dict(case='rough_cell', code=name, n=f'{n}x{n}', pmax=p.max(), pmax_rel_err=np.nan,
                              contact_fraction=(p > 0).mean(), contact_fraction_analytic=np.nan,
                              mean_pressure=p.mean(), rel_l2_vs_other=diff))
+        friction = [friction_case(exe, work, n) for n in (32, 64, 128, 256)]
     keys = list(rows[0].keys())
     with open(args.out, 'w') as f:
         f.write(','.join(keys) + '\n')
         for r in rows:
             f.write(','.join(f'{r[k]:.6g}' if isinstance(r[k], float) else str(r[k]) for k in keys) + '\n')
     print(open(args.out).read())
+    keys = list(friction[0].keys())
+    with open(args.friction_out, 'w') as f:
+        f.write(','.join(keys) + '\n')
+        for r in friction:
+            f.write(','.join(f'{r[k]:.6g}' if isinstance(r[k], float) else str(r[k]) for k in keys) + '\n')
+    print(open(args.friction_out).read())
+
+
+def friction_case(exe, work, n):
+    """Friction on a periodic cell: the 2D wavy surface z = A cos(2πx/L) cos(2πy/L) under a mean
+    pressure and a mean tangential traction (qx, qy), Coulomb friction.  tamaas'
+    PolonskyKeerTan solves an elastic half-space (E, ν = 0.5: no normal-tangential coupling)
+    against the rigid surface; fastcontact two identical bodies (K = 0) with ν = 0.4999 and
+    G = E*(1 − ν), which give the same normal kernel and, to 4e−4, the same tangential ones
+    (Cerruti: the x²/r³ and xy/r³ terms scale with ν/(1 − ν)).  tamaas' traction component 0
+    lies along its first array axis, our y."""
+    L, amp, estar, mu, pbar, qx, qy = 1.0, 1.0e-3, 1000.0, 0.3, 0.3, 0.05, 0.02
+    x = (np.arange(n) + 0.5) * L / n
+    X, Y = np.meshgrid(x, x)                                  # [iy, ix]
+    z = amp * np.cos(2 * np.pi * X / L) * np.cos(2 * np.pi * Y / L)
+    model = tm.ModelFactory.createModel(tm.model_type.surface_2d, [L, L], [n, n])
+    model.E = estar * (1 - 0.5 ** 2)
+    model.nu = 0.5
+    solver = tm.PolonskyKeerTan(model, np.ascontiguousarray(z), 1e-12, mu)
+    solver.max_iter = 3000
+    solver.dump_freq = 10 ** 9
+    solver.solve([qy, qx, pbar])
+    tt = np.array(model.traction)
+    tx, ty, tp = tt[..., 1], tt[..., 0], tt[..., 2]
+    nu = 0.4999
+    g = estar * (1 - nu)
+    name = f'friction_{n}'
+    table = os.path.join(work, name + '.txt')
+    np.savetxt(table, (z.max() - z).reshape(-1, 8), fmt='%.17e')
+    nml = os.path.join(work, name + '.nml')
+    with open(nml, 'w') as f:
+        f.write(f"&case name = '{name}', problem = 'normal+tangential' /\n")
+        f.write(f"&material g1 = {g}, g2 = {g}, nu1 = {nu}, nu2 = {nu} /\n")
+        f.write(f"&grid nx = {n}, ny = {n}, xmin = 0.0, xmax = {L}, ymin = 0.0, ymax = {L}, periodic = .true. /\n")
+        f.write(f"&geometry kind = 'table', file = '{table}' /\n&normal fn = {pbar * L * L} /\n")
+        f.write(f"&tangential mu = {mu}, fx = {qx * L * L}, fy = {qy * L * L} /\n&solver tol = 1.0e-9 /\n")
+    out = os.path.join(work, 'out')
+    subprocess.run([exe, nml, '--out', out], check=True, stdout=subprocess.DEVNULL)
+    d = np.genfromtxt(os.path.join(out, name + '.csv'), delimiter=',', names=True)
+    iy, ix = d['iy'].astype(int) - 1, d['ix'].astype(int) - 1
+    p, fx, fy = (np.zeros((n, n)) for _ in range(3))
+    p[iy, ix] = d['pn']; fx[iy, ix] = d['px']; fy[iy, ix] = d['py']
+    stick_f = (p > 0) & (np.hypot(fx, fy) < mu * p * (1 - 1e-6))
+    stick_t = (tp > 0) & (np.hypot(tx, ty) < mu * tp * (1 - 1e-6))
+    slip = (p > 0) & ~stick_f & (tp > 0) & ~stick_t
+    dang = np.angle(np.exp(1j * (np.arctan2(fy, fx) - np.arctan2(ty, tx))))[slip]
+    return dict(case='wavy2d_friction', n=f'{n}x{n}', pressure_rel_l2=np.linalg.norm(p - tp) / np.linalg.norm(tp),
+                qx_rel_l2=np.linalg.norm(fx - tx) / np.linalg.norm(tx), qy_rel_l2=np.linalg.norm(fy - ty) / np.linalg.norm(ty),
+                contact_fastcontact=int((p > 0).sum()), contact_tamaas=int((tp > 0).sum()),
+                stick_fastcontact=int(stick_f.sum()), stick_tamaas=int(stick_t.sum()),
+                slip_angle_diff_max=float(np.abs(dang).max()) if dang.size else 0.0)
 
 
 if __name__ == '__main__':

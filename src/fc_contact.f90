@@ -224,6 +224,9 @@ contains
             else if (load%problem == FC_PROBLEM_ROLLING .or. load%transient == FC_TRANSIENT_ROLLING) then
                 errmsg = 'solve_contact: the periodic half-space has no rolling (steady or transient); '// &
                     'shifts and prescribed tangential forces only'
+            else if (tangential .and. load%tangential%phi /= 0) then
+                errmsg = 'solve_contact: the periodic half-space takes no spin (a rotation of the whole surface '// &
+                    'is not periodic): phi = 0'
             else if (tangential .and. settings%tangential%solver /= 'tangcg') then
                 errmsg = "solve_contact: the periodic half-space's tangential problem is solved by 'tangcg' only"
             else if (tangential .and. material%k /= 0) then

@@ -633,6 +633,9 @@ contains
         else if (s%problem == 'hertz' .or. s%problem == 'rolling' .or. s%problem == 'transient_rolling') then
             errmsg = "&grid periodic = .true. with problem = '"//trim(s%problem)// &
                 "': the periodic half-space takes problem = 'normal', 'normal+tangential' or 'tangential'"
+        else if (is_tangential(s) .and. s%phi /= 0) then
+            errmsg = '&grid periodic = .true. with &tangential phi = '//fmt_real(s%phi)// &
+                ': a periodic cell takes no spin (a rotation of the whole surface is not periodic); phi = 0'
         else if (is_tangential(s) .and. s%tangential /= 'tangcg') then
             errmsg = "&grid periodic = .true. with &solver tangential = '"//trim(s%tangential)// &
                 "': the periodic tangential problem is solved by 'tangcg'"

@@ -329,7 +329,7 @@ contains
     end subroutine test_far_images
 
     !> The driver solves a periodic 'normal+tangential' case (shifts and forces) and refuses
-    !! rolling, ConvexGS and dissimilar bodies on a periodic cell, naming the keys.
+    !! rolling, spin, ConvexGS and dissimilar bodies on a periodic cell, naming the keys.
     subroutine test_driver(error)
         type(error_type), allocatable, intent(out) :: error
         character(len=:), allocatable :: dir, errors, base
@@ -348,6 +348,9 @@ contains
             'rolling refused: '//errors)
         call run_namelist(dir, base//"&solver tangential = 'convexgs' /"//new_line('a'), code, errors)
         call check(error, code == 1 .and. index(errors, "'convexgs'") > 0, 'ConvexGS refused: '//errors)
+        call run_namelist(dir, base//'&tangential phi = 0.01 /'//new_line('a'), code, errors)
+        call check(error, code == 1 .and. index(errors, '&tangential phi') > 0 .and. index(errors, 'spin') > 0, &
+            'spin refused: '//errors)
         call run_namelist(dir, base//'&material g1 = 100.0 /'//new_line('a'), code, errors)
         call check(error, code == 1 .and. index(errors, 'K = 0') > 0 .and. index(errors, '&material') > 0, &
             'dissimilar bodies refused: '//errors)
