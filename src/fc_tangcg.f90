@@ -169,6 +169,9 @@ contains
         type(fc_force_newton_t) :: nw
         real(dp) :: fn, flimit, k0, a, jac(2, 2), x(2), probe_s
         integer :: nx, ny, k, probe_it, probe_mv
+        real(dp) :: rs_d(2), rs_fref, rs_secs   ! radial search (periodic cell in contact everywhere)
+        integer :: rs_its, rs_mvs, outer0
+        logical :: rs_ok, found
         logical :: accepted, done
         nx = size(pn, 1); ny = size(pn, 2)
         if (.not. load%force_prescribed) then
@@ -234,19 +237,125 @@ contains
         call nw%start(x, jac, settings%tol, hypot(load%fx, load%fy), flimit)
         ! the probes' cost counts with the loop's
         nw%iterations = probe_it; nw%matvecs = probe_mv; nw%cpu_seconds = probe_s
-        do
-            inner%tol = nw%tol_inner
-            call solve_tangential(top, pn, load%mu, inner, trial, stat, errmsg, nw%x_trial(1), nw%x_trial(2), &
-                                  load%phi, zx, zy, qx, qy, ox, oy)
-            if (stat /= 0) return
-            qx = trial%px; qy = trial%py          ! warm start of the next solve
-            call nw%update([trial%fx - load%fx, trial%fy - load%fy], accepted, done, &
-                           trial%iterations, trial%matvecs, trial%cpu_seconds)
-            if (accepted) call move_alloc_result(trial, res)
-            if (done) exit
-        end do
+        call broyden_loop()
+        if (stat /= 0) return
         call finish_force_loop(res, nw, 'force loop')
+        if (top%periodic .and. all(pn > 0) .and. res%status /= FC_CONVERGED) then
+            call radial_search(x, jac, found)
+            if (found) then
+                ! the loop once more, from the radial point with the Jacobian of a force that
+                ! follows the shift's direction; the totals of everything before carried on
+                outer0 = nw%outer
+                probe_it = nw%iterations + rs_its; probe_mv = nw%matvecs + rs_mvs; probe_s = nw%cpu_seconds + rs_secs
+                call nw%start(x, jac, settings%tol, hypot(load%fx, load%fy), flimit)
+                nw%iterations = probe_it; nw%matvecs = probe_mv; nw%cpu_seconds = probe_s
+                call broyden_loop()
+                if (stat /= 0) return
+                call finish_force_loop(res, nw, 'force loop')
+                res%outer_iterations = res%outer_iterations + outer0
+            end if
+        end if
     contains
+        !> The Broyden iteration of [[fc_force_newton]] from its state in `nw`.
+        subroutine broyden_loop()
+            do
+                inner%tol = nw%tol_inner
+                call solve_tangential(top, pn, load%mu, inner, trial, stat, errmsg, nw%x_trial(1), nw%x_trial(2), &
+                                      load%phi, zx, zy, qx, qy, ox, oy)
+                if (stat /= 0) return
+                qx = trial%px; qy = trial%py          ! warm start of the next solve
+                call nw%update([trial%fx - load%fx, trial%fy - load%fy], accepted, done, &
+                               trial%iterations, trial%matvecs, trial%cpu_seconds)
+                if (accepted) call move_alloc_result(trial, res)
+                if (done) exit
+            end do
+        end subroutine broyden_loop
+
+        !> A periodic cell in contact everywhere whose force loop stopped short: near zero
+        !! shift the force there has about the friction capacity of adhesion everywhere and the
+        !! shift's direction, whatever the shift's size, so the loop's Jacobian is nearly
+        !! singular.  Search the shift's size along the force's direction instead (regula falsi,
+        !! Illinois rule, on the force component along it), each solve warm-started.  Its last
+        !! solve is the answer when it meets the force tolerance in both components (`found`
+        !! false); else `found` with that shift in `xr` and, in `jr`, the Jacobian of a force
+        !! −φ(|x|)·x/|x| (radial slope measured, φ/|x| across) for the loop to finish from.
+        subroutine radial_search(xr, jr, found)
+            real(dp), intent(out) :: xr(2), jr(2, 2)
+            logical, intent(out) :: found
+            real(dp) :: r_lo, r_hi, g_lo, g_hi, r, g, ftol, slope
+            integer :: it, side
+            found = .false.
+            rs_fref = hypot(load%fx, load%fy)
+            ftol = settings%tol*flimit
+            rs_d = -[load%fx, load%fy]/rs_fref
+            rs_its = 0; rs_mvs = 0; rs_secs = 0
+            r_hi = max(norm2(nw%x_trial), tiny(1.0_dp))
+            call along(r_hi, g_hi); if (.not. rs_ok) return
+            do it = 1, 60
+                if (g_hi > 0) exit
+                r_hi = 2*r_hi
+                call along(r_hi, g_hi); if (.not. rs_ok) return
+            end do
+            r_lo = r_hi
+            g_lo = g_hi
+            do it = 1, 80
+                if (g_lo < 0) exit
+                r_lo = r_lo/4
+                call along(r_lo, g_lo); if (.not. rs_ok) return
+            end do
+            if (.not. (g_lo < 0 .and. g_hi > 0)) return
+            side = 0
+            slope = (g_hi - g_lo)/(r_hi - r_lo)
+            do it = 1, 100
+                r = (r_lo*g_hi - r_hi*g_lo)/(g_hi - g_lo)
+                slope = (g_hi - g_lo)/(r_hi - r_lo)
+                call along(r, g); if (.not. rs_ok) return
+                if (abs(g) <= 0.25_dp*ftol .or. r_hi - r_lo <= 1.0e-14_dp*r_hi) exit
+                if (g < 0) then
+                    r_lo = r; g_lo = g
+                    if (side == -1) g_hi = g_hi/2
+                    side = -1
+                else
+                    r_hi = r; g_hi = g
+                    if (side == 1) g_lo = g_lo/2
+                    side = 1
+                end if
+            end do
+            if (hypot(trial%fx - load%fx, trial%fy - load%fy) <= ftol) then
+                call move_alloc_result(trial, res)
+                res%outer_iterations = nw%outer + 1
+                res%iterations = nw%iterations + rs_its; res%matvecs = nw%matvecs + rs_mvs
+                res%cpu_seconds = nw%cpu_seconds + rs_secs
+                return
+            end if
+            found = .true.
+            xr = r*rs_d
+            ! F = −φ(|x|)·x̂: dF/dx = −(φ' x̂x̂ᵀ + (φ/|x|)(I − x̂x̂ᵀ)), x̂ = rs_d
+            jr(:, 1) = -(slope*rs_d(1)*rs_d + (rs_fref/r)*([1.0_dp, 0.0_dp] - rs_d(1)*rs_d))
+            jr(:, 2) = -(slope*rs_d(2)*rs_d + (rs_fref/r)*([0.0_dp, 1.0_dp] - rs_d(2)*rs_d))
+        end subroutine radial_search
+
+        !> Radial search: solve at the shift r·rs_d; g = the force along the prescribed one
+        !! minus its size (rs_ok: the solve converged; a failed one leaves the loop's result).
+        subroutine along(r, g)
+            real(dp), intent(in) :: r
+            real(dp), intent(out) :: g
+            g = 0
+            ! the force's direction near zero shift needs the inner solve 100 times tighter
+            ! than the tolerance (at the tolerance it wanders by ~1e−4 rad)
+            inner%tol = 1.0e-2_dp*settings%tol
+            call solve_tangential(top, pn, load%mu, inner, trial, stat, errmsg, r*rs_d(1), r*rs_d(2), &
+                                  load%phi, zx, zy, qx, qy, ox, oy)
+            rs_ok = stat == 0 .and. trial%status == FC_CONVERGED
+            if (stat /= 0) then
+                stat = 0; errmsg = ''
+            end if
+            if (.not. rs_ok) return
+            qx = trial%px; qy = trial%py
+            rs_its = rs_its + trial%iterations; rs_mvs = rs_mvs + trial%matvecs; rs_secs = rs_secs + trial%cpu_seconds
+            g = -(trial%fx*rs_d(1) + trial%fy*rs_d(2)) - rs_fref
+        end subroutine along
+
         !> A periodic cell in contact everywhere: uniform tractions displace nothing, so while
         !! the whole cell can carry the force in adhesion the shift is not found by the force
         !! loop (the force jumps across the target at one shift).  Adhesion everywhere needs

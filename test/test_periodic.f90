@@ -30,6 +30,7 @@ contains
             new_unittest('tangential_exact_block_inverse', test_block_inverse), &
             new_unittest('tangential_ciavarella_jaeger', test_ciavarella_jaeger), &
             new_unittest('tangential_full_contact', test_full_contact), &
+            new_unittest('tangential_full_contact_near_capacity', test_near_capacity), &
             new_unittest('tangential_translation_invariance', test_translation), &
             new_unittest('tangential_far_images', test_far_images), &
             new_unittest('driver_periodic_tangential', test_driver), &
@@ -245,6 +246,50 @@ contains
             abs=1e-7_dp*mu*rp%normal%pmax)
         call check(error, rc%tangential%fx, 1.44_dp, '(c) the same force', rel=1e-6_dp)
     end subroutine test_full_contact
+
+    !> A cell in contact everywhere loaded close to what it carries: ν = 0, a 1D wavy cell 16²
+    !! at P = 6 N (p̄ = 9.5 p*), a force of 0.9 μP at an angle (P* = P − |Q|/μ = 0.6 N, just
+    !! below full contact).  The force hardly depends on the shift's size there (the shift is
+    !! ~5e−7 mm); the Broyden loop alone stops 3e−3 N short, the radial search along the force's
+    !! direction finishes it.  ν = 0 makes the kernels isotropic, so the answer is the
+    !! Ciavarella–Jäger one along the force: q = μ(p(P) − p(P*))·Q/|Q| (to 1e−6 of μ·pmax).
+    subroutine test_near_capacity(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_material) :: mat
+        type(fc_grid) :: grid
+        type(fc_contact_operators) :: ops
+        type(fc_contact_loading) :: load
+        type(fc_contact_settings) :: set
+        type(fc_contact_result) :: rt, rp, rs
+        real(dp), allocatable :: h0(:, :), ref(:, :)
+        real(dp), parameter :: mu = 0.5_dp, p = 6.0_dp, qx = 1.85492_dp, qy = -1.96196_dp
+        real(dp) :: q
+        integer :: stat
+        character(len=256) :: em
+        call material(mat, 0.0_dp)
+        call make_grid(grid, 16, 16, 0.0_dp, 1.0_dp, 0.0_dp, 1.0_dp, stat, em)
+        h0 = wavy_gap(grid, 0.001_dp, 1.0_dp, 0.0_dp)
+        ops%periodic = .true.
+        q = hypot(qx, qy)
+        load%normal%force_prescribed = .true.
+        load%problem = FC_PROBLEM_NORMAL; load%normal%fn = p
+        call solve_contact(ops, grid, mat, h0, load, set, rp, stat, em)
+        load%normal%fn = p - q/mu
+        call solve_contact(ops, grid, mat, h0, load, set, rs, stat, em)
+        call check(error, all(rp%normal%pn > 0) .and. count(rs%normal%pn > 0) < size(h0), &
+            'full contact at P, partial at P*')
+        if (allocated(error)) return
+        ref = mu*(rp%normal%pn - rs%normal%pn)
+        load%problem = FC_PROBLEM_TANGENTIAL; load%normal%fn = p
+        load%tangential%mu = mu; load%tangential%force_prescribed = .true.
+        load%tangential%fx = qx; load%tangential%fy = qy
+        call solve_contact(ops, grid, mat, h0, load, set, rt, stat, em)
+        call check(error, stat == 0 .and. rt%status == FC_CONVERGED, 'solved: '//trim(em)//' '//trim(rt%tangential%message))
+        if (allocated(error)) return
+        call check(error, hypot(rt%tangential%fx - qx, rt%tangential%fy - qy), 0.0_dp, 'force', abs=1e-5_dp*mu*p)
+        call check(error, max(maxval(abs(rt%tangential%px - ref*qx/q)), maxval(abs(rt%tangential%py - ref*qy/q))), &
+            0.0_dp, 'q = mu (p(P) - p(P*)) along Q', abs=1e-6_dp*mu*rp%normal%pmax)
+    end subroutine test_near_capacity
 
     !> A cell is a cell wherever it starts: the same rough cell shifted by (5, −3) elements
     !! gives the shifted tractions (ν = 0.3, a force with both components, so every block
