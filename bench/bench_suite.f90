@@ -53,7 +53,8 @@ program fastcontact_bench_suite
     use fc_norm, only: build_normal_operator, solve_normal
     use fc_tangcg, only: fc_tangential_operator, fc_tangential_settings, fc_tangential_result
     use fc_tangcg, only: fc_tangential_loading
-    use fc_tangcg, only: build_tangential_operator, solve_tangential, solve_tangential_loading
+    use fc_tangcg, only: build_tangential_operator, solve_tangential
+    use fc_tangcg_force, only: solve_tangential_loading
     use fc_fmg, only: fc_fmg_settings, fc_fmg_stats, fc_fmg_hierarchy, fc_quadratic_surface
     use fc_fmg, only: fc_punch_rough_surface, build_fmg_hierarchy, fmg_solve_lcp
     use fc_mg2d, only: fc_strip_problem, fc_mg2d_settings, fc_mg2d_result

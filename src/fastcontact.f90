@@ -30,6 +30,7 @@ module fastcontact
     use fc_norm
     use fc_hertz
     use fc_tangcg
+    use fc_tangcg_force
     use fc_fmg
     use fc_mg2d
     use fc_contact

@@ -37,8 +37,8 @@ module fc_contact
     use fc_norm, only: fc_normal_operator, fc_normal_settings, fc_normal_result, build_normal_operator, solve_normal, &
         prepare_precond_circulant
     use fc_tangcg, only: fc_tangential_operator, fc_tangential_settings, fc_tangential_result, fc_tangential_loading, &
-        build_tangential_operator, solve_tangential_loading, solve_tangential, coupling_displacements, EL_EXTERIOR, &
-        EL_ADHESION, EL_SLIP
+        build_tangential_operator, solve_tangential, coupling_displacements, EL_EXTERIOR, EL_ADHESION, EL_SLIP
+    use fc_tangcg_force, only: solve_tangential_loading
     use fc_tangcg_operator, only: prepare_block_inverse_circulant
     use fc_fmg, only: fc_fmg_settings, fc_fmg_stats, fc_surface, solve_normal_fmg
     use fc_rolling, only: fc_rolling_loading, solve_rolling_loading, fc_rolling_case

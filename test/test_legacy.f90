@@ -9,6 +9,7 @@ module test_legacy
     use fc_influence
     use fc_norm
     use fc_tangcg
+    use fc_tangcg_force, only: solve_tangential_loading
     use fc_hertz
     use fc_legacy
     use fc_contact, only: solve_normal_tangential

@@ -8,7 +8,8 @@ module test_stability
     use fc_influence, only: fc_material, combine_material
     use fc_norm, only: fc_normal_operator, fc_normal_settings, fc_normal_result, build_normal_operator, solve_normal
     use fc_tangcg, only: fc_tangential_operator, fc_tangential_settings, fc_tangential_result
-    use fc_tangcg, only: fc_tangential_loading, build_tangential_operator, solve_tangential_loading
+    use fc_tangcg, only: fc_tangential_loading, build_tangential_operator
+    use fc_tangcg_force, only: solve_tangential_loading
     use fc_fmg, only: fc_fmg_settings, fc_quadratic_surface, solve_normal_fmg
     use fc_mg2d, only: fc_strip_problem, fc_mg2d_settings, fc_mg2d_result, strip_model_problem, solve_strip_mg
     implicit none

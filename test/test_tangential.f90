@@ -7,6 +7,7 @@ module test_tangential
     use fc_influence
     use fc_norm
     use fc_tangcg
+    use fc_tangcg_force, only: solve_tangential_loading
     use fc_contact, only: solve_normal_tangential
     use fc_hertz
     use fc_testing
