@@ -26,7 +26,7 @@
 !! pressure and tractions change by less than 10·max(tol_n, tol_t) (relative RMS), at most
 !! [[max_rounds]] rounds.  With K = 0 one normal and one tangential solve.
 !!
-!! Size (~780 lines): the operators' construction, the rounds of both stages with their
+!! Size (~790 lines): the operators' construction, the rounds of both stages with their
 !! transient bookkeeping, and the sequences of solves (loops of [[solve_contact]]) with their
 !! predicted starts are the one orchestrator; its types are in [[fc_contact_types]].
 module fc_contact
@@ -49,7 +49,7 @@ module fc_contact
         clear_influence_coefficients
     use fc_influence, only: fc_ic_set, ic_set_kernel, ic_kernels_uncoupled, fc_bttb
     use fc_periodic, only: build_periodic_normal_operator, build_periodic_tangential_operator, check_periodic_grid, &
-        periodic_images_default
+        check_periodic_problem, periodic_images_default
     use fc_threads, only: fc_thread_count
     use fc_strings, only: fmt_int, fmt_real
     implicit none
@@ -217,25 +217,12 @@ contains
                 return
             end if
             call check_periodic_grid(grid, periodic_images_default, stat, errmsg)
-            if (stat /= 0) return
-            stat = FC_ERR_UNSUPPORTED
-            if (use_fmg) then
-                errmsg = "solve_contact: the periodic half-space is solved by 'bccg' or 'norm', not FMG"
-            else if (load%problem == FC_PROBLEM_ROLLING .or. load%transient == FC_TRANSIENT_ROLLING) then
-                errmsg = 'solve_contact: the periodic half-space has no rolling (steady or transient); '// &
-                    'shifts and prescribed tangential forces only'
-            else if (tangential .and. load%tangential%phi /= 0) then
-                errmsg = 'solve_contact: the periodic half-space takes no spin (a rotation of the whole surface '// &
-                    'is not periodic): phi = 0'
-            else if (tangential .and. settings%tangential%solver /= 'tangcg') then
-                errmsg = "solve_contact: the periodic half-space's tangential problem is solved by 'tangcg' only"
-            else if (tangential .and. material%k /= 0) then
-                errmsg = 'solve_contact: the periodic half-space has no tangential problem for dissimilar bodies '// &
-                    '(K /= 0): its coupling blocks are not built; use quasi-identical materials'
-            else
-                stat = 0
+            if (stat == 0) call check_periodic_problem(use_fmg, tangential, &
+                load%problem == FC_PROBLEM_ROLLING .or. load%transient == FC_TRANSIENT_ROLLING, &
+                load%tangential%phi, settings%tangential%solver, material%k, stat, errmsg)
+            if (stat /= 0) then
+                errmsg = 'solve_contact: '//errmsg; return
             end if
-            if (stat /= 0) return
         end if
         if (allocated(ops%ic%a)) then
             if (use_fmg) then

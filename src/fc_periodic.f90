@@ -46,7 +46,7 @@ module fc_periodic
     integer, parameter, public :: periodic_images_max = 50     !! bound on `images` (cost ∝ (2m+1)²)
 
     public :: periodic_kernel_block, build_periodic_normal_operator, check_periodic_grid
-    public :: periodic_wrapped_kernel, build_periodic_tangential_operator
+    public :: periodic_wrapped_kernel, build_periodic_tangential_operator, check_periodic_problem
 
 contains
 
@@ -67,6 +67,35 @@ contains
                 periodic_images_max, ']'
         end if
     end subroutine check_periodic_grid
+
+    !> Whether the periodic half-space takes this problem: the normal one by BCCG or NORM (not
+    !! FMG); a tangential one by TangCG for quasi-identical bodies (K = 0: no coupling blocks
+    !! are built), without spin (a rotation of the whole surface is not periodic) and without
+    !! rolling.  stat = FC_ERR_UNSUPPORTED with the reason otherwise.
+    subroutine check_periodic_problem(fmg, tangential, rolling, phi, tangential_solver, k, stat, errmsg)
+        logical, intent(in) :: fmg, tangential, rolling   !! FMG asked; a tangential stage; rolling
+        real(dp), intent(in) :: phi                       !! spin [rad]
+        character(len=*), intent(in) :: tangential_solver
+        real(dp), intent(in) :: k                         !! Kalker's constant K of the material
+        integer, intent(out) :: stat
+        character(len=*), intent(out) :: errmsg
+        stat = FC_ERR_UNSUPPORTED
+        if (fmg) then
+            errmsg = "the periodic half-space is solved by 'bccg' or 'norm', not FMG"
+        else if (rolling) then
+            errmsg = 'the periodic half-space has no rolling (steady or transient); shifts and prescribed '// &
+                'tangential forces only'
+        else if (tangential .and. phi /= 0) then
+            errmsg = 'the periodic half-space takes no spin (a rotation of the whole surface is not periodic): phi = 0'
+        else if (tangential .and. tangential_solver /= 'tangcg') then
+            errmsg = "the periodic half-space's tangential problem is solved by 'tangcg' only"
+        else if (tangential .and. k /= 0) then
+            errmsg = 'the periodic half-space has no tangential problem for dissimilar bodies (K /= 0): its '// &
+                'coupling blocks are not built; use quasi-identical materials'
+        else
+            stat = 0; errmsg = ''
+        end if
+    end subroutine check_periodic_problem
 
     !> Periodic kernel w(i, j) (mean not removed) for 0-based offsets i0 ≤ i ≤ i1, j0 ≤ j ≤ j1,
     !! each within [0, n/2] [mm per N/mm²], of influence block `block` (default A^zz; the
