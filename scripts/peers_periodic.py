@@ -34,18 +34,23 @@ G, NU = 82000.0, 0.28          # both bodies; Kalker's combined G, nu equal thes
 ESTAR = G / (1 - NU)           # combined plane-strain modulus E* [N/mm^2]
 
 
-def run_fastcontact(exe, h0, lx, ly, fn, workdir, name):
-    """Solve the periodic cell with the driver; h0[iy, ix] (x fastest in the table)."""
+def run_fastcontact(exe, h0, lx, ly, fn, workdir, name, g=G, nu=NU, tangential=None, tol='1.0e-8'):
+    """Solve the periodic cell with the driver; h0[iy, ix] (x fastest in the table).  With
+    `tangential` (the &tangential group's keys) a normal+tangential case.  Returns the
+    pressure p[iy, ix], the JSON summary and the element table."""
     ny, nx = h0.shape
     table = os.path.join(workdir, name + '.txt')
     np.savetxt(table, h0.reshape(-1, 8) if h0.size % 8 == 0 else h0.reshape(-1, 1), fmt='%.17e')
     nml = os.path.join(workdir, name + '.nml')
+    problem = 'normal+tangential' if tangential else 'normal'
     with open(nml, 'w') as f:
-        f.write(f"&case name = '{name}' /\n")
-        f.write(f"&material g1 = {G}, g2 = {G}, nu1 = {NU}, nu2 = {NU} /\n")
+        f.write(f"&case name = '{name}', problem = '{problem}' /\n")
+        f.write(f"&material g1 = {g}, g2 = {g}, nu1 = {nu}, nu2 = {nu} /\n")
         f.write(f"&grid nx = {nx}, ny = {ny}, xmin = 0.0, xmax = {lx}, ymin = 0.0, ymax = {ly}, periodic = .true. /\n")
         f.write(f"&geometry kind = 'table', file = '{table}' /\n")
-        f.write(f"&normal fn = {fn} /\n&solver tol = 1.0e-8 /\n")
+        f.write(f"&normal fn = {fn} /\n&solver tol = {tol} /\n")
+        if tangential:
+            f.write(f"&tangential {tangential} /\n")
     out = os.path.join(workdir, 'out')
     subprocess.run([exe, nml, '--out', out], check=True, stdout=subprocess.DEVNULL)
     with open(os.path.join(out, name + '.json')) as f:
@@ -53,7 +58,7 @@ def run_fastcontact(exe, h0, lx, ly, fn, workdir, name):
     data = np.genfromtxt(os.path.join(out, name + '.csv'), delimiter=',', names=True)
     p = np.zeros((ny, nx))
     p[data['iy'].astype(int) - 1, data['ix'].astype(int) - 1] = data['pn']
-    return p, js
+    return p, js, data
 
 
 def run_tamaas(surface, lx, ly, pbar):
@@ -89,7 +94,7 @@ def main():
         pbar = 0.45 * pstar
         ly = ny * dx
         h0 = np.tile(z.max() - z, (ny, 1))
-        pf, _ = run_fastcontact(exe, h0, lam, ly, pbar * lam * ly, work, 'wavy_partial')
+        pf, _, _ = run_fastcontact(exe, h0, lam, ly, pbar * lam * ly, work, 'wavy_partial')
         pt = run_tamaas(np.tile(z, (ny, 1)), lam, ly, pbar)
         a = lam / np.pi * np.arcsin(np.sqrt(pbar / pstar))
         for name, p in (('fastcontact', pf), ('tamaas', pt)):
@@ -106,7 +111,7 @@ def main():
         z = np.real(np.fft.ifft2(np.sqrt(spec) * np.exp(2j * np.pi * rng.random((n, n)))))
         z *= 1.0e-3 / z.std()                                        # rms 1 um
         pbar = 150.0                                                 # [N/mm^2]: about 5 % contact
-        pf, _ = run_fastcontact(exe, z.max() - z, lx, lx, pbar * lx * lx, work, 'rough_cell')
+        pf, _, _ = run_fastcontact(exe, z.max() - z, lx, lx, pbar * lx * lx, work, 'rough_cell')
         pt = run_tamaas(z, lx, lx, pbar)
         diff = np.linalg.norm(pf - pt) / np.linalg.norm(pt)
         for name, p, other in (('fastcontact', pf, pt), ('tamaas', pt, pf)):
@@ -150,23 +155,11 @@ def friction_case(exe, work, n):
     tt = np.array(model.traction)
     tx, ty, tp = tt[..., 1], tt[..., 0], tt[..., 2]
     nu = 0.4999
-    g = estar * (1 - nu)
-    name = f'friction_{n}'
-    table = os.path.join(work, name + '.txt')
-    np.savetxt(table, (z.max() - z).reshape(-1, 8), fmt='%.17e')
-    nml = os.path.join(work, name + '.nml')
-    with open(nml, 'w') as f:
-        f.write(f"&case name = '{name}', problem = 'normal+tangential' /\n")
-        f.write(f"&material g1 = {g}, g2 = {g}, nu1 = {nu}, nu2 = {nu} /\n")
-        f.write(f"&grid nx = {n}, ny = {n}, xmin = 0.0, xmax = {L}, ymin = 0.0, ymax = {L}, periodic = .true. /\n")
-        f.write(f"&geometry kind = 'table', file = '{table}' /\n&normal fn = {pbar * L * L} /\n")
-        f.write(f"&tangential mu = {mu}, fx = {qx * L * L}, fy = {qy * L * L} /\n&solver tol = 1.0e-9 /\n")
-    out = os.path.join(work, 'out')
-    subprocess.run([exe, nml, '--out', out], check=True, stdout=subprocess.DEVNULL)
-    d = np.genfromtxt(os.path.join(out, name + '.csv'), delimiter=',', names=True)
+    p, _, d = run_fastcontact(exe, z.max() - z, L, L, pbar * L * L, work, f'friction_{n}', g=estar * (1 - nu), nu=nu,
+                              tangential=f'mu = {mu}, fx = {qx * L * L}, fy = {qy * L * L}', tol='1.0e-9')
     iy, ix = d['iy'].astype(int) - 1, d['ix'].astype(int) - 1
-    p, fx, fy = (np.zeros((n, n)) for _ in range(3))
-    p[iy, ix] = d['pn']; fx[iy, ix] = d['px']; fy[iy, ix] = d['py']
+    fx, fy = np.zeros((n, n)), np.zeros((n, n))
+    fx[iy, ix] = d['px']; fy[iy, ix] = d['py']
     stick_f = (p > 0) & (np.hypot(fx, fy) < mu * p * (1 - 1e-6))
     stick_t = (tp > 0) & (np.hypot(tx, ty) < mu * tp * (1 - 1e-6))
     slip = (p > 0) & ~stick_f & (tp > 0) & ~stick_t

@@ -46,6 +46,42 @@ contains
         call combine_material(mat, stat, m)
     end subroutine material
 
+    !> A periodic wavy cell n × n on [0, 1]² — h0 = A(1 − cos 2πx cos 2πy/ℓy) shifted, A = 1 µm,
+    !! ℓy = `wavelength_y` (0: flat in y) — of identical bodies with ν = 0, on operators of
+    !! the periodic half-space.
+    subroutine wavy_cell(n, wavelength_y, mat, grid, h0, ops)
+        integer, intent(in) :: n
+        real(dp), intent(in) :: wavelength_y
+        type(fc_material), intent(out) :: mat
+        type(fc_grid), intent(out) :: grid
+        real(dp), allocatable, intent(out) :: h0(:, :)
+        type(fc_contact_operators), intent(inout) :: ops
+        integer :: stat
+        character(len=256) :: em
+        call material(mat, 0.0_dp)
+        call make_grid(grid, n, n, 0.0_dp, 1.0_dp, 0.0_dp, 1.0_dp, stat, em)
+        h0 = wavy_gap(grid, 0.001_dp, 1.0_dp, wavelength_y)
+        ops%periodic = .true.
+    end subroutine wavy_cell
+
+    !> The normal solutions of the cell under the forces `p` and `pstar` [N].
+    subroutine normal_pair(ops, grid, mat, h0, set, p, pstar, rp, rs)
+        type(fc_contact_operators), intent(inout) :: ops
+        type(fc_grid), intent(in) :: grid
+        type(fc_material), intent(in) :: mat
+        real(dp), intent(in) :: h0(:, :), p, pstar
+        type(fc_contact_settings), intent(in) :: set
+        type(fc_contact_result), intent(out) :: rp, rs
+        type(fc_contact_loading) :: load
+        integer :: stat
+        character(len=256) :: em
+        load%problem = FC_PROBLEM_NORMAL
+        load%normal%force_prescribed = .true.; load%normal%fn = p
+        call solve_contact(ops, grid, mat, h0, load, set, rp, stat, em)
+        load%normal%fn = pstar
+        call solve_contact(ops, grid, mat, h0, load, set, rs, stat, em)
+    end subroutine normal_pair
+
     !> The periodic kernels of a 16×12 cell: A^xx, A^yy even in x and y, A^xy odd in both
     !! (so every kernel point-symmetric and its symbol real); A^xy near the origin of a
     !! 48×48 cell within 1e−3 of the half-space's (its images' odd parts cancel there to
@@ -159,10 +195,7 @@ contains
         real(dp), parameter :: mu = 0.3_dp, p = 0.05_dp, q = 0.01_dp
         integer :: stat
         character(len=256) :: em
-        call material(mat, 0.0_dp)
-        call make_grid(grid, 32, 32, 0.0_dp, 1.0_dp, 0.0_dp, 1.0_dp, stat, em)
-        h0 = wavy_gap(grid, 0.001_dp, 1.0_dp, 1.0_dp)
-        ops%periodic = .true.
+        call wavy_cell(32, 1.0_dp, mat, grid, h0, ops)
         set%normal%tol = 1e-10_dp; set%tangential%tol = 1e-10_dp
         load%problem = FC_PROBLEM_TANGENTIAL
         load%normal%force_prescribed = .true.; load%normal%fn = p
@@ -205,16 +238,10 @@ contains
         real(dp) :: w
         integer :: stat
         character(len=256) :: em
-        call material(mat, 0.0_dp)
-        call make_grid(grid, 32, 32, 0.0_dp, 1.0_dp, 0.0_dp, 1.0_dp, stat, em)
-        h0 = wavy_gap(grid, 0.001_dp, 1.0_dp, 1.0_dp)
-        ops%periodic = .true.
+        call wavy_cell(32, 1.0_dp, mat, grid, h0, ops)
         set%normal%tol = 1e-10_dp; set%tangential%tol = 1e-10_dp
+        call normal_pair(ops, grid, mat, h0, set, p, p - 1.44_dp/mu, rp, rs)
         load%normal%force_prescribed = .true.
-        load%problem = FC_PROBLEM_NORMAL; load%normal%fn = p
-        call solve_contact(ops, grid, mat, h0, load, set, rp, stat, em)
-        load%normal%fn = p - 1.44_dp/mu
-        call solve_contact(ops, grid, mat, h0, load, set, rs, stat, em)
         call check(error, all(rp%normal%pn > 0) .and. count(rs%normal%pn > 0) < size(h0), &
             'full contact at P, partial at P*')
         if (allocated(error)) return
@@ -266,16 +293,10 @@ contains
         real(dp) :: q
         integer :: stat
         character(len=256) :: em
-        call material(mat, 0.0_dp)
-        call make_grid(grid, 16, 16, 0.0_dp, 1.0_dp, 0.0_dp, 1.0_dp, stat, em)
-        h0 = wavy_gap(grid, 0.001_dp, 1.0_dp, 0.0_dp)
-        ops%periodic = .true.
+        call wavy_cell(16, 0.0_dp, mat, grid, h0, ops)
         q = hypot(qx, qy)
+        call normal_pair(ops, grid, mat, h0, set, p, p - q/mu, rp, rs)
         load%normal%force_prescribed = .true.
-        load%problem = FC_PROBLEM_NORMAL; load%normal%fn = p
-        call solve_contact(ops, grid, mat, h0, load, set, rp, stat, em)
-        load%normal%fn = p - q/mu
-        call solve_contact(ops, grid, mat, h0, load, set, rs, stat, em)
         call check(error, all(rp%normal%pn > 0) .and. count(rs%normal%pn > 0) < size(h0), &
             'full contact at P, partial at P*')
         if (allocated(error)) return
