@@ -182,7 +182,7 @@ contains
     !! the periodic problem under a tangential force Q < μP is, element by element,
     !! q = μ(p(P) − p(P*)) with P* = P − Q/μ, and the adhesion area is the contact area at P*
     !! (Ciavarella; Jäger): exact for the discrete problems too.  A 2D wavy cell in partial
-    !! contact, tolerances 1e−10: tractions to 1e−7 of μ·pmax (measured 6e−10 on 64²).
+    !! contact, 32², tolerances 1e−10: tractions to 1e−7 of μ·pmax (measured 3e−11).
     subroutine test_ciavarella_jaeger(error)
         type(error_type), allocatable, intent(out) :: error
         type(fc_material) :: mat
