@@ -46,7 +46,7 @@ contains
         integer :: nx, ny, k, probe_it, probe_mv
         real(dp) :: rs_d(2), rs_fref, rs_secs   ! radial search (periodic cell in contact everywhere)
         integer :: rs_its, rs_mvs, outer0
-        logical :: rs_ok, found
+        logical :: rs_ok, found, probed
         logical :: accepted, done
         nx = size(pn, 1); ny = size(pn, 2)
         if (.not. load%force_prescribed) then
@@ -74,7 +74,7 @@ contains
         if (present(px_start)) qx = px_start
         if (present(py_start)) qy = py_start
         stat = 0; errmsg = ''
-        probe_it = 0; probe_mv = 0; probe_s = 0
+        probe_it = 0; probe_mv = 0; probe_s = 0; probed = .false.
         fn = sum(max(pn, 0.0_dp))*top%grid%area()
         flimit = load%mu*fn
         if (.not. (hypot(load%fx, load%fy) < flimit)) then
@@ -103,7 +103,9 @@ contains
                 if (stat /= 0) return
                 probe_it = probe_it + trial%iterations; probe_mv = probe_mv + trial%matvecs
                 probe_s = probe_s + trial%cpu_seconds
-                if (trial%nadh > 0) exit
+                if (trial%nadh > 0) then
+                    probed = .true.; exit
+                end if
                 x = x/8; k0 = 8*k0
             end do
             jac = 0; jac(1, 1) = -k0; jac(2, 2) = -k0
@@ -112,7 +114,14 @@ contains
         call nw%start(x, jac, settings%tol, hypot(load%fx, load%fy), flimit)
         ! the probes' cost counts with the loop's
         nw%iterations = probe_it; nw%matvecs = probe_mv; nw%cpu_seconds = probe_s
-        call broyden_loop()
+        done = .false.
+        if (probed) then
+            ! the last probe, at x, is the loop's first point: solved already
+            qx = trial%px; qy = trial%py
+            call nw%update([trial%fx - load%fx, trial%fy - load%fy], accepted, done, 0, 0, 0.0_dp)
+            if (accepted) call move_alloc_result(trial, res)
+        end if
+        if (.not. done) call broyden_loop()
         if (stat /= 0) return
         call finish_force_loop(res, nw, 'force loop')
         if (top%periodic .and. all(pn > 0) .and. res%status /= FC_CONVERGED) then
