@@ -193,7 +193,6 @@ contains
             end do
             if (.not. (g_lo < 0 .and. g_hi > 0)) return
             side = 0
-            slope = (g_hi - g_lo)/(r_hi - r_lo)
             do it = 1, 100
                 r = (r_lo*g_hi - r_hi*g_lo)/(g_hi - g_lo)
                 slope = (g_hi - g_lo)/(r_hi - r_lo)
