@@ -32,6 +32,9 @@ module fc_fmg_levels
         logical, allocatable :: allowed(:, :)
         real(dp) :: cost = 1                !! n_level / n_target
         integer :: fx = 1, fy = 1           !! coarsening factors towards the next coarser level
+        !> the smoothers' work arrays (made at first use): Gauss–Seidel's partial sums in plane 1;
+        !! the FFT smoothers' products in planes 1 and 2
+        real(dp), allocatable :: work(:, :, :)
     end type fmg_level
 
     !> Grid hierarchy with its operators; build once, solve for many approaches.

@@ -17,7 +17,8 @@
 !! * ConvexGS (thesis §4.2.4, ref. [95]): block Gauss–Seidel over the contact elements;
 !!   per element the 2×2 adhesion solve, or a Newton solve for the angle on the traction
 !!   circle.  Maintains the slip with O(n) column updates, so a sweep costs O(n_c·n): the
-!!   reference solver, not a fast one.
+!!   reference solver, not a fast one.  Threads share the column updates row by row, with
+!!   the one-thread result bit for bit.
 !!
 !! Stopping criterion (thesis eq. 4.49): ‖p^k − p^{k−1}‖_rms/‖p^k‖_rms < tol, with an
 !! unchanged subdivision.
@@ -37,7 +38,7 @@ module fc_tangcg
     use fc_tangcg_operator, only: fc_tangential_operator, build_tangential_operator, coupling_displacements, &
         apply_block_inverse
     use fc_tangcg_types
-    use fc_threads, only: omp_min_elements
+    use fc_threads, only: omp_min_elements, fc_thread_count
     use fc_force_newton, only: fc_force_newton_t
     implicit none
     private
@@ -96,6 +97,11 @@ contains
         end if
         if (settings%solver /= 'tangcg' .and. settings%solver /= 'convexgs') then
             stat = FC_ERR_VALUE; errmsg = "solver: tangential = '"//trim(settings%solver)//"' is not one of 'tangcg', 'convexgs'"
+            return
+        end if
+        if (settings%preconditioner /= 'fft' .and. settings%preconditioner /= 'diagonal') then
+            stat = FC_ERR_VALUE
+            errmsg = "solver: preconditioner = '"//trim(settings%preconditioner)//"' is not one of 'fft', 'diagonal'"
             return
         end if
         if (settings%prec_form /= 'circulant' .and. settings%prec_form /= 'toeplitz') then
@@ -301,32 +307,29 @@ contains
                     end do
                 end do
                 !$omp end parallel do
-            else if (settings%precondition) then
-                ! diagonal preconditioner, eq. (4.43): scale the diagonal to A^xx_II
-                where (adh)
-                    mx = 1; my = axx/ayy
-                elsewhere (slp)
-                    ! diagonal of the reduced Jacobian, px²A^yy + py²A^xx − p·s; −p·s = g|s| > 0
-                    ! once p opposes s, but an element just moved to slip may not yet: keep
-                    ! the part that is positive so that M stays positive definite
-                    mx = axx/(px**2*ayy + py**2*axx + max(0.0_dp, -(px*sx + py*sy))); my = 0
-                elsewhere
-                    mx = 0; my = 0
-                end where
             else
-                where (adh .or. slp)
-                    mx = 1
-                elsewhere
-                    mx = 0
-                end where
-                where (adh)
-                    my = 1
-                elsewhere
-                    my = 0
-                end where
-            end if
-            if (.not. fft_prec) then
-                zx = mx*dax; zy = my*day
+                ! diagonal preconditioner, eq. (4.43), scaled to A^xx_II, or none (the identity
+                ! on the unknowns): z = M d
+                !$omp parallel do default(shared) private(i) schedule(static) if(par)
+                do j = 1, ny
+                    do i = 1, nx
+                        if (adh(i, j)) then
+                            mx(i, j) = 1; my(i, j) = 1
+                            if (settings%precondition) my(i, j) = axx/ayy
+                        else if (slp(i, j)) then
+                            ! diagonal of the reduced Jacobian, px²A^yy + py²A^xx − p·s; −p·s = g|s| > 0
+                            ! once p opposes s, but an element just moved to slip may not yet: keep
+                            ! the part that is positive so that M stays positive definite
+                            mx(i, j) = 1; my(i, j) = 0
+                            if (settings%precondition) mx(i, j) = axx/(px(i, j)**2*ayy + py(i, j)**2*axx &
+                                + max(0.0_dp, -(px(i, j)*sx(i, j) + py(i, j)*sy(i, j))))
+                        else
+                            mx(i, j) = 0; my(i, j) = 0
+                        end if
+                        zx(i, j) = mx(i, j)*dax(i, j); zy(i, j) = my(i, j)*day(i, j)
+                    end do
+                end do
+                !$omp end parallel do
             end if
             zd = 0; num = 0
             !$omp parallel do default(shared) private(i) reduction(+:zd, num) schedule(static) if(par)
@@ -698,6 +701,11 @@ contains
     end subroutine run_tangcg
 
     !> ConvexGS, block Gauss–Seidel over the contact elements (thesis §4.2.4).
+    !! Each element's change updates the slip of every element (A's column).  Within row j
+    !! the row's own slips are updated at once (the next element of the row needs them); the
+    !! other rows receive row j's changes after the row, in the same order, each row by one
+    !! thread: every slip gets the same sums in the same order as element by element, so
+    !! the result does not depend on the thread count (bit for bit).
     subroutine run_convexgs(top, contact, g, wx, wy, settings, res)
         type(fc_tangential_operator), intent(inout) :: top
         logical, intent(in) :: contact(:, :)
@@ -707,10 +715,13 @@ contains
         real(dp), dimension(size(g, 1), size(g, 2)) :: px, py, sx, sy, ux, uy, pox, poy
         integer, dimension(size(g, 1), size(g, 2)) :: state
         real(dp) :: axx, ayy, stx, sty, tx, ty, dpx, dpy, change
-        integer :: sweep, i, j, l, nx, ny
+        real(dp) :: dx_row(size(g, 1)), dy_row(size(g, 1))
+        integer :: i_row(size(g, 1))
+        integer :: sweep, i, j, nx, ny, nd
         real(dp), allocatable :: hist(:)
-        logical :: converged
+        logical :: converged, par
         nx = size(g, 1); ny = size(g, 2)
+        par = fc_thread_count() > 1
         axx = top%a_xx%kernel(0, 0); ayy = top%a_yy%kernel(0, 0)
         px = res%px; py = res%py
         call top%apply(px, py, ux, uy)
@@ -724,6 +735,7 @@ contains
         do sweep = 1, settings%maxit
             pox = px; poy = py
             do j = 1, ny
+                nd = 0
                 do i = 1, nx
                     if (.not. contact(i, j)) cycle
                     ! slip without the element's own contribution (A^xy_II = 0 by symmetry)
@@ -739,14 +751,20 @@ contains
                     dpx = tx - px(i, j); dpy = ty - py(i, j)
                     if (dpx == 0 .and. dpy == 0) cycle
                     px(i, j) = tx; py(i, j) = ty
-                    ! s_J += A_JI Δp_I for every J: O(n) column update
-                    do l = 1, ny
-                        sx(:, l) = sx(:, l) + dpx*top%a_xx%kernel(1 - i:nx - i, l - j) &
-                            + dpy*top%a_xy%kernel(1 - i:nx - i, l - j)
-                        sy(:, l) = sy(:, l) + dpx*top%a_xy%kernel(1 - i:nx - i, l - j) &
-                            + dpy*top%a_yy%kernel(1 - i:nx - i, l - j)
-                    end do
+                    call add_column(j, i, dpx, dpy)
+                    nd = nd + 1
+                    i_row(nd) = i; dx_row(nd) = dpx; dy_row(nd) = dpy
                 end do
+                if (nd == 0) cycle
+                ! s_J += A_JI Δp_I for the rows J below and above: O(n) per changed element.
+                ! One thread calls the loop outside a parallel region (no region per row)
+                if (par .and. int(nd, i8)*nx*ny > omp_min_elements) then
+                    !$omp parallel default(shared)
+                    call spread_row_changes()
+                    !$omp end parallel
+                else
+                    call spread_row_changes()
+                end if
             end do
             change = traction_change(px, py, pox, poy)
             hist(sweep) = change
@@ -773,6 +791,28 @@ contains
         end where
         res%state = state
         allocate (res%history(res%iterations), source=hist(1:res%iterations))
+    contains
+        !> The changes of row j's tractions reach the slips of the other rows, in element
+        !! order; the rows are shared among the threads of an enclosing parallel region.
+        subroutine spread_row_changes()
+            integer :: k, l
+            !$omp do schedule(static)
+            do l = 1, ny
+                if (l == j) cycle
+                do k = 1, nd
+                    call add_column(l, i_row(k), dx_row(k), dy_row(k))
+                end do
+            end do
+            !$omp end do
+        end subroutine spread_row_changes
+
+        !> Row l of the slip gets the change (dx, dy) of the traction of element (i, j).
+        subroutine add_column(l, i, dx, dy)
+            integer, intent(in) :: l, i
+            real(dp), intent(in) :: dx, dy
+            sx(:, l) = sx(:, l) + dx*top%a_xx%kernel(1 - i:nx - i, l - j) + dy*top%a_xy%kernel(1 - i:nx - i, l - j)
+            sy(:, l) = sy(:, l) + dx*top%a_xy%kernel(1 - i:nx - i, l - j) + dy*top%a_yy%kernel(1 - i:nx - i, l - j)
+        end subroutine add_column
     end subroutine run_convexgs
 
     !> Final status and message of a tangential solve; `change` is the last traction change.

@@ -3,13 +3,14 @@
 !! the row-slab generation of rough surfaces used by distributed runs.  The distributed
 !! solver itself is tested in mpi/test (run under mpirun).
 !!
-!! Size (~750 lines, 16 tests): one file per suite; each thread test solves the same
+!! Size (~830 lines, 18 tests): one file per suite; each thread test solves the same
 !! problem on one and on two threads, so its set-up is written out twice in one place.
 module test_parallel
     use fc_kinds, only: dp, pi, FC_CONVERGED
     use fc_geometry, only: fc_grid, make_grid, fc_rough_params, quadratic_gap, wavy_gap, rough_heights, &
         rough_heights_rows
     use fc_influence, only: fc_material, combine_material
+    use fc_fmg, only: fc_fmg_settings, solve_normal_fmg
     use fc_norm, only: fc_normal_operator, fc_normal_settings, fc_normal_result, build_normal_operator, solve_normal
     use fc_periodic, only: build_periodic_normal_operator
     use fc_threads, only: set_thread_count, fc_thread_count, fc_openmp_enabled, omp_min_elements, &
@@ -40,6 +41,8 @@ contains
         tests = [ &
             new_unittest('threads_same_result', test_threads_same), &
             new_unittest('threads_same_result_cattaneo', test_threads_same_cattaneo), &
+            new_unittest('threads_convexgs_bitwise', test_threads_convexgs), &
+            new_unittest('threads_fmg_gauss_seidel_bitwise', test_threads_fmg_gs), &
             new_unittest('threads_block_product_side_by_side', test_lanes), &
             new_unittest('threads_lanes_chunked_y_passes', test_lanes_chunked), &
             new_unittest('threads_same_result_rolling', test_threads_rolling), &
@@ -162,6 +165,77 @@ contains
         write (*, '(a,2es10.2)') '    threads_same_result_cattaneo: max |dp|/pmax, max |dpt|/(mu pmax) = ', &
             maxval(abs(n1%pn - n2%pn))/n1%pmax, max(maxval(abs(t1%px - t2%px)), maxval(abs(t1%py - t2%py)))/tmax
     end subroutine test_threads_same_cattaneo
+
+    !> ConvexGS (thesis §4.2.4) on Table 4.1 case 4 at 60×50 with 1 and with 2 threads: its
+    !! column updates of the rows other than the element's own run one row per thread after
+    !! each grid row, adding the same terms in the same order as one thread, so the sweeps,
+    !! the tractions and the subdivision are the same bit for bit (a race or a changed order
+    !! of the sums shows as a difference).  Checked to be above the loop's threshold.
+    subroutine test_threads_convexgs(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_material) :: mat
+        type(fc_grid) :: grid
+        type(fc_normal_operator) :: nop
+        type(fc_normal_settings) :: set
+        type(fc_normal_result) :: nres
+        type(fc_tangential_operator) :: top
+        type(fc_tangential_settings) :: ts
+        type(fc_tangential_result) :: t(2)
+        integer :: stat, nt0, nt
+        character(len=256) :: em
+        nt0 = fc_thread_count()
+        mat%g1 = 200; mat%g2 = 200; mat%nu1 = 0.42_dp; mat%nu2 = 0.42_dp
+        call combine_material(mat, stat, em)
+        call make_grid(grid, 60, 50, -1.2857_dp, 1.2857_dp, -1.2857_dp, 1.2857_dp, stat, em)
+        call set_thread_count(1)
+        call build_normal_operator(nop, mat, grid)
+        call solve_normal(nop, quadratic_gap(grid, 50.0_dp, 50.0_dp), set, nres, stat, em, fn=9.1954_dp)
+        call build_tangential_operator(top, mat, grid)
+        ts%solver = 'convexgs'
+        do nt = 1, 2
+            call set_thread_count(nt)
+            call solve_tangential(top, nres%pn, 0.4_dp, ts, t(nt), stat, em, 0.0021_dp, 0.0010_dp, 0.003_dp)
+        end do
+        call set_thread_count(nt0)
+        ! the widest contact row's changes (one per element at the first sweep) reach the loop's threshold
+        call check(error, int(maxval(count(nres%pn > 0, dim=1)))*grid%nx*grid%ny > omp_min_elements, &
+            'column updates above the threshold of the threaded loop')
+        call check(error, t(1)%status == FC_CONVERGED .and. t(2)%status == FC_CONVERGED, 'ConvexGS converges on 1 and 2 threads')
+        call check(error, t(1)%iterations == t(2)%iterations, 'ConvexGS: same sweeps')
+        call check(error, all(t(1)%px == t(2)%px) .and. all(t(1)%py == t(2)%py), 'ConvexGS: tractions equal bit for bit')
+        call check(error, all(t(1)%state == t(2)%state), 'ConvexGS: same subdivision')
+        call check(error, t(1)%nslip > 0 .and. t(1)%nadh > 0, 'case 4 has slip and adhesion')
+    end subroutine test_threads_convexgs
+
+    !> FMG with the Gauss–Seidel smoother (thesis §2.4) on Hertz Test I at 64² with 1 and
+    !! with 2 threads: the other rows' parts of a row's sums are computed one row per thread
+    !! before the row's sequential sweep adds them in order, so the cycles and pressures are
+    !! the same bit for bit.
+    subroutine test_threads_fmg_gs(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_material) :: mat
+        type(fc_grid) :: grid
+        type(fc_fmg_settings) :: set
+        type(fc_normal_result) :: r(2)
+        integer :: stat(2), nt0, nt
+        character(len=256) :: em
+        nt0 = fc_thread_count()
+        call steel(mat)
+        call make_grid(grid, 64, 64, -10.0_dp, 10.0_dp, -6.0_dp, 6.0_dp, stat(1), em)
+        set%tol = 1e-8_dp
+        do nt = 1, 2
+            call set_thread_count(nt)
+            call solve_normal_fmg(mat, grid, quadratic_gap(grid, 300.0_dp, 163.0_dp), set, r(nt), stat(nt), em, &
+                approach=0.1091_dp)
+        end do
+        call set_thread_count(nt0)
+        call check(error, all(stat == 0) .and. r(1)%status == FC_CONVERGED .and. r(2)%status == FC_CONVERGED, &
+            'FMG converges on 1 and 2 threads: '//trim(em))
+        ! the contact (about 38 × 42 elements) times the row length is above the loop's threshold
+        call check(error, int(count(r(1)%pn > 0))*grid%nx > omp_min_elements, 'smoother above the threshold')
+        call check(error, r(1)%iterations == r(2)%iterations, 'FMG: same iterations')
+        call check(error, all(r(1)%pn == r(2)%pn), 'FMG: pressures equal bit for bit')
+    end subroutine test_threads_fmg_gs
 
     !> The 2×2 block products with two threads run their x and y components side by side
     !! (fc_toeplitz's `block_product` on the plan set's lanes) from lanes_min_elements cells.
