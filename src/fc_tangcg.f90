@@ -23,13 +23,14 @@
 !! Stopping criterion (thesis eq. 4.49): ‖p^k − p^{k−1}‖_rms/‖p^k‖_rms < tol, with an
 !! unchanged subdivision.
 !!
-!! Size (~810 lines): TangCG and ConvexGS share the loading, the result, the status and the
+!! Size (~850 lines): TangCG and ConvexGS share the loading, the result, the status and the
 !! slip bookkeeping of thesis ch. 4 (also used by the rolling solvers); kept in one home like
 !! CONTACT's `tangcg` (the operator is in [[fc_tangcg_operator]], the preconditioner in
 !! [[fc_tangprec]], the prescribed-force loop in [[fc_force_newton]] and
 !! [[fc_tangcg_force]]).  TangCG's element
-!! loops (iteration, elastic start, subdivision checks) are written out as column loops so
-!! that OpenMP can share them (doc/parallel.md); that is most of the length beyond 600.
+!! loops (iteration, elastic start, subdivision checks) and ConvexGS's row-wise column
+!! updates are written out as loops so that OpenMP can share them (doc/parallel.md); that
+!! is most of the length beyond 600.
 module fc_tangcg
     use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
     use fc_kinds
