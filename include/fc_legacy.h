@@ -52,7 +52,7 @@ void fc_set_fft_wisdom(const int *h, const char *path, int *ierr);
 void fc_set_rolling(const int *h, const double *xi, const double *eta, const double *phi, int *ierr);
 void fc_set_rolling_forces(const int *h, const double *fx, const double *fy, const double *phi, int *ierr);
 void fc_set_rolling_options(const int *h, const int *solver, const double *mu_kinetic, int *ierr);
-/* periodic half-space: 0 or 1 (even nx, ny; normal force; friction for K = 0, no spin or rolling; doc/parallel.md) */
+/* periodic half-space: 0 or 1 (even nx, ny; normal force; friction, no spin or rolling; doc/parallel.md) */
 void fc_set_periodic(const int *h, const int *periodic, int *ierr);
 /* threads of this handle's solves: 0 (OMP_NUM_THREADS if set, else 1) ... 1024 */
 void fc_set_threads(const int *h, const int *nthreads, int *ierr);

@@ -47,9 +47,10 @@ def periodic_case(rnd, i):
     """A periodic wavy cell (normal, or with a tangential force): its own material, grid, geometry, loads."""
     n = rnd.choice([16, 24, 32])
     prob = rnd.choice(['normal', 'normal+tangential'])
-    nu = rnd.choice([0.0, 0.3])   # identical bodies: K = 0, as friction on a cell needs
+    nu = rnd.choice([0.0, 0.3])
+    g2, nu2 = rnd.choice([(200.0, nu), (800.0, 0.28)])   # identical bodies (K = 0) or not
     return [f"&case name = 'c{i}', problem = '{prob}' /",
-            f"&material g1 = 200.0, g2 = 200.0, nu1 = {nu}, nu2 = {nu} /",
+            f"&material g1 = 200.0, g2 = {g2}, nu1 = {nu}, nu2 = {nu2} /",
             f"&grid nx = {n}, ny = {n}, xmin = 0.0, xmax = 1.0, ymin = 0.0, ymax = 1.0, periodic = .true. /",
             f"&geometry kind = 'wavy', amplitude = 0.001, wavelength_x = 1.0, wavelength_y = {rnd.choice([0.0, 1.0])} /",
             f"&normal fn = {rnd.choice([0.5, 5.0])} /",

@@ -2,14 +2,15 @@
 """Random frictional cases on periodic cells and how many converge.
 
 Writes one namelist of N seeded random cases -- a 2D or 1D wavy cell or a rough cell
-(punch_rough covering the cell), nu in {0, 0.3, 0.45} (identical bodies), 16^2 ... 64^2
+(punch_rough covering the cell), nu in {0, 0.3, 0.45} (identical bodies; with --dissimilar body 2
+is four times stiffer with nu2 = 0.28, so K != 0 and the Panagiotopoulos rounds run), 16^2 ... 64^2
 elements, mean pressures from a few per cent of the cell in contact to full contact, a
 prescribed tangential force of 5 ... 97 % of mu Fn in a random direction (70 %) or a rigid
 shift (30 %) -- runs the built driver on it once and reports the cases that did not converge,
 how many were in contact everywhere (the singular configuration, doc/parallel.md) and the
 largest iteration counts.  doc/parallel.md ("Friction on a periodic cell") quotes its results.
 
-Usage:  scripts/robust_periodic_friction.py --driver PATH [--seed N] [--n 120] [--keep DIR]
+Usage:  scripts/robust_periodic_friction.py --driver PATH [--seed N] [--n 120] [--dissimilar] [--keep DIR]
 
 Standard library only.  Exit status 0 when every case converged, else 1.
 """
@@ -25,7 +26,7 @@ import sys
 import tempfile
 
 
-def cases(seed, n):
+def cases(seed, n, dissimilar=False):
     rnd = random.Random(seed)
     lines = []
     for k in range(n):
@@ -34,7 +35,8 @@ def cases(seed, n):
         fn = rnd.choice([0.02, 0.1, 0.5, 1.0, 3.0, 6.0])
         mu = rnd.choice([0.2, 0.5])
         lines += [f"&case name = 'r{k}', problem = 'normal+tangential' /",
-                  f"&material g1 = 200.0, g2 = 200.0, nu1 = {nu}, nu2 = {nu} /",
+                  f"&material g1 = 200.0, g2 = {800.0 if dissimilar else 200.0}, nu1 = {nu}, "
+                  f"nu2 = {0.28 if dissimilar else nu} /",
                   f"&grid nx = {m}, ny = {m}, xmin = 0.0, xmax = 1.0, ymin = 0.0, ymax = 1.0, periodic = .true. /"]
         if rnd.random() < 0.5:
             lines.append(f"&geometry kind = 'wavy', amplitude = 0.001, wavelength_x = {rnd.choice([1.0, 0.5])}, "
@@ -57,12 +59,13 @@ def main():
     ap.add_argument('--driver', required=True)
     ap.add_argument('--seed', type=int, default=5)
     ap.add_argument('--n', type=int, default=120)
+    ap.add_argument('--dissimilar', action='store_true', help='body 2: G = 800, nu = 0.28 (K != 0)')
     ap.add_argument('--keep', help='copy the namelist and outputs here')
     a = ap.parse_args()
     work = tempfile.mkdtemp(prefix='fc_periodic_friction_')
     nml = os.path.join(work, 'cases.nml')
     with open(nml, 'w') as f:
-        f.write(cases(a.seed, a.n))
+        f.write(cases(a.seed, a.n, a.dissimilar))
     subprocess.run([a.driver, nml, '--out', os.path.join(work, 'out')], stdout=subprocess.DEVNULL,
                    stderr=subprocess.DEVNULL, env=dict(os.environ, OMP_NUM_THREADS='1'))
     rows = []

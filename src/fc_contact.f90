@@ -219,7 +219,7 @@ contains
             call check_periodic_grid(grid, periodic_images_default, stat, errmsg)
             if (stat == 0) call check_periodic_problem(use_fmg, tangential, &
                 load%problem == FC_PROBLEM_ROLLING .or. load%transient == FC_TRANSIENT_ROLLING, &
-                load%tangential%phi, settings%tangential%solver, material%k, stat, errmsg)
+                load%tangential%phi, settings%tangential%solver, stat, errmsg)
             if (stat /= 0) then
                 errmsg = 'solve_contact: '//errmsg; return
             end if

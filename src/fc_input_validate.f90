@@ -615,16 +615,11 @@ contains
     !> `&grid periodic = .true.`: the grid is one cell of a surface repeated in x and y
     !! (periodic half-space): an explicit grid of even nx, ny, the mean pressure prescribed
     !! through fn, BCCG or NORM; a tangential problem (shifts or forces, not rolling) by
-    !! TangCG for quasi-identical bodies (K = 0).
+    !! TangCG.
     subroutine validate_periodic(s, errmsg)
         type(fc_case_input), intent(in) :: s
         character(len=*), intent(out) :: errmsg
-        type(fc_material) :: m
-        integer :: stat
-        character(len=msg_len) :: msg
         errmsg = ''
-        m%g1 = s%g1; m%g2 = s%g2; m%nu1 = s%nu1; m%nu2 = s%nu2
-        call combine_material(m, stat, msg)
         if (grid_is_auto(s)) then
             errmsg = '&grid periodic = .true. with an automatic grid: give the cell (nx, ny, xmin, xmax, ymin, ymax)'
         else if (s%nx < 2 .or. s%ny < 2 .or. modulo(s%nx, 2) /= 0 .or. modulo(s%ny, 2) /= 0) then
@@ -639,9 +634,6 @@ contains
         else if (is_tangential(s) .and. s%tangential /= 'tangcg') then
             errmsg = "&grid periodic = .true. with &solver tangential = '"//trim(s%tangential)// &
                 "': the periodic tangential problem is solved by 'tangcg'"
-        else if (is_tangential(s) .and. stat == 0 .and. m%k /= 0 .and. .not. (s%model == 'auto' .and. s%mu == 0)) then
-            errmsg = '&grid periodic = .true. with dissimilar materials (&material g1, g2, nu1, nu2: K = '// &
-                fmt_real(m%k)//' /= 0): the periodic tangential problem needs quasi-identical bodies (K = 0)'
         else if (.not. s%force_prescribed) then
             errmsg = '&grid periodic = .true. with &normal approach: prescribe fn (mean pressure x cell area); '// &
                 'the displacements of a periodic cell are defined up to a constant'

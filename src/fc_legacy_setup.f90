@@ -555,8 +555,8 @@ contains
     end subroutine fc_set_fft_wisdom
 
     !> Periodic half-space (1) or not (0, default): the grid is one cell of a surface repeated
-    !! in x and y (even nx, ny; a prescribed normal force; tangential problems by TangCG for
-    !! quasi-identical bodies, without spin or rolling).
+    !! in x and y (even nx, ny; a prescribed normal force; tangential problems by TangCG,
+    !! without spin or rolling).
     subroutine fc_set_periodic(handle, periodic, ierr) bind(C, name='fc_set_periodic')
         integer(c_int), intent(in) :: handle
         integer(c_int), intent(in) :: periodic   !! 0 or 1

@@ -22,7 +22,9 @@
 !! and its Fourier symbol is real — the same values serve the serial operator built here
 !! and the distributed one of the MPI package (cosine transforms of the quadrant).  The
 !! tangential blocks A^xx, A^yy (even) and A^xy (odd in x and in y) are summed the same way
-!! ([[periodic_wrapped_kernel]]), so their symbols are real too.
+!! ([[periodic_wrapped_kernel]]), so their symbols are real too; for dissimilar bodies
+!! (K ≠ 0) so are the coupling blocks A^xz, A^zx (odd in x, even in y) and A^yz, A^zy (odd
+!! in y, even in x), whose symbols are imaginary.
 !!
 !! Operators.  The periodic product is a circular convolution: the serial operator is the
 !! circulant of w on the grid itself ([[build_bttb_periodic]]: nx×ny transforms, a quarter
@@ -34,7 +36,7 @@
 module fc_periodic
     use fc_kinds, only: dp, i8, msg_len, FC_ERR_VALUE, FC_ERR_AREA, FC_ERR_UNSUPPORTED
     use fc_geometry, only: fc_grid
-    use fc_influence, only: fc_material, element_coefficient, IC_ZZ, IC_XX, IC_YY, IC_XY
+    use fc_influence, only: fc_material, element_coefficient, IC_ZZ, IC_XX, IC_YY, IC_XY, IC_XZ, IC_ZX, IC_YZ, IC_ZY
     use fc_norm, only: fc_normal_operator
     use fc_toeplitz, only: fc_bttb, build_bttb_periodic, kernel_of_real_symbol
     use fc_tangcg_operator, only: fc_tangential_operator
@@ -69,14 +71,13 @@ contains
     end subroutine check_periodic_grid
 
     !> Whether the periodic half-space takes this problem: the normal one by BCCG or NORM (not
-    !! FMG); a tangential one by TangCG for quasi-identical bodies (K = 0: no coupling blocks
-    !! are built), without spin (a rotation of the whole surface is not periodic) and without
-    !! rolling.  stat = FC_ERR_UNSUPPORTED with the reason otherwise.
-    subroutine check_periodic_problem(fmg, tangential, rolling, phi, tangential_solver, k, stat, errmsg)
+    !! FMG); a tangential one by TangCG (dissimilar bodies, K ≠ 0, by Panagiotopoulos rounds
+    !! on the coupling blocks), without spin (a rotation of the whole surface is not
+    !! periodic) and without rolling.  stat = FC_ERR_UNSUPPORTED with the reason otherwise.
+    subroutine check_periodic_problem(fmg, tangential, rolling, phi, tangential_solver, stat, errmsg)
         logical, intent(in) :: fmg, tangential, rolling   !! FMG asked; a tangential stage; rolling
         real(dp), intent(in) :: phi                       !! spin [rad]
         character(len=*), intent(in) :: tangential_solver
-        real(dp), intent(in) :: k                         !! Kalker's constant K of the material
         integer, intent(out) :: stat
         character(len=*), intent(out) :: errmsg
         stat = FC_ERR_UNSUPPORTED
@@ -89,9 +90,6 @@ contains
             errmsg = 'the periodic half-space takes no spin (a rotation of the whole surface is not periodic): phi = 0'
         else if (tangential .and. tangential_solver /= 'tangcg') then
             errmsg = "the periodic half-space's tangential problem is solved by 'tangcg' only"
-        else if (tangential .and. k /= 0) then
-            errmsg = 'the periodic half-space has no tangential problem for dissimilar bodies (K /= 0): its '// &
-                'coupling blocks are not built; use quasi-identical materials'
         else
             stat = 0; errmsg = ''
         end if
@@ -107,7 +105,7 @@ contains
         type(fc_grid), intent(in) :: grid
         integer, intent(in) :: images, i0, i1, j0, j1
         real(dp), intent(out) :: w(i0:, j0:)
-        integer, intent(in), optional :: block   !! IC_ZZ (default), IC_XX, IC_YY or IC_XY
+        integer, intent(in), optional :: block   !! IC_ZZ (default) or another block of fc_influence
         real(dp) :: lx, ly, bx, by, dens, acc, r
         integer :: i, j, s, t, mxi, myi, blk
         blk = IC_ZZ
@@ -189,10 +187,12 @@ contains
     !> The periodic kernel of `block` on the whole cell, w(0:nx−1, 0:ny−1) with offsets
     !! taken in (−n/2, n/2]: the quadrant 0 ≤ i ≤ nx/2, 0 ≤ j ≤ ny/2 summed
     !! ([[periodic_kernel_block]]) and mirrored — A^zz, A^xx, A^yy are even in x and in y,
-    !! A^xy odd in both (zero on the lines i = 0, nx/2 and j = 0, ny/2, where an odd
-    !! periodic function vanishes) — so that w is exactly point-symmetric and its symbol
-    !! real.  The mean is removed (displacements of a periodic cell are defined up to a
-    !! constant; A^xy's is zero already).
+    !! A^xy odd in both, the coupling blocks A^xz, A^zx odd in x and A^yz, A^zy odd in y
+    !! (zero on the lines i = 0, nx/2, resp. j = 0, ny/2, where an odd periodic function
+    !! vanishes) — so that w is exactly point-symmetric (A^zz, A^xx, A^yy, A^xy: real
+    !! symbol) or point-antisymmetric (the coupling blocks: imaginary symbol).  The mean of
+    !! the even blocks is removed (displacements of a periodic cell are defined up to a
+    !! constant; an odd block's is zero already).
     subroutine periodic_wrapped_kernel(mat, grid, images, block, w)
         type(fc_material), intent(in) :: mat
         type(fc_grid), intent(in) :: grid
@@ -201,24 +201,28 @@ contains
         real(dp), allocatable :: q(:, :)
         real(dp) :: sx, sy
         integer :: nx, ny, i, j
-        logical :: odd
+        logical :: odd_x, odd_y
         nx = grid%nx; ny = grid%ny
-        odd = block == IC_XY
+        odd_x = block == IC_XY .or. block == IC_XZ .or. block == IC_ZX
+        odd_y = block == IC_XY .or. block == IC_YZ .or. block == IC_ZY
         allocate (q(0:nx/2, 0:ny/2), w(0:nx - 1, 0:ny - 1))
         call periodic_kernel_block(mat, grid, images, 0, nx/2, 0, ny/2, q, block)
-        if (odd) then
-            q(0, :) = 0; q(nx/2, :) = 0; q(:, 0) = 0; q(:, ny/2) = 0
+        if (odd_x) then
+            q(0, :) = 0; q(nx/2, :) = 0
+        end if
+        if (odd_y) then
+            q(:, 0) = 0; q(:, ny/2) = 0
         end if
         do j = 0, ny - 1
             sy = 1
-            if (odd .and. j > ny/2) sy = -1
+            if (odd_y .and. j > ny/2) sy = -1
             do i = 0, nx - 1
                 sx = 1
-                if (odd .and. i > nx/2) sx = -1
+                if (odd_x .and. i > nx/2) sx = -1
                 w(i, j) = sx*sy*q(min(i, nx - i), min(j, ny - j))
             end do
         end do
-        if (.not. odd) w = w - sum(w)/size(w)
+        if (.not. (odd_x .or. odd_y)) w = w - sum(w)/size(w)
     end subroutine periodic_wrapped_kernel
 
     !> Build the tangential blocks A^xx, A^xy, A^yy of the periodic half-space into `top` (the
@@ -227,9 +231,10 @@ contains
     !! vectors (per frequency the inverse of the real symmetric 2×2 symbol, frequencies whose
     !! determinant is below 1e−12 of the largest 0; the zero mode, A's null direction, the
     !! largest of the inverse's values), applied by
-    !! [[apply_block_inverse]] in either form.  Quasi-identical bodies only (K = 0: a
-    !! dissimilar pair needs the coupling blocks, not built here): stat = FC_ERR_UNSUPPORTED
-    !! otherwise.  Rigid shifts are relative to the cell's mean displacement.
+    !! [[apply_block_inverse]] in either form.  For dissimilar bodies (K ≠ 0) also the
+    !! coupling blocks A^xz, A^yz, A^zx, A^zy, which the orchestrator's Panagiotopoulos
+    !! rounds use as on the half-space.  Rigid shifts are relative to the cell's mean
+    !! displacement.
     subroutine build_periodic_tangential_operator(top, material, grid, stat, errmsg, images, plans_from)
         type(fc_tangential_operator), intent(inout) :: top
         type(fc_material), intent(in) :: material
@@ -248,12 +253,6 @@ contains
         if (present(images)) nim = images
         call check_periodic_grid(grid, nim, stat, errmsg)
         if (stat /= 0) return
-        if (material%k /= 0) then
-            stat = FC_ERR_UNSUPPORTED
-            errmsg = 'periodic half-space: the tangential problem needs quasi-identical bodies (K = 0); '// &
-                'a dissimilar pair couples normal and tangential loads through blocks not built for a periodic cell'
-            return
-        end if
         nx = grid%nx; ny = grid%ny
         call top%destroy()
         top%grid = grid
@@ -264,6 +263,16 @@ contains
         call build_bttb_periodic(top%a_xy, w, top%a_xx)
         call periodic_wrapped_kernel(material, grid, nim, IC_YY, w)
         call build_bttb_periodic(top%a_yy, w, top%a_xx)
+        if (material%k /= 0) then
+            call periodic_wrapped_kernel(material, grid, nim, IC_XZ, w)
+            call build_bttb_periodic(top%a_xz, w, top%a_xx)
+            call periodic_wrapped_kernel(material, grid, nim, IC_YZ, w)
+            call build_bttb_periodic(top%a_yz, w, top%a_xx)
+            call periodic_wrapped_kernel(material, grid, nim, IC_ZX, w)
+            call build_bttb_periodic(top%a_zx, w, top%a_xx)
+            call periodic_wrapped_kernel(material, grid, nim, IC_ZY, w)
+            call build_bttb_periodic(top%a_zy, w, top%a_xx)
+        end if
         ! the exact block inverse: the three symbols are real (point-symmetric kernels).
         ! Stored symbols are scaled by 1/N (N = nx·ny: the unnormalised transforms), so A's
         ! eigenvalues are N·s and M's stored symbol is their inverse over N: s⁻¹/N²
