@@ -2,11 +2,11 @@
 !! prescribed shifts are one [[solve_tangential]]; prescribed forces (Fx, Fy) are met by the
 !! outer Broyden loop of [[fc_force_newton]] on the rigid shift (ξ, η), each inner solve
 !! TangCG (or ConvexGS) warm-started from the last.  A periodic cell ([[fc_periodic]]) needs
-!! more: its many small contacts are stiffer than Mindlin's first guess, and a cell in
-!! contact everywhere is singular (uniform tractions displace nothing), which three rules
-!! here handle — full stick solved directly, the first shift shrunk until something sticks,
-!! and a radial search of the shift along the force when the loop stops short
-!! (doc/parallel.md, "A cell in contact everywhere").
+!! more: its many small contacts are stiffer than Mindlin's first guess (the first shift is
+!! shrunk until something sticks), and a cell in contact everywhere is singular (uniform
+!! tractions displace nothing): full stick is solved directly, and otherwise the loop runs
+!! on an operator whose uniform mode has the compliance of Mindlin's patch of the cell's
+!! size, with the shift converted back (doc/parallel.md, "A cell in contact everywhere").
 module fc_tangcg_force
     use fc_kinds
     use fc_tangcg_operator, only: fc_tangential_operator, apply_block_inverse
@@ -42,11 +42,9 @@ contains
         type(fc_tangential_result) :: trial
         type(fc_tangential_settings) :: inner
         type(fc_force_newton_t) :: nw
-        real(dp) :: fn, flimit, k0, a, jac(2, 2), x(2), probe_s
+        real(dp) :: fn, flimit, k0, a, jac(2, 2), x(2), probe_s, beta, cell, qbar(2)
         integer :: nx, ny, k, probe_it, probe_mv
-        real(dp) :: rs_d(2), rs_fref, rs_secs   ! radial search (periodic cell in contact everywhere)
-        integer :: rs_its, rs_mvs, outer0
-        logical :: rs_ok, found, probed
+        logical :: probed
         logical :: accepted, done
         nx = size(pn, 1); ny = size(pn, 2)
         if (.not. load%force_prescribed) then
@@ -89,61 +87,67 @@ contains
         end if
         a = sqrt(count(pn > 0)*top%grid%area()/pi)
         k0 = 8*top%material%g*a/(2 - top%material%nu)
-        jac = 0; jac(1, 1) = -k0; jac(2, 2) = -k0       ! dF/d(ξ,η): traction opposes the shift
-        x = [-load%fx/k0, -load%fy/k0]
-        if (present(xi_start)) x(1) = xi_start
-        if (present(eta_start)) x(2) = eta_start
-        if (top%periodic .and. .not. (present(xi_start) .and. present(eta_start))) then
-            ! many small contacts are stiffer than Mindlin's one patch of their total area,
-            ! and a cell in contact everywhere far stiffer: a shift that slips every element
-            ! leaves the loop no slope to follow.  Shrink it until some element sticks.
-            do k = 1, 12
-                call solve_tangential(top, pn, load%mu, settings, trial, stat, errmsg, x(1), x(2), &
-                                      load%phi, zx, zy, qx, qy, ox, oy)
-                if (stat /= 0) return
-                probe_it = probe_it + trial%iterations; probe_mv = probe_mv + trial%matvecs
-                probe_s = probe_s + trial%cpu_seconds
-                if (trial%nadh > 0) then
-                    probed = .true.; exit
-                end if
-                x = x/8; k0 = 8*k0
-            end do
-            ! the probe's secant from zero shift (zero force in partial contact) is a better
-            ! stiffness than Mindlin's, which the many contacts of a cell exceed severalfold
-            ! (480 random cells: 17 % fewer TangCG iterations than with Mindlin's)
-            if (probed) k0 = hypot(trial%fx, trial%fy)/norm2(x)
-            jac = 0; jac(1, 1) = -k0; jac(2, 2) = -k0
-        end if
-        inner = settings
-        call nw%start(x, jac, settings%tol, hypot(load%fx, load%fy), flimit)
-        ! the probes' cost counts with the loop's
-        nw%iterations = probe_it; nw%matvecs = probe_mv; nw%cpu_seconds = probe_s
-        done = .false.
-        if (probed) then
-            ! the last probe, at x, is the loop's first point: solved already
-            qx = trial%px; qy = trial%py
-            call nw%update([trial%fx - load%fx, trial%fy - load%fy], accepted, done, 0, 0, 0.0_dp)
-            if (accepted) call move_alloc_result(trial, res)
-        end if
-        if (.not. done) call broyden_loop()
-        if (stat /= 0) return
-        call finish_force_loop(res, nw, 'force loop')
-        if (top%periodic .and. all(pn > 0) .and. res%status /= FC_CONVERGED) then
-            call radial_search(x, jac, found)
-            if (found) then
-                ! the loop once more, from the radial point with the Jacobian of a force that
-                ! follows the shift's direction; the totals of everything before carried on
-                outer0 = nw%outer
-                probe_it = nw%iterations + rs_its; probe_mv = nw%matvecs + rs_mvs; probe_s = nw%cpu_seconds + rs_secs
-                call nw%start(x, jac, settings%tol, hypot(load%fx, load%fy), flimit)
-                nw%iterations = probe_it; nw%matvecs = probe_mv; nw%cpu_seconds = probe_s
-                call broyden_loop()
-                if (stat /= 0) return
-                call finish_force_loop(res, nw, 'force loop')
-                res%outer_iterations = res%outer_iterations + outer0
-            end if
+        ! a cell in contact everywhere: the uniform traction mode, which displaces nothing, gets
+        ! the compliance of Mindlin's patch of the cell's size (A_β, fc_tangcg_operator), so
+        ! that the force follows the shift as for one contact; the loop's shifts are then
+        ! w_β = w − β·q̄ (q̄ the mean traction)
+        cell = size(pn)*top%grid%area()
+        beta = 0
+        if (top%periodic .and. all(pn > 0)) beta = cell/k0
+        top%mean_compliance = beta
+        call loop_on_shift()
+        top%mean_compliance = 0
+        if (beta > 0 .and. stat == 0 .and. allocated(res%ux)) then
+            ! the physical shift and displacements
+            qbar = [sum(res%px), sum(res%py)]/size(pn)
+            res%xi = res%xi + beta*qbar(1); res%eta = res%eta + beta*qbar(2)
+            res%ux = res%ux - beta*qbar(1); res%uy = res%uy - beta*qbar(2)
         end if
     contains
+        !> The force loop on the shift (ξ, η) (w_β with a mean compliance), with the periodic
+        !! cell's probes.
+        subroutine loop_on_shift()
+            jac = 0; jac(1, 1) = -k0; jac(2, 2) = -k0       ! dF/d(ξ,η): traction opposes the shift
+            x = [-load%fx/k0, -load%fy/k0]
+            if (present(xi_start)) x(1) = xi_start - beta*load%fx/cell
+            if (present(eta_start)) x(2) = eta_start - beta*load%fy/cell
+            if (top%periodic .and. .not. (present(xi_start) .and. present(eta_start))) then
+                ! many small contacts are stiffer than Mindlin's one patch of their total area:
+                ! a shift that slips every element leaves the loop no slope to follow.  Shrink
+                ! it until some element sticks.
+                do k = 1, 12
+                    call solve_tangential(top, pn, load%mu, settings, trial, stat, errmsg, x(1), x(2), &
+                                          load%phi, zx, zy, qx, qy, ox, oy)
+                    if (stat /= 0) return
+                    probe_it = probe_it + trial%iterations; probe_mv = probe_mv + trial%matvecs
+                    probe_s = probe_s + trial%cpu_seconds
+                    if (trial%nadh > 0) then
+                        probed = .true.; exit
+                    end if
+                    x = x/8; k0 = 8*k0
+                end do
+                ! the probe's secant from zero shift (zero force in partial contact) is a better
+                ! stiffness than Mindlin's, which the many contacts of a cell exceed severalfold
+                ! (480 random cells: 17 % fewer TangCG iterations than with Mindlin's)
+                if (probed) k0 = hypot(trial%fx, trial%fy)/norm2(x)
+                jac = 0; jac(1, 1) = -k0; jac(2, 2) = -k0
+            end if
+            inner = settings
+            call nw%start(x, jac, settings%tol, hypot(load%fx, load%fy), flimit)
+            ! the probes' cost counts with the loop's
+            nw%iterations = probe_it; nw%matvecs = probe_mv; nw%cpu_seconds = probe_s
+            done = .false.
+            if (probed) then
+                ! the last probe, at x, is the loop's first point: solved already
+                qx = trial%px; qy = trial%py
+                call nw%update([trial%fx - load%fx, trial%fy - load%fy], accepted, done, 0, 0, 0.0_dp)
+                if (accepted) call move_alloc_result(trial, res)
+            end if
+            if (.not. done) call broyden_loop()
+            if (stat /= 0) return
+            call finish_force_loop(res, nw, 'force loop')
+        end subroutine loop_on_shift
+
         !> The Broyden iteration of [[fc_force_newton]] from its state in `nw`.
         subroutine broyden_loop()
             do
@@ -158,90 +162,6 @@ contains
                 if (done) exit
             end do
         end subroutine broyden_loop
-
-        !> A periodic cell in contact everywhere whose force loop stopped short: near zero
-        !! shift the force there has about the friction capacity of adhesion everywhere and the
-        !! shift's direction, whatever the shift's size, so the loop's Jacobian is nearly
-        !! singular.  Search the shift's size along the force's direction instead (regula falsi,
-        !! Illinois rule, on the force component along it), each solve warm-started.  Its last
-        !! solve is the answer when it meets the force tolerance in both components (`found`
-        !! false); else `found` with that shift in `xr` and, in `jr`, the Jacobian of a force
-        !! −φ(|x|)·x/|x| (radial slope measured, φ/|x| across) for the loop to finish from.
-        subroutine radial_search(xr, jr, found)
-            real(dp), intent(out) :: xr(2), jr(2, 2)
-            logical, intent(out) :: found
-            real(dp) :: r_lo, r_hi, g_lo, g_hi, r, g, ftol, slope
-            integer :: it, side
-            found = .false.
-            rs_fref = hypot(load%fx, load%fy)
-            ftol = settings%tol*flimit
-            rs_d = -[load%fx, load%fy]/rs_fref
-            rs_its = 0; rs_mvs = 0; rs_secs = 0
-            r_hi = max(norm2(nw%x_trial), tiny(1.0_dp))
-            call along(r_hi, g_hi); if (.not. rs_ok) return
-            do it = 1, 60
-                if (g_hi > 0) exit
-                r_hi = 2*r_hi
-                call along(r_hi, g_hi); if (.not. rs_ok) return
-            end do
-            r_lo = r_hi
-            g_lo = g_hi
-            do it = 1, 80
-                if (g_lo < 0) exit
-                r_lo = r_lo/4
-                call along(r_lo, g_lo); if (.not. rs_ok) return
-            end do
-            if (.not. (g_lo < 0 .and. g_hi > 0)) return
-            side = 0
-            do it = 1, 100
-                r = (r_lo*g_hi - r_hi*g_lo)/(g_hi - g_lo)
-                slope = (g_hi - g_lo)/(r_hi - r_lo)
-                call along(r, g); if (.not. rs_ok) return
-                if (abs(g) <= 0.25_dp*ftol .or. r_hi - r_lo <= 1.0e-14_dp*r_hi) exit
-                if (g < 0) then
-                    r_lo = r; g_lo = g
-                    if (side == -1) g_hi = g_hi/2
-                    side = -1
-                else
-                    r_hi = r; g_hi = g
-                    if (side == 1) g_lo = g_lo/2
-                    side = 1
-                end if
-            end do
-            if (hypot(trial%fx - load%fx, trial%fy - load%fy) <= ftol) then
-                call move_alloc_result(trial, res)
-                res%outer_iterations = nw%outer + 1
-                res%iterations = nw%iterations + rs_its; res%matvecs = nw%matvecs + rs_mvs
-                res%cpu_seconds = nw%cpu_seconds + rs_secs
-                return
-            end if
-            found = .true.
-            xr = r*rs_d
-            ! F = −φ(|x|)·x̂: dF/dx = −(φ' x̂x̂ᵀ + (φ/|x|)(I − x̂x̂ᵀ)), x̂ = rs_d
-            jr(:, 1) = -(slope*rs_d(1)*rs_d + (rs_fref/r)*([1.0_dp, 0.0_dp] - rs_d(1)*rs_d))
-            jr(:, 2) = -(slope*rs_d(2)*rs_d + (rs_fref/r)*([0.0_dp, 1.0_dp] - rs_d(2)*rs_d))
-        end subroutine radial_search
-
-        !> Radial search: solve at the shift r·rs_d; g = the force along the prescribed one
-        !! minus its size (rs_ok: the solve converged; a failed one leaves the loop's result).
-        subroutine along(r, g)
-            real(dp), intent(in) :: r
-            real(dp), intent(out) :: g
-            g = 0
-            ! the force's direction near zero shift needs the inner solve 100 times tighter
-            ! than the tolerance (at the tolerance it wanders by ~1e−4 rad)
-            inner%tol = 1.0e-2_dp*settings%tol
-            call solve_tangential(top, pn, load%mu, inner, trial, stat, errmsg, r*rs_d(1), r*rs_d(2), &
-                                  load%phi, zx, zy, qx, qy, ox, oy)
-            rs_ok = stat == 0 .and. trial%status == FC_CONVERGED
-            if (stat /= 0) then
-                stat = 0; errmsg = ''
-            end if
-            if (.not. rs_ok) return
-            qx = trial%px; qy = trial%py
-            rs_its = rs_its + trial%iterations; rs_mvs = rs_mvs + trial%matvecs; rs_secs = rs_secs + trial%cpu_seconds
-            g = -(trial%fx*rs_d(1) + trial%fy*rs_d(2)) - rs_fref
-        end subroutine along
 
         !> A periodic cell in contact everywhere: uniform tractions displace nothing, so while
         !! the whole cell can carry the force in adhesion the shift is not found by the force

@@ -33,6 +33,12 @@ module fc_tangcg_operator
         !> the blocks of the periodic half-space on the grid itself, preconditioned by their
         !! exact inverse in c_xx, c_xy, c_yy (fc_periodic); `prec` is then not built
         logical :: periodic = .false.
+        !> periodic cell: compliance β [mm per N/mm²] given to the uniform traction mode, which
+        !! the periodic blocks (mean removed) do not displace: A_β p = A p + β·mean(p) per
+        !! component, its inverse's uniform mode 1/β.  Set only while a prescribed force is
+        !! solved on a cell in contact everywhere ([[fc_tangcg_force]]), where it makes the
+        !! shift–force map regular; 0 otherwise (the physical operator)
+        real(dp) :: mean_compliance = 0
     contains
         procedure :: apply => tangential_apply
         procedure :: destroy => tangential_destroy
@@ -155,6 +161,7 @@ contains
         lhs%nproducts = rhs%nproducts
         lhs%setup_seconds = rhs%setup_seconds
         lhs%periodic = rhs%periodic
+        lhs%mean_compliance = rhs%mean_compliance
         call copy_bttb(lhs%a_xx, rhs%a_xx)
         call copy_bttb(lhs%a_xy, rhs%a_xy, plans_from=lhs%a_xx)
         call copy_bttb(lhs%a_yy, rhs%a_yy, plans_from=lhs%a_xx)
@@ -190,6 +197,12 @@ contains
             call prepare_block_inverse_circulant(top)
             call block_product(top%c_xx, top%c_xy, top%c_yy, top%cspec_x, top%cspec_y, top%cwork, top%cwork2, &
                                dx, dy, zx, zy)
+            ! the inverse of A_β: uniform mode 1/β (the circulant's zero-frequency block is
+            ! diagonal, so the means are replaced component by component)
+            if (top%mean_compliance > 0) then
+                zx = zx - sum(zx)/size(zx) + sum(dx)/(size(dx)*top%mean_compliance)
+                zy = zy - sum(zy)/size(zy) + sum(dy)/(size(dy)*top%mean_compliance)
+            end if
             return
         end if
         call top%a_xx%forward(dx, top%spec_x)
@@ -221,13 +234,18 @@ contains
         tangential_coupled = self%a_xz%built()
     end function tangential_coupled
 
-    !> (ux, uy) = [A^xx A^xy; A^xy A^yy]·(px, py): two forward and two inverse FFTs.
+    !> (ux, uy) = [A^xx A^xy; A^xy A^yy]·(px, py): two forward and two inverse FFTs (plus
+    !! β·mean(p) with a `mean_compliance` β).
     subroutine tangential_apply(self, px, py, ux, uy)
         class(fc_tangential_operator), intent(inout) :: self
         real(dp), intent(in) :: px(:, :), py(:, :)
         real(dp), intent(out) :: ux(:, :), uy(:, :)
         call block_product(self%a_xx, self%a_xy, self%a_yy, self%spec_x, self%spec_y, self%work, self%work2, &
                            px, py, ux, uy)
+        if (self%mean_compliance > 0) then
+            ux = ux + self%mean_compliance*sum(px)/size(px)
+            uy = uy + self%mean_compliance*sum(py)/size(py)
+        end if
         self%nproducts = self%nproducts + 1
     end subroutine tangential_apply
 
