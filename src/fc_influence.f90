@@ -378,47 +378,19 @@ contains
         end subroutine add_primitive
     end subroutine half_space_kernels
 
-    !> Build the BTTB operator of one influence block on `grid`.
-    !! With `periodic`, the kernel is summed over (2·images+1)² periods and its mean removed:
-    !! a periodic RVE whose displacements are defined up to a constant (use prescribed force).
+    !> Build the BTTB operator of one influence block on `grid` (the half-space; the periodic
+    !! half-space's kernels, lattice sums with the far images' tail, are [[fc_periodic]]'s).
     !! With `plans_from` (a built operator on the same grid) the FFT plans and buffers are
     !! shared with it.
-    subroutine build_bttb(op, block, mat, grid, periodic, images, plans_from)
+    subroutine build_bttb(op, block, mat, grid, plans_from)
         type(fc_bttb), intent(inout) :: op
         integer, intent(in) :: block
         type(fc_material), intent(in) :: mat
         type(fc_grid), intent(in) :: grid
-        logical, intent(in), optional :: periodic
-        integer, intent(in), optional :: images   !! periods summed on each side (default 4)
         type(fc_bttb), intent(in), optional :: plans_from
-        real(dp), allocatable :: kernel(:, :), wrapped(:, :)
-        logical :: per
-        integer :: nim, i, j, si, sj
-        real(dp) :: lx, ly
-        per = .false.
-        if (present(periodic)) per = periodic
-        if (.not. per) then
-            call ic_kernel(block, mat, grid, kernel)
-            call build_bttb_from_kernel(op, kernel, grid%nx, grid%ny, plans_from)
-            return
-        end if
-        nim = 4
-        if (present(images)) nim = images
-        lx = grid%nx*grid%dx; ly = grid%ny*grid%dy
-        allocate (wrapped(0:grid%nx - 1, 0:grid%ny - 1))
-        do j = 0, grid%ny - 1
-            do i = 0, grid%nx - 1
-                wrapped(i, j) = 0
-                do sj = -nim, nim
-                    do si = -nim, nim
-                        wrapped(i, j) = wrapped(i, j) + element_coefficient(block, mat, &
-                            i*grid%dx + si*lx, j*grid%dy + sj*ly, grid%dx, grid%dy)
-                    end do
-                end do
-            end do
-        end do
-        wrapped = wrapped - sum(wrapped)/size(wrapped)
-        call build_bttb_periodic(op, wrapped, plans_from)
+        real(dp), allocatable :: kernel(:, :)
+        call ic_kernel(block, mat, grid, kernel)
+        call build_bttb_from_kernel(op, kernel, grid%nx, grid%ny, plans_from)
     end subroutine build_bttb
 
     !> Toeplitz approximation M ≈ A⁻¹ of one (symmetric) influence block (thesis §3.3.1,
