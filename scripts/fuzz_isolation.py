@@ -5,8 +5,9 @@ The driver keeps operators, coefficient sets and FFT plans from case to case and
 them while grid and material match.  Each case must still give exactly what it gives when
 solved alone.  This script writes random multi-case namelists (normal, normal+tangential,
 tangential, steady rolling with and without creep-force sweeps, transient rolling,
-periodic cells with and without friction; different grids, materials, loads, solvers, preconditioner forms and
-thread counts, small grids), runs each file whole, then every case of it alone with
+periodic cells with and without friction, and with `--ic-tool` influence-coefficient files (analytic
+half-space bodies written by `fastcontact-ic --analytic`, body 1 or both bodies); different grids,
+materials, loads, solvers, preconditioner forms and thread counts, small grids), runs each file whole, then every case of it alone with
 `--case NAME` (which reads the cases before it only for what they pass on and builds its
 operators afresh), and compares the outputs:
 
@@ -18,7 +19,7 @@ They must agree to the last digit (the same arithmetic in the same order).  A di
 prints the seed, the file and the first differing keys; the exit status is 1 when any case
 differed.
 
-Usage:  scripts/fuzz_isolation.py --driver PATH [--seed N] [--budget SECONDS] [--keep DIR]
+Usage:  scripts/fuzz_isolation.py --driver PATH [--ic-tool PATH] [--seed N] [--budget SECONDS] [--keep DIR]
 
 Standard library only.  The seed defaults to FUZZ_SEED or the clock; `--seed N` repeats a
 run exactly.
@@ -58,12 +59,40 @@ def periodic_case(rnd, i):
             f"&solver normal = '{rnd.choice(['bccg', 'norm'])}', tangential = 'tangcg' /"]
 
 
-def case_groups(rnd, i, periodic_before):
-    """The groups of case i: a problem and a random subset of changes to inherit from."""
+# coefficient files (--ic-tool): grid -> {body: path}, written once per run
+IC_GRIDS = [(20, 16), (24, 20)]
+IC_BODIES = [(200.0, 0.42), (82000.0, 0.28)]
+
+
+def ic_case(rnd, i, files):
+    """A case whose body 1 (and maybe body 2) comes from a coefficient file on its grid."""
+    nx, ny = rnd.choice(IC_GRIDS)
+    b1, b2 = rnd.choice(IC_BODIES), rnd.choice(IC_BODIES)
+    f2 = files[(nx, ny)][b2] if rnd.random() < 0.5 else ''
+    prob = rnd.choice(['normal', 'normal+tangential', 'rolling'])
+    return [f"&case name = 'c{i}', problem = '{prob}' /",
+            f"&material g1 = {b1[0]}, g2 = {b2[0]}, nu1 = {b1[1]}, nu2 = {b2[1]}, "
+            f"ic_file = '{files[(nx, ny)][b1]}', ic_file2 = '{f2}' /",
+            f"&grid nx = {nx}, ny = {ny}, xmin = -1.3, xmax = 1.3, ymin = -1.3, ymax = 1.3, periodic = .false. /",
+            "&geometry kind = 'quadratic', rx = 50.0, ry = 50.0 /",
+            f"&solver normal = '{rnd.choice(['bccg', 'norm'])}' /",
+            "&tangential sweep = '' /"]
+
+
+def case_groups(rnd, i, periodic_before, files=None, ic_before=False):
+    """The groups of case i: a problem and a random subset of changes to inherit from;
+    whether it is periodic and whether it reads coefficient files."""
+    if files and rnd.random() < 0.15:
+        return ic_case(rnd, i, files), False, True
     if rnd.random() < 0.1:
-        return periodic_case(rnd, i), True
+        g, per = periodic_case(rnd, i), True
+        if ic_before:
+            g.insert(1, "&material ic_file = '', ic_file2 = '' /")
+        return g, per, False
     prob = rnd.choice(['normal', 'normal+tangential', 'tangential', 'rolling', 'rolling', 'transient_rolling'])
     g = [f"&case name = 'c{i}', problem = '{prob}' /"]
+    if ic_before:   # back to the half-space kernels
+        g.append("&material ic_file = '', ic_file2 = '' /")
     if periodic_before:   # back to the quadratic scene of the head, on the half-space
         g += [HEAD[1].replace(' /', ', periodic = .false. /')] + HEAD[2:4]
     if rnd.random() < 0.25:   # identical bodies (K = 0): often the same G with another ν
@@ -111,7 +140,7 @@ def case_groups(rnd, i, periodic_before):
             "&tangential fx = -0.5, sweep = 'fx', sweep_from = -0.5, sweep_to = 0.5, sweep_n = 4 /"]))
     else:
         g.append("&tangential sweep = '' /")
-    return g, False
+    return g, False, False
 
 
 def summary(path):
@@ -143,17 +172,32 @@ def main():
     ap.add_argument('--budget', type=float, default=60.0, help='seconds for new files (default 60)')
     ap.add_argument('--timeout', type=float, default=300.0, help='seconds per driver run')
     ap.add_argument('--keep', help='keep the files of differing batches in this directory')
+    ap.add_argument('--ic-tool', help='fastcontact-ic: also cases with coefficient files (analytic bodies)')
     a = ap.parse_args()
     print(f'isolation fuzz seed: {a.seed} (repeat: scripts/fuzz_isolation.py --driver D --seed {a.seed})', flush=True)
     rnd = random.Random(a.seed)
     env = dict(os.environ, OMP_WAIT_POLICY='passive')
     t_end = time.time() + a.budget
     nfiles = ncases = bad = 0
+    files, icdir = None, None
+    if a.ic_tool:
+        icdir = tempfile.mkdtemp(prefix='fc_isolation_ic_')
+        files = {}
+        for nx, ny in IC_GRIDS:
+            files[(nx, ny)] = {}
+            for g, nu in IC_BODIES:
+                model = os.path.join(icdir, f'm{nx}x{ny}_{int(g)}.nml')
+                path = os.path.join(icdir, f'b{nx}x{ny}_{int(g)}.fcic')
+                with open(model, 'w') as f:
+                    f.write(f"&material g1 = {g}, nu1 = {nu} /\n"
+                            f"&grid nx = {nx}, ny = {ny}, xmin = -1.3, xmax = 1.3, ymin = -1.3, ymax = 1.3 /\n")
+                subprocess.run([a.ic_tool, model, '--out', path, '--analytic'], check=True, capture_output=True)
+                files[(nx, ny)][(g, nu)] = path
     while time.time() < t_end:
         work = tempfile.mkdtemp(prefix='fc_isolation_')
-        lines, periodic = [], False
+        lines, periodic, ic = [], False, False
         for i in range(rnd.randint(2, 6)):
-            g, periodic = case_groups(rnd, i, periodic)
+            g, periodic, ic = case_groups(rnd, i, periodic, files, ic)
             lines += (g[:1] + HEAD + g[1:]) if i == 0 else g
         nml = os.path.join(work, 'cases.nml')
         with open(nml, 'w') as f:
@@ -189,6 +233,8 @@ def main():
             if a.keep:
                 shutil.copytree(work, os.path.join(a.keep, f'file{nfiles}'), dirs_exist_ok=True)
         shutil.rmtree(work, ignore_errors=True)
+    if icdir:
+        shutil.rmtree(icdir, ignore_errors=True)
     print(f'isolation fuzz: {nfiles} files, {ncases} cases solved whole and alone, {bad} files differing')
     return 1 if bad else 0
 
