@@ -68,6 +68,17 @@ contains
         ops%periodic = .true.
     end subroutine wavy_cell
 
+    !> A normal + tangential loading: the normal force `fn` and the tangential force
+    !! (`fx`, `fy`) [N] prescribed, friction `mu`.
+    pure function force_load(fn, mu, fx, fy) result(load)
+        real(dp), intent(in) :: fn, mu, fx, fy
+        type(fc_contact_loading) :: load
+        load%problem = FC_PROBLEM_TANGENTIAL
+        load%normal%force_prescribed = .true.; load%normal%fn = fn
+        load%tangential%mu = mu; load%tangential%force_prescribed = .true.
+        load%tangential%fx = fx; load%tangential%fy = fy
+    end function force_load
+
     !> The normal solutions of the cell under the forces `p` and `pstar` [N].
     subroutine normal_pair(ops, grid, mat, h0, set, p, pstar, rp, rs)
         type(fc_contact_operators), intent(inout) :: ops
@@ -212,9 +223,7 @@ contains
         character(len=256) :: em
         call wavy_cell(32, 1.0_dp, mat, grid, h0, ops)
         set%normal%tol = 1e-10_dp; set%tangential%tol = 1e-10_dp
-        load%problem = FC_PROBLEM_TANGENTIAL
-        load%normal%force_prescribed = .true.; load%normal%fn = p
-        load%tangential%mu = mu; load%tangential%force_prescribed = .true.; load%tangential%fx = q
+        load = force_load(p, mu, q, 0.0_dp)
         call solve_contact(ops, grid, mat, h0, load, set, rt, stat, em)
         call check(error, stat == 0 .and. rt%status == FC_CONVERGED, 'tangential solve: '//trim(em))
         if (allocated(error)) return
@@ -316,10 +325,7 @@ contains
         call make_grid(grid, 24, 24, 0.0_dp, 1.0_dp, 0.0_dp, 1.0_dp, stat, em)
         h0 = wavy_gap(grid, 0.001_dp, 1.0_dp, 1.0_dp)
         ops%periodic = .true.
-        load%problem = FC_PROBLEM_TANGENTIAL
-        load%normal%force_prescribed = .true.; load%normal%fn = p
-        load%tangential%mu = mu; load%tangential%force_prescribed = .true.
-        load%tangential%fx = qx; load%tangential%fy = qy
+        load = force_load(p, mu, qx, qy)
         call solve_contact(ops, grid, mat, h0, load, set, r, stat, em)
         call check(error, stat == 0 .and. all(r%normal%pn > 0), 'full contact: '//trim(em))
         call check(error, r%tangential%nslip > 0 .and. r%tangential%nadh > 0, 'partial slip')
@@ -408,10 +414,7 @@ contains
             end do
         end do
         set%normal%tol = 1e-10_dp; set%tangential%tol = 1e-10_dp
-        load%problem = FC_PROBLEM_TANGENTIAL
-        load%normal%force_prescribed = .true.; load%normal%fn = 0.05_dp
-        load%tangential%mu = 0.3_dp; load%tangential%force_prescribed = .true.
-        load%tangential%fx = 0.006_dp; load%tangential%fy = -0.004_dp
+        load = force_load(0.05_dp, 0.3_dp, 0.006_dp, -0.004_dp)
         ! a half-space case first (same grid and material): its operators must not serve the cell
         call solve_contact(ops, grid, mat, quadratic_gap(grid, 50.0_dp, 50.0_dp) - 5e-3_dp, load, set, rh, stat, em)
         ops%periodic = .true.
@@ -448,10 +451,7 @@ contains
         call material(mat, 0.3_dp)
         call make_grid(grid, 64, 64, -4.0_dp, 4.0_dp, -4.0_dp, 4.0_dp, stat, em)
         h0 = quadratic_gap(grid, 50.0_dp, 50.0_dp)
-        load%problem = FC_PROBLEM_TANGENTIAL
-        load%normal%force_prescribed = .true.; load%normal%fn = 9.1954_dp
-        load%tangential%mu = 0.4_dp; load%tangential%force_prescribed = .true.
-        load%tangential%fx = 2.0_dp; load%tangential%fy = 1.0_dp
+        load = force_load(9.1954_dp, 0.4_dp, 2.0_dp, 1.0_dp)
         call solve_contact(ops, grid, mat, h0, load, set, rh, stat, em)
         opsp%periodic = .true.
         call solve_contact(opsp, grid, mat, h0, load, set, rp, stat, em)
@@ -557,10 +557,7 @@ contains
         mat0 = mat; mat0%k = 0
         call make_grid(grid, 64, 64, -4.0_dp, 4.0_dp, -4.0_dp, 4.0_dp, stat, em)
         h0 = quadratic_gap(grid, 50.0_dp, 50.0_dp)
-        load%problem = FC_PROBLEM_TANGENTIAL
-        load%normal%force_prescribed = .true.; load%normal%fn = 9.1954_dp
-        load%tangential%mu = 0.4_dp; load%tangential%force_prescribed = .true.
-        load%tangential%fx = 2.0_dp; load%tangential%fy = 1.0_dp
+        load = force_load(9.1954_dp, 0.4_dp, 2.0_dp, 1.0_dp)
         set%normal%tol = 1e-8_dp; set%tangential%tol = 1e-8_dp
         call solve_contact(ops, grid, mat, h0, load, set, rh, stat, em)
         call solve_contact(ops0, grid, mat0, h0, load, set, r0, stat, em)
@@ -644,10 +641,7 @@ contains
         call fc_get_forces(h, fn, fx, fy, mz, ierr)
         call fc_get_tractions(h, 1024_c_int, pn, px, py, ierr)
         ops%periodic = .true.
-        load%problem = FC_PROBLEM_TANGENTIAL
-        load%normal%force_prescribed = .true.; load%normal%fn = 0.05_dp
-        load%tangential%mu = 0.3_dp; load%tangential%force_prescribed = .true.
-        load%tangential%fx = 0.01_dp; load%tangential%fy = -0.004_dp
+        load = force_load(0.05_dp, 0.3_dp, 0.01_dp, -0.004_dp)
         call solve_contact(ops, grid, mat, h0, load, set, r, stat, em)
         call check(error, stat == 0 .and. r%status == FC_CONVERGED, 'library solve: '//trim(em))
         if (allocated(error)) return
