@@ -316,6 +316,10 @@ contains
             if (stat /= 0) then
                 call case_error(); return
             end if
+            ! the case's values are valid: rejected later (its output directory, a coefficient
+            ! file, the memory, a load that only the solve finds impossible) it still passes
+            ! them on, as when it is only read for what it passes on (--case) and in the MPI batch
+            saved_state = state
             if (index(dir, "'") > 0) then
                 errmsg = "&output dir = '"//dir//"': quotes are not allowed in the directory name"
                 call case_error(clean=.false.); return
