@@ -22,9 +22,12 @@
 !! and its Fourier symbol is real — the same values serve the serial operator built here
 !! and the distributed one of the MPI package (cosine transforms of the quadrant).  The
 !! tangential blocks A^xx, A^yy (even) and A^xy (odd in x and in y) are summed the same way
-!! ([[periodic_wrapped_kernel]]), so their symbols are real too; for dissimilar bodies
-!! (K ≠ 0) so are the coupling blocks A^xz, A^zx (odd in x, even in y) and A^yz, A^zy (odd
-!! in y, even in x), whose symbols are imaginary.
+!! ([[periodic_wrapped_kernel]]), so their symbols are real too.  For dissimilar bodies
+!! (K ≠ 0) the coupling blocks A^xz, A^zx (odd in x, even in y) and A^yz, A^zy (odd in y,
+!! even in x) are summed the same way; their symbols are imaginary.  Near the origin they
+!! are the half-space's coefficients plus a uniform strain, (K/G)·x·dx·dy/(Lx·Ly) for A^xz:
+!! the cell carries its mean pressure, so the images' load is balanced by a uniform
+!! counter-load, whose tangential displacement grows linearly.
 !!
 !! Operators.  The periodic product is a circular convolution: the serial operator is the
 !! circulant of w on the grid itself ([[build_bttb_periodic]]: nx×ny transforms, a quarter
