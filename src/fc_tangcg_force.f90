@@ -3,7 +3,9 @@
 !! outer Broyden loop of [[fc_force_newton]] on the rigid shift (ξ, η), each inner solve
 !! TangCG (or ConvexGS) warm-started from the last.  A periodic cell ([[fc_periodic]]) needs
 !! more: its many small contacts are stiffer than Mindlin's first guess (the first shift is
-!! shrunk until something sticks), and a cell in contact everywhere is singular (uniform
+!! scaled until something sticks: shrunk while its force exceeds the target, grown while
+!! the force falls short, as when the pressure of dissimilar bodies alone slips every
+!! element), and a cell in contact everywhere is singular (uniform
 !! tractions displace nothing): full stick is solved directly, and otherwise the loop runs
 !! on an operator whose uniform mode has the compliance of Mindlin's patch of the cell's
 !! size, with the shift converted back (doc/parallel.md, "A cell in contact everywhere").
@@ -43,6 +45,7 @@ contains
         type(fc_tangential_settings) :: inner
         type(fc_force_newton_t) :: nw
         real(dp) :: fn, flimit, k0, a, jac(2, 2), x(2), probe_s, beta, cell, qbar(2)
+        real(dp) :: k0_mindlin, x0(2), s, s_lo, s_hi
         integer :: nx, ny, k, probe_it, probe_mv
         logical :: probed
         logical :: accepted, done
@@ -87,6 +90,7 @@ contains
         end if
         a = sqrt(count(pn > 0)*top%grid%area()/pi)
         k0 = 8*top%material%g*a/(2 - top%material%nu)
+        k0_mindlin = k0
         ! a cell in contact everywhere: the uniform traction mode, which displaces nothing, gets
         ! the compliance of Mindlin's patch of the cell's size (A_β, fc_tangcg_operator), so
         ! that the force follows the shift as for one contact; the loop's shifts are then
@@ -114,7 +118,12 @@ contains
             if (top%periodic .and. .not. (present(xi_start) .and. present(eta_start))) then
                 ! many small contacts are stiffer than Mindlin's one patch of their total area:
                 ! a shift that slips every element leaves the loop no slope to follow.  Shrink
-                ! it until some element sticks.
+                ! it until some element sticks.  Between dissimilar bodies the pressure alone
+                ! can slip every element (two narrow contacts' sides in opposite directions),
+                ! so that small shifts slip everything too, with a force short of the target:
+                ! then grow it.  Once both kinds were seen, bisect the scale (geometrically).
+                s_lo = 0; s_hi = huge(1.0_dp); s = 1
+                x0 = x
                 do k = 1, 12
                     call solve_tangential(top, pn, load%mu, settings, trial, stat, errmsg, x(1), x(2), &
                                           load%phi, zx, zy, qx, qy, ox, oy)
@@ -124,7 +133,19 @@ contains
                     if (trial%nadh > 0) then
                         probed = .true.; exit
                     end if
-                    x = x/8; k0 = 8*k0
+                    if (hypot(trial%fx, trial%fy) < hypot(load%fx, load%fy)) then
+                        s_lo = s
+                    else
+                        s_hi = s
+                    end if
+                    if (s_lo == 0) then
+                        s = s/8
+                    else if (s_hi == huge(1.0_dp)) then
+                        s = s*8
+                    else
+                        s = sqrt(s_lo*s_hi)
+                    end if
+                    x = s*x0; k0 = k0_mindlin/s
                 end do
                 ! the probe's secant from zero shift (zero force in partial contact) is a better
                 ! stiffness than Mindlin's, which the many contacts of a cell exceed severalfold

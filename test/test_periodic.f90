@@ -37,6 +37,7 @@ contains
             new_unittest('tangential_far_images', test_far_images), &
             new_unittest('coupling_kernels', test_coupling_kernels), &
             new_unittest('dissimilar_far_images', test_far_images_dissimilar), &
+            new_unittest('dissimilar_pressure_slips_everything', test_dissimilar_dead_zone), &
             new_unittest('driver_periodic_tangential', test_driver), &
             new_unittest('api_periodic_tangential', test_api) ]
     end subroutine collect_periodic
@@ -577,6 +578,61 @@ contains
         write (*, '(a,3es10.2)') '    dissimilar_far_images: |dp| coupling, |dp| images / pmax, |dq| / mu pmax = ', &
             dp_coupling/pm, dp_images/pm, dt_images/(0.4_dp*pm)
     end subroutine test_far_images_dissimilar
+
+    !> Dissimilar bodies whose pressure alone slips every element: strips two elements wide
+    !! (a 1D wavy cell 24 × 4 with two waves, P = 0.02 N, G = 200 / 800, ν = 0 / 0.28, K =
+    !! 0.36, μ = 0.2).  The coupling pushes a strip's two sides apart, so at zero shift both
+    !! slip (in opposite directions) and the force is nil, and it stays nil for shifts up to
+    !! ~2e−6 mm; beyond, one side sticks and the force rises steeply.  Under a force of 5 %
+    !! of μP the force loop's first probes used to shrink the shift towards zero (a shift that
+    !! slips everything was taken to be too large) and the loop stopped in the dead zone,
+    !! not converged.  Checked: at zero shift every element slips with |F| < 1e−6 μP (the
+    !! premise); the force loop converges to the force within tol·μP with one side of each
+    !! strip sticking; the shift it reports, prescribed, gives its tractions within 1 % of
+    !! μ·pmax.
+    subroutine test_dissimilar_dead_zone(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_material) :: mat
+        type(fc_grid) :: grid
+        type(fc_contact_operators) :: ops
+        type(fc_contact_loading) :: load
+        type(fc_contact_settings) :: set
+        type(fc_contact_result) :: r, r0, rs
+        real(dp), allocatable :: h0(:, :)
+        real(dp), parameter :: mu = 0.2_dp, p = 0.02_dp, qx = -1.82371e-4_dp, qy = -8.21036e-5_dp
+        integer :: stat
+        character(len=256) :: em
+        mat%g1 = 200; mat%g2 = 800; mat%nu1 = 0; mat%nu2 = 0.28_dp
+        call combine_material(mat, stat, em)
+        call make_grid(grid, 24, 4, 0.0_dp, 1.0_dp, 0.0_dp, 1.0_dp, stat, em)
+        h0 = wavy_gap(grid, 0.001_dp, 0.5_dp, 0.0_dp)
+        ops%periodic = .true.
+        load = force_load(p, mu, 0.0_dp, 0.0_dp)
+        load%tangential%force_prescribed = .false.
+        call solve_contact(ops, grid, mat, h0, load, set, r0, stat, em)
+        call check(error, stat == 0 .and. r0%status == FC_CONVERGED, 'zero shift: '//trim(em))
+        if (allocated(error)) return
+        call check(error, r0%tangential%nadh == 0 .and. r0%tangential%nslip == 2*2*4 .and. &
+            hypot(r0%tangential%fx, r0%tangential%fy) < 1e-6_dp*mu*p, &
+            'zero shift: two strips of 2 x 4 elements, all slipping, no force')
+        load = force_load(p, mu, qx, qy)
+        call solve_contact(ops, grid, mat, h0, load, set, r, stat, em)
+        call check(error, stat == 0 .and. r%status == FC_CONVERGED, 'the force prescribed: converged: '// &
+            trim(em)//trim(r%tangential%message))
+        if (allocated(error)) return
+        call check(error, hypot(r%tangential%fx - qx, r%tangential%fy - qy), 0.0_dp, 'the force', &
+            abs=set%tangential%tol*mu*p)
+        call check(error, r%tangential%nadh == 2*4 .and. r%tangential%nslip == 2*4, 'one side of each strip sticks')
+        load%tangential%force_prescribed = .false.
+        load%tangential%xi = r%tangential%xi; load%tangential%eta = r%tangential%eta
+        call solve_contact(ops, grid, mat, h0, load, set, rs, stat, em)
+        call check(error, stat == 0 .and. rs%status == FC_CONVERGED, 'the shift prescribed: '//trim(em))
+        if (allocated(error)) return
+        call check(error, max(maxval(abs(rs%tangential%px - r%tangential%px)), maxval(abs(rs%tangential%py - &
+            r%tangential%py))), 0.0_dp, 'the shift prescribed: the same tractions', abs=1e-2_dp*mu*r%normal%pmax)
+        write (*, '(a,i0,a,i0,a,es10.3,a)') '    dissimilar_pressure_slips_everything: ', r%tangential%iterations, &
+            ' TangCG iterations, ', r%tangential%outer_iterations, ' force-loop steps, shift ', r%tangential%xi, ' mm'
+    end subroutine test_dissimilar_dead_zone
 
     !> The driver solves a periodic 'normal+tangential' case (shifts and forces, also for
     !! dissimilar bodies) and refuses rolling, spin and ConvexGS on a periodic cell, naming
