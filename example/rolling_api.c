@@ -36,16 +36,19 @@ int main(void)
     fc_set_gap_quadratic(&h, &r, &r, &ierr); check(h, ierr, "fc_set_gap_quadratic");
     fc_set_normal_force(&h, &fn, &ierr); check(h, ierr, "fc_set_normal_force");
     fc_set_friction(&h, &mu, &ierr); check(h, ierr, "fc_set_friction");
-    printf("%5s %10s %10s %10s %12s %6s %6s\n", "step", "xi", "Fx/muFn", "Fy/muFn", "Mz", "nslip", "iters");
+    printf("%5s %10s %10s %10s %12s %12s %6s %6s\n", "step", "xi", "Fx/muFn", "Fy/muFn", "Mz", "Tgamma", "nslip",
+           "iters");
     for (k = 1; k <= nsteps; ++k) {
-        double xi = 5.0e-4 * k, fnr, fx, fy, mz;
+        double xi = 5.0e-4 * k, fnr, fx, fy, mz, tgamma;
         int ncon, nadh, nslip, itn, itt;
         fc_set_rolling(&h, &xi, &eta, &phi, &ierr); check(h, ierr, "fc_set_rolling");
         fc_calculate(&h, &ierr); check(h, ierr, "fc_calculate");
         fc_get_forces(&h, &fnr, &fx, &fy, &mz, &ierr); check(h, ierr, "fc_get_forces");
+        fc_get_dissipation(&h, &tgamma, &ierr); check(h, ierr, "fc_get_dissipation");
         fc_get_contact_stats(&h, &ncon, &nadh, &nslip, &ierr); check(h, ierr, "fc_get_contact_stats");
         fc_get_iterations(&h, &itn, &itt, &ierr); check(h, ierr, "fc_get_iterations");
-        printf("%5d %10.3e %10.5f %10.5f %12.5e %6d %6d\n", k, xi, fx / (mu * fnr), fy / (mu * fnr), mz, nslip, itt);
+        printf("%5d %10.3e %10.5f %10.5f %12.5e %12.5e %6d %6d\n", k, xi, fx / (mu * fnr), fy / (mu * fnr), mz, tgamma,
+               nslip, itt);
     }
     fc_finalize(&h, &ierr);
     return 0;

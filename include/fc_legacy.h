@@ -60,6 +60,9 @@ void fc_set_threads(const int *h, const int *nthreads, int *ierr);
 void fc_calculate(const int *h, int *ierr);
 
 void fc_get_forces(const int *h, double *fn, double *fx, double *fy, double *mz, int *ierr);
+/* frictional dissipation -sum(px*sx + py*sy)*dx*dy: N mm over the shift or transient step,
+   N (per mm rolled) in steady rolling; 0 without a tangential problem */
+void fc_get_dissipation(const int *h, double *dissipation, int *ierr);
 void fc_get_approach(const int *h, double *approach, int *ierr);
 void fc_get_pmax(const int *h, double *pmax, int *ierr);
 void fc_get_shifts(const int *h, double *xi, double *eta, double *phi, int *ierr);

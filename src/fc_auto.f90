@@ -505,6 +505,7 @@ contains
         call move_alloc(from%ux, to%ux); call move_alloc(from%uy, to%uy)
         call move_alloc(from%state, to%state); call move_alloc(from%history, to%history)
         to%xi = from%xi; to%eta = from%eta; to%phi = from%phi; to%fx = from%fx; to%fy = from%fy; to%mz = from%mz
+        to%dissipation = from%dissipation
         to%ncon = from%ncon; to%nadh = from%nadh; to%nslip = from%nslip; to%status = from%status
         to%iterations = from%iterations; to%outer_iterations = from%outer_iterations; to%matvecs = from%matvecs
         to%residual = from%residual; to%cpu_seconds = from%cpu_seconds; to%message = from%message

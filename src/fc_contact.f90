@@ -662,10 +662,10 @@ contains
             load%tangential%force_prescribed = .false.
             load%tangential%xi = load_in%tangential%xi*dq; load%tangential%eta = load_in%tangential%eta*dq
             load%tangential%phi = load_in%tangential%phi*dq
-            allocate (rows(n, 12))
+            allocate (rows(n, 13))
         else
             n = seq%sweep_n
-            allocate (rows(n, 14))
+            allocate (rows(n, 15))
         end if
         rows = 0
         do k = 1, n
@@ -700,11 +700,11 @@ contains
             if (.not. mufn > 0) mufn = 1
             associate (t => res%tangential)
                 if (seq%transient) then
-                    rows(k, :) = [real(k, dp), k*dq, t%fx, t%fy, t%mz, t%fx/mufn, t%fy/mufn, real(t%nadh, dp), &
+                    rows(k, :) = [real(k, dp), k*dq, t%fx, t%fy, t%mz, t%fx/mufn, t%fy/mufn, t%dissipation, real(t%nadh, dp), &
                                   real(t%nslip, dp), real(t%iterations, dp), secs, real(res%status, dp)]
                 else
-                    rows(k, :) = [value, t%xi, t%eta, t%phi, t%fx, t%fy, t%mz, t%fx/mufn, t%fy/mufn, real(t%nadh, dp), &
-                                  real(t%nslip, dp), real(t%iterations, dp), secs, real(res%status, dp)]
+                    rows(k, :) = [value, t%xi, t%eta, t%phi, t%fx, t%fy, t%mz, t%fx/mufn, t%fy/mufn, t%dissipation, &
+                                  real(t%nadh, dp), real(t%nslip, dp), real(t%iterations, dp), secs, real(res%status, dp)]
                 end if
             end associate
             if (res%status == FC_CONVERGED) then

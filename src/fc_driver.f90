@@ -679,10 +679,13 @@ contains
             s%solver_tangential = 'fastsim'; s%status_tangential = 'converged'
             s%fx = s%outcome%fx; s%fy = s%outcome%fy; s%mz = s%outcome%mz; s%mu = state%mu
             s%xi = state%xi; s%eta = state%eta; s%phi = state%phi
+            ! steady rolling dissipates the creepages' work (doc/rolling.md, "Frictional dissipation")
+            s%dissipation = -(s%fx*s%xi + s%fy*s%eta + s%mz*s%phi)
         end if
         if (s%outcome%has_cattaneo) then
             s%fx = s%outcome%fx; s%fy = s%outcome%fy
             s%mu = state%mu
+            s%dissipation = s%outcome%cattaneo%dissipation
             ! the shift opposes the force (tractions act on body 1 and oppose its slip)
             s%xi = -s%outcome%cattaneo%shift*s%outcome%fx/max(hypot(s%outcome%fx, s%outcome%fy), tiny(1.0_dp))
             s%eta = -s%outcome%cattaneo%shift*s%outcome%fy/max(hypot(s%outcome%fx, s%outcome%fy), tiny(1.0_dp))
@@ -716,7 +719,7 @@ contains
                 return
             end if
             s%status_tangential = status_name(tres%status)
-            s%fx = tres%fx; s%fy = tres%fy; s%mz = tres%mz
+            s%fx = tres%fx; s%fy = tres%fy; s%mz = tres%mz; s%dissipation = tres%dissipation
             s%xi = tres%xi; s%eta = tres%eta; s%phi = tres%phi
             s%nadh = tres%nadh; s%nslip = tres%nslip
             s%iterations_tangential = tres%iterations; s%outer_iterations_tangential = tres%outer_iterations

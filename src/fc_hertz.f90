@@ -27,6 +27,9 @@ module fc_hertz
         real(dp) :: p0 = 0       !! maximum pressure [N/mm²]
         real(dp) :: mu = 0       !! coefficient of friction
         real(dp) :: shift = 0    !! rigid tangential shift of body 1 relative to body 2 [mm] (magnitude)
+        !> work of friction while Q grows from 0 [N·mm]: (6/5)·μP·δμ·[1 − (1 − x)^{5/3} −
+        !! (5x/6)(1 + (1 − x)^{2/3})], x = Q/μP, δμ the shift at x = 1 (Mindlin–Deresiewicz)
+        real(dp) :: dissipation = 0
     contains
         procedure :: traction => cattaneo_traction
     end type fc_cattaneo_solution
@@ -137,14 +140,21 @@ contains
     !> Cattaneo–Mindlin for a circular contact of radius a with maximum pressure p0, total
     !! force P, friction μ and tangential force Q (0 ≤ Q < μP); combined G, ν (doc/conventions.md).
     !! Shift δ = 3μP(2−ν)/(8Ga)·[1 − (1 − Q/μP)^{2/3}] (two bodies, Johnson eq. 7.40).
+    !! Dissipation: the work of friction over the slip annulus while Q grows monotonically
+    !! from 0, ∫ μp·|s| dA (the slip of a point only grows, along Q), in closed form; exact
+    !! for ν = 0, Mindlin's approximation otherwise (doc/rolling.md, "Frictional
+    !! dissipation").
     pure function cattaneo_mindlin(a, p0, fn, mu, q, g, nu) result(sol)
         real(dp), intent(in) :: a, p0, fn, mu, q, g, nu
         type(fc_cattaneo_solution) :: sol
-        real(dp) :: ratio
+        real(dp) :: ratio, full_shift
         sol%a = a; sol%p0 = p0; sol%mu = mu
         ratio = min(max(q/(mu*fn), 0.0_dp), 1.0_dp)
         sol%c = a*(1 - ratio)**(1.0_dp/3.0_dp)
-        sol%shift = 3*mu*fn*(2 - nu)/(8*g*a)*(1 - (1 - ratio)**(2.0_dp/3.0_dp))
+        full_shift = 3*mu*fn*(2 - nu)/(8*g*a)
+        sol%shift = full_shift*(1 - (1 - ratio)**(2.0_dp/3.0_dp))
+        sol%dissipation = 1.2_dp*mu*fn*full_shift*(1 - (1 - ratio)**(5.0_dp/3.0_dp) - &
+                          (5*ratio/6)*(1 + (1 - ratio)**(2.0_dp/3.0_dp)))
     end function cattaneo_mindlin
 
     !> Magnitude of the tangential traction at radius r [N/mm²]:

@@ -41,7 +41,8 @@ module fc_legacy
     public :: fc_set_normal_approach, fc_set_normal_force, fc_set_friction, fc_set_shifts, fc_set_forces
     public :: fc_set_solver, fc_set_transient, fc_set_rolling_step, fc_set_reuse, fc_calculate
     public :: fc_set_rolling, fc_set_rolling_forces, fc_set_rolling_options
-    public :: fc_get_forces, fc_get_approach, fc_get_pmax, fc_get_shifts, fc_get_contact_stats, fc_get_edge_contact
+    public :: fc_get_forces, fc_get_dissipation, fc_get_approach, fc_get_pmax, fc_get_shifts, fc_get_contact_stats
+    public :: fc_get_edge_contact
     public :: fc_get_tractions, fc_get_slip, fc_get_gap, fc_get_status_array, fc_get_iterations
     public :: fc_get_rebuilds, fc_get_grid_size, fc_get_error_message, fc_get_nhandles, fc_get_version
     public :: fc_set_influence_file

@@ -167,6 +167,13 @@ contains
         call fc_get_forces(handle, fn, fx, fy, mz, ierr)
     end subroutine fc_get_forces_f77
 
+    subroutine fc_get_dissipation_f77(handle, dissipation, ierr) bind(C, name='fc_get_dissipation_')
+        integer(c_int), intent(in) :: handle
+        real(c_double), intent(out) :: dissipation
+        integer(c_int), intent(out) :: ierr
+        call fc_get_dissipation(handle, dissipation, ierr)
+    end subroutine fc_get_dissipation_f77
+
     subroutine fc_get_approach_f77(handle, approach, ierr) bind(C, name='fc_get_approach_')
         integer(c_int), intent(in) :: handle
         real(c_double), intent(out) :: approach

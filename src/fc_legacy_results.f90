@@ -15,7 +15,8 @@ module fc_legacy_results
     implicit none
     private
 
-    public :: fc_get_forces, fc_get_approach, fc_get_pmax, fc_get_shifts, fc_get_contact_stats, fc_get_edge_contact
+    public :: fc_get_forces, fc_get_dissipation, fc_get_approach, fc_get_pmax, fc_get_shifts, fc_get_contact_stats
+    public :: fc_get_edge_contact
     public :: fc_get_tractions, fc_get_slip, fc_get_gap, fc_get_status_array, fc_get_iterations
     public :: fc_get_rebuilds, fc_get_grid_size, fc_get_error_message, fc_get_nhandles, fc_get_version
 
@@ -54,6 +55,20 @@ contains
         if (ierr /= FCL_OK) return
         fn = s%result%normal%fn; fx = s%result%tangential%fx; fy = s%result%tangential%fy; mz = s%result%tangential%mz
     end subroutine fc_get_forces
+
+    !> Frictional dissipation −Σ (px·sx + py·sy)·dx·dy of the last calculation: the work of
+    !! friction over the shift or the transient step [N·mm]; in steady rolling the work per
+    !! mm rolled [N] (the wear number Tγ).  0 without a tangential problem.
+    subroutine fc_get_dissipation(handle, dissipation, ierr) bind(C, name='fc_get_dissipation')
+        integer(c_int), intent(in) :: handle
+        real(c_double), intent(out) :: dissipation
+        integer(c_int), intent(out) :: ierr
+        type(legacy_state), pointer :: s
+        dissipation = 0
+        call lookup_result(handle, 'fc_get_dissipation', s, ierr)
+        if (ierr /= FCL_OK) return
+        dissipation = s%result%tangential%dissipation
+    end subroutine fc_get_dissipation
 
     !> Approach δ [mm] (prescribed or found for the prescribed force).
     subroutine fc_get_approach(handle, approach, ierr) bind(C, name='fc_get_approach')

@@ -35,6 +35,9 @@ module fc_output
         character(len=16) :: status_tangential = 'not_run' !! status of the tangential stage
         logical :: force_prescribed = .false.        !! fn prescribed (else approach)
         real(dp) :: fn = 0, fx = 0, fy = 0, mz = 0   !! total forces [N] and moment [N mm]
+        !> frictional dissipation −Σ p·s·δA: [N·mm] over a shift or transient step, [N] (per mm
+        !! rolled, Tγ) in steady rolling; FASTSIM: the creepage work −(Fx ξ + Fy η + Mz φ)
+        real(dp) :: dissipation = 0
         real(dp) :: approach = 0                     !! approach δ used [mm]
         real(dp) :: pmax = 0                         !! maximum pressure [N/mm²]
         integer :: ncon = 0, nadh = 0, nslip = 0     !! elements in contact / adhesion / slip
@@ -106,6 +109,7 @@ contains
         call kv_real('fx', s%fx)
         call kv_real('fy', s%fy)
         call kv_real('mz', s%mz)
+        call kv_real('dissipation', s%dissipation)
         call kv_real('approach', s%approach)
         call kv_real('xi', s%xi)
         call kv_real('eta', s%eta)
@@ -510,6 +514,13 @@ contains
             write (unit, '(a,es14.6,a,es14.6,a,es14.6)') ' tangential   Fx = ', s%fx, '   Fy = ', s%fy, '   Mz = ', s%mz
             if (s%mu*s%fn > 0) write (unit, '(a,f9.5,a,f9.5)') '              Fx/(mu Fn) = ', s%fx/(s%mu*s%fn), &
                 '   Fy/(mu Fn) = ', s%fy/(s%mu*s%fn)
+            if (s%problem == 'rolling') then
+                write (unit, '(a,es14.6,a)') ' dissipation  D = ', s%dissipation, ' N per mm rolled (Tgamma)'
+            else if (s%problem == 'transient_rolling') then
+                write (unit, '(a,es14.6,a)') ' dissipation  D = ', s%dissipation, ' N mm over the last step'
+            else
+                write (unit, '(a,es14.6,a)') ' dissipation  D = ', s%dissipation, ' N mm over the shift'
+            end if
             pct_adh = 0; pct_slip = 0
             if (s%nadh + s%nslip > 0) then
                 pct_adh = 100.0_dp*s%nadh/(s%nadh + s%nslip); pct_slip = 100.0_dp*s%nslip/(s%nadh + s%nslip)

@@ -211,6 +211,7 @@ contains
         res%cpu_seconds = real(t1 - t0, dp)/rate
         if (settings%solver /= 'march') res%matvecs = top%nproducts
         call rolling_summary(top%grid, res)
+        res%dissipation = steady_dissipation(top%grid, res, ox, oy)
     end subroutine solve_rolling
 
     !> Steady rolling for a [[fc_rolling_loading]]: creepages go to [[solve_rolling]];

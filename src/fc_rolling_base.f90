@@ -16,7 +16,8 @@ module fc_rolling_base
     ! the value types live in [[fc_rolling_types]] (below the orchestrator's types)
     public :: fc_rolling_settings, fc_rolling_loading, fc_rolling_case
 
-    public :: convective_difference, rigid_creepage, steady_diagonal, rolling_summary, dot, pdot, paxpy, pdivide
+    public :: convective_difference, rigid_creepage, steady_diagonal, rolling_summary, steady_dissipation
+    public :: dot, pdot, paxpy, pdivide
 
     !> A reference solver of steady rolling ('march', 'steadygs'): the tractions res%px, res%py
     !! (the start on entry) for the rigid slip plus offset (wx, wy), the pressure pn with its
@@ -95,6 +96,46 @@ contains
         res%nslip = count(res%state == EL_SLIP)
         res%ncon = res%nadh + res%nslip
     end subroutine rolling_summary
+
+    !> Frictional dissipation of a steady rolling solution per mm rolled [N] (the wear number
+    !! Tγ): −Σ p·ŝ·δx·δy with the slip velocity ŝ = w + (u_{I−x} − u_{I+x})/(2δx), u = A·p +
+    !! offset (`res%ux`, `res%uy` hold A·p), by the central difference where the solver's
+    !! slip (`res%sx`, `res%sy`) has the upwind one.  The upwind slip's sum is O(h) smaller:
+    !! the first-order difference dissipates −Σ p·(u_I − u_{I+x})/δx ≥ 0 of its own where
+    !! the continuum's ∫ p·∂(A p)/∂x vanishes (A symmetric and translation invariant), so the
+    !! central one converges to the same limit as O(h²) (doc/rolling.md, "Frictional
+    !! dissipation").  At the trailing column the difference is one-sided; ahead of the grid
+    !! the material is undeformed (u = 0), as in the solver.
+    pure real(dp) function steady_dissipation(grid, res, offset_x, offset_y) result(d)
+        type(fc_grid), intent(in) :: grid
+        type(fc_tangential_result), intent(in) :: res
+        real(dp), intent(in) :: offset_x(:, :), offset_y(:, :)  !! known displacements, e.g. A^xz·pn [mm]
+        real(dp) :: cx, cy, wx, wy, behind_x, behind_y, ahead_x, ahead_y, scale
+        integer :: i, j, nx
+        d = 0
+        if (.not. (allocated(res%ux) .and. allocated(res%uy) .and. allocated(res%px) .and. allocated(res%py))) return
+        nx = grid%nx
+        do j = 1, grid%ny
+            do i = 1, nx
+                if (res%px(i, j) == 0 .and. res%py(i, j) == 0) cycle
+                ahead_x = 0; ahead_y = 0
+                if (i < nx) then
+                    ahead_x = res%ux(i + 1, j) + offset_x(i + 1, j); ahead_y = res%uy(i + 1, j) + offset_y(i + 1, j)
+                end if
+                if (i > 1) then
+                    behind_x = res%ux(i - 1, j) + offset_x(i - 1, j); behind_y = res%uy(i - 1, j) + offset_y(i - 1, j)
+                    scale = 2*grid%dx
+                else
+                    behind_x = res%ux(i, j) + offset_x(i, j); behind_y = res%uy(i, j) + offset_y(i, j)
+                    scale = grid%dx
+                end if
+                cx = (behind_x - ahead_x)/scale; cy = (behind_y - ahead_y)/scale
+                wx = res%xi - res%phi*grid%y(j); wy = res%eta + res%phi*grid%x(i)
+                d = d - (res%px(i, j)*(wx + cx) + res%py(i, j)*(wy + cy))
+            end do
+        end do
+        d = d*grid%area()
+    end function steady_dissipation
 
     !> Dot product of two contiguous vectors with four partial sums: the Krylov solver's
     !! Gram–Schmidt is dominated by its dot products, and a single running sum serialises

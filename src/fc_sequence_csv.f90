@@ -8,9 +8,9 @@ module fc_sequence_csv
 
     !> Columns of a creep-force curve (`sweep`) and of a transient run (`steps`).
     character(len=*), parameter, public :: sweep_header = &
-        'value,xi,eta,phi,fx,fy,mz,fx_mufn,fy_mufn,nadh,nslip,iterations,seconds,status'
+        'value,xi,eta,phi,fx,fy,mz,fx_mufn,fy_mufn,dissipation,nadh,nslip,iterations,seconds,status'
     character(len=*), parameter, public :: steps_header = &
-        'step,distance,fx,fy,mz,fx_mufn,fy_mufn,nadh,nslip,iterations,seconds,status'
+        'step,distance,fx,fy,mz,fx_mufn,fy_mufn,dissipation,nadh,nslip,iterations,seconds,status'
 
     public :: write_sequence_csv
 

@@ -193,6 +193,7 @@ contains
         end do
         res%fx = fx*grid%area(); res%fy = fy*grid%area()
         res%mz = res%mz*grid%area()
+        res%dissipation = frictional_dissipation(res, grid%area())
         res%nadh = nadh; res%nslip = nslip
         res%ncon = res%nadh + res%nslip
     end subroutine tangential_summary

@@ -33,6 +33,10 @@ module fc_tangcg_types
         real(dp) :: xi = 0, eta = 0, phi = 0         !! rigid shift used [mm, mm, rad]
         real(dp) :: fx = 0, fy = 0                   !! tangential forces [N]
         real(dp) :: mz = 0                           !! moment Σ (x·py − y·px)·dx·dy [N·mm]
+        !> frictional dissipation −Σ (px·sx + py·sy)·dx·dy ≥ 0: the work of friction over a
+        !! shift or a transient step [N·mm]; in steady rolling, where the slip is a velocity
+        !! over the rolling velocity, the work per mm rolled [N] (the wear number Tγ)
+        real(dp) :: dissipation = 0
         integer :: ncon = 0, nadh = 0, nslip = 0
         integer :: status = FC_ERROR
         integer :: iterations = 0        !! TangCG inner iterations / ConvexGS sweeps (all force steps)
@@ -53,5 +57,27 @@ module fc_tangcg_types
         real(dp) :: fx = 0, fy = 0            !! prescribed tangential forces [N] (force_prescribed)
         logical :: force_prescribed = .false.
     end type fc_tangential_loading
+
+    public :: frictional_dissipation
+
+contains
+
+    !> Frictional dissipation of a solution, −Σ (px·sx + py·sy)·`area` (`area` = dx·dy of
+    !! one element [mm²]): ≥ 0, as the tractions oppose the slip; zero in adhesion.  [N·mm]
+    !! for slips in mm (shift, transient step), [N] for slip velocities over the rolling
+    !! velocity (steady rolling).  0 when the result has no slip.
+    pure real(dp) function frictional_dissipation(res, area) result(d)
+        type(fc_tangential_result), intent(in) :: res
+        real(dp), intent(in) :: area
+        integer :: i, j
+        d = 0
+        if (.not. (allocated(res%sx) .and. allocated(res%sy) .and. allocated(res%px) .and. allocated(res%py))) return
+        do j = 1, size(res%px, 2)
+            do i = 1, size(res%px, 1)
+                d = d - (res%px(i, j)*res%sx(i, j) + res%py(i, j)*res%sy(i, j))
+            end do
+        end do
+        d = d*area
+    end function frictional_dissipation
 
 end module fc_tangcg_types

@@ -18,6 +18,7 @@ module test_rolling
     use fc_contact, only: rolling_sequence, fc_contact_operators, fc_contact_loading, fc_contact_settings, &
         fc_contact_result, FC_PROBLEM_ROLLING, solve_contact
     use fc_rolling_base, only: fc_rolling_case
+    use fc_tangcg_types, only: frictional_dissipation
     use fc_testing, file_text => file_lines
     implicit none
     private
@@ -38,6 +39,7 @@ contains
             new_unittest('kalker_coefficients_circle', test_kalker), &
             new_unittest('full_slip', test_full_slip), &
             new_unittest('symmetry_and_signs', test_symmetry), &
+            new_unittest('dissipation_steady', test_dissipation), &
             new_unittest('prescribed_creep_force', test_force), &
             new_unittest('warm_starts_of_a_sweep', test_warm_starts), &
             new_unittest('sweep_predictor', test_sweep_predictor), &
@@ -560,6 +562,74 @@ contains
         call top%destroy()
     end subroutine test_symmetry
 
+    !> Frictional dissipation per mm rolled (Tγ), the Cattaneo sphere at ξ = −0.001,
+    !! η = 0.0005, φ = 0.0002 /mm on 30² and 60² over ±1.3 mm.
+    !! (1) Quasi-identical bodies (ν = 0): the elastic energy of steady rolling is stationary,
+    !! so the friction dissipates the creepages' work −(Fx ξ + Fy η + Mz φ).  The reported
+    !! dissipation (slip by the central difference, whose self term Σ p·(A p)_{I−x} −
+    !! (A p)_{I+x} vanishes for symmetric Toeplitz A) equals it to 1e−8; the solver's own
+    !! upwind slip (`sx`, `sy`) sums to less, by the first-order difference's numerical
+    !! dissipation, and that gap is O(h): measured 27 % on 30², 14 % on 60² (checked:
+    !! below 35 % and 18 %, and more than 1.6× smaller on 60²).
+    !! (2) Dissimilar bodies (G2 = 4 G1, ν2 = 0.28, K = 0.36; Panagiotopoulos rounds): the
+    !! creepage work is then not the dissipation (the coupling exchanges work with the normal
+    !! load); the reported dissipation is positive, and it moves less from 30² to 60² than
+    !! the upwind sum does (second against first order).
+    subroutine test_dissipation(error)
+        type(error_type), allocatable, intent(out) :: error
+        type(fc_grid) :: grid
+        type(fc_material) :: mat
+        type(fc_contact_operators) :: ops
+        type(fc_contact_loading) :: load
+        type(fc_contact_settings) :: set
+        type(fc_contact_result) :: r
+        real(dp), allocatable :: h0(:, :)
+        real(dp) :: work, upwind(2, 2), central(2, 2), gap(2)
+        integer :: stat, k, m
+        integer, parameter :: sizes(2) = [30, 60]
+        character(len=msg_len) :: em
+        character(len=40) :: label
+        load%problem = FC_PROBLEM_ROLLING
+        load%normal%force_prescribed = .true.; load%normal%fn = fn_cat
+        load%tangential%mu = mu_cat
+        load%tangential%xi = -0.001_dp; load%tangential%eta = 0.0005_dp; load%tangential%phi = 0.0002_dp
+        set%normal%tol = 1e-9_dp; set%rolling%tol = 1e-8_dp
+        do m = 1, 2
+            mat = fc_material()
+            mat%g1 = g_cat; mat%g2 = g_cat; mat%nu1 = 0; mat%nu2 = 0
+            if (m == 2) then
+                mat%g2 = 4*g_cat; mat%nu2 = 0.28_dp
+            end if
+            call combine_material(mat, stat, em)
+            do k = 1, 2
+                write (label, '(a,i0,a,i0)') trim(merge('K = 0   ', 'K = 0.36', m == 1))//', ', sizes(k), 'x', sizes(k)
+                call make_grid(grid, sizes(k), sizes(k), -1.3_dp, 1.3_dp, -1.3_dp, 1.3_dp, stat, em)
+                h0 = quadratic_gap(grid, r_cat, r_cat)
+                call solve_contact(ops, grid, mat, h0, load, set, r, stat, em)
+                call check(error, stat == 0 .and. r%status == FC_CONVERGED, trim(label)//': converged: '//trim(em))
+                if (allocated(error)) return
+                associate (t => r%tangential)
+                    work = -(t%fx*t%xi + t%fy*t%eta + t%mz*t%phi)
+                    central(m, k) = t%dissipation
+                    upwind(m, k) = frictional_dissipation(t, grid%area())
+                    write (*, '(a,3es13.5)') '    '//trim(label)//': dissipation, upwind sum, creepage work [N] ', &
+                        t%dissipation, upwind(m, k), work
+                    if (m == 1) then
+                        call check(error, t%dissipation, work, trim(label)//': dissipation = creepage work', rel=1e-8_dp)
+                        gap(k) = (work - upwind(m, k))/work
+                    else
+                        call check(error, t%dissipation > 0 .and. r%rounds > 1, trim(label)//': positive, coupled rounds')
+                    end if
+                end associate
+            end do
+        end do
+        call check(error, gap(1) > 0 .and. gap(1) < 0.35_dp .and. gap(2) > 0 .and. gap(2) < 0.18_dp, &
+            'K = 0: the upwind sum 0 ... 35 % (30x30) and 0 ... 18 % (60x60) below the creepage work')
+        call check(error, gap(2) < gap(1)/1.6_dp, 'K = 0: the upwind gap O(h)')
+        call check(error, abs(central(2, 2) - central(2, 1)) < abs(upwind(2, 2) - upwind(2, 1)), &
+            'K /= 0: the dissipation changes less from 30x30 to 60x60 than the upwind sum')
+    end subroutine test_dissipation
+
     !> Prescribed creep forces: Fx = −0.5·μFn, Fy = 0.2·μFn met within tol·μFn, and the
     !! creepages found reproduce them in a creepage-prescribed solve.
     subroutine test_force(error)
@@ -700,7 +770,7 @@ contains
         type(fc_tangential_result) :: r1, r2
         character(len=:), allocatable :: dir, errors, text
         integer :: code, stat, n
-        real(dp) :: v, ftol
+        real(dp) :: v, ftol, dist
         character(len=msg_len) :: msg
         call cattaneo_setup(30, 25, grid, pn, top)
         ftol = mu_cat*fn_cat
@@ -725,6 +795,16 @@ contains
         call csv_last(dir//'/trans_steps.csv', 3, n, v)
         call check(error, n == 181, 'transient: header + 180 rows')
         call check(error, v, r1%fx, 'transient Fx -> steady', abs=1e-3_dp*ftol)
+        ! dissipation: per mm rolled in the steady case and the sweep, per step [N mm] in the
+        ! transient run, whose step δq = δx makes its slip the steady upwind one times δq
+        call json_value(dir//'/steady.json', '"dissipation"', v)
+        call check(error, v, r1%dissipation, 'steady dissipation = library', rel=1e-3_dp)
+        call csv_last(dir//'/curve_creep.csv', 10, n, v)
+        call check(error, v, r2%dissipation, 'sweep: last dissipation = steady solve', rel=1e-3_dp)
+        call csv_last(dir//'/trans_steps.csv', 2, n, dist)
+        call csv_last(dir//'/trans_steps.csv', 8, n, v)
+        call check(error, v/(dist/(n - 1)), frictional_dissipation(r1, grid%area()), &
+            'transient: dissipation per step / step -> steady upwind sum', rel=1e-2_dp)
         ! the report names creepages, not the shift problem's rigid shifts
         text = file_text(dir//'/report.txt')
         call check(error, index(text, 'prescribed creepages') > 0 .and. index(text, ' creepages    xi =') > 0 &
@@ -747,12 +827,12 @@ contains
         real(dp), allocatable :: rows(:, :, :)
         call sweep_on_off('sweep_predictor', 0.0_dp, 10, rows, error)
         if (allocated(error)) return
-        call check(error, all(nint(rows(:, 14, :)) == FC_CONVERGED), 'every point converged, with and without')
+        call check(error, all(nint(rows(:, 15, :)) == FC_CONVERGED), 'every point converged, with and without')
         call check(error, maxval(abs(rows(:, 5:6, 1) - rows(:, 5:6, 2))), 0.0_dp, 'same Fx, Fy', abs=1e-5_dp*mu_cat*fn_cat)
-        call check(error, sum(rows(3:, 12, 1)) < sum(rows(3:, 12, 2)), 'predictor: fewer Krylov iterations')
-        call check(error, all(rows(1:2, 12, 1) == rows(1:2, 12, 2)), 'points 1, 2 (no predictor yet) unchanged')
+        call check(error, sum(rows(3:, 13, 1)) < sum(rows(3:, 13, 2)), 'predictor: fewer Krylov iterations')
+        call check(error, all(rows(1:2, 13, 1) == rows(1:2, 13, 2)), 'points 1, 2 (no predictor yet) unchanged')
         write (*, '(a,2i6)') '    sweep_predictor: Krylov iterations of points 3-10 with / without: ', &
-            nint(sum(rows(3:, 12, 1))), nint(sum(rows(3:, 12, 2)))
+            nint(sum(rows(3:, 13, 1))), nint(sum(rows(3:, 13, 2)))
     end subroutine test_sweep_predictor
 
     !> The FFT block inverse in every Newton step of a resumed solve (`fft_resumed`): the
@@ -764,14 +844,14 @@ contains
         real(dp), allocatable :: rows(:, :, :)
         call sweep_on_off('fft_resumed', 0.003_dp, 8, rows, error)
         if (allocated(error)) return
-        call check(error, all(nint(rows(:, 14, :)) == FC_CONVERGED), 'every point converged, with and without')
-        call check(error, all(rows(2:, 10, 1) < rows(2:, 11, 1)), 'points 2-8 slip-dominated (nadh < nslip)')
+        call check(error, all(nint(rows(:, 15, :)) == FC_CONVERGED), 'every point converged, with and without')
+        call check(error, all(rows(2:, 11, 1) < rows(2:, 12, 1)), 'points 2-8 slip-dominated (nadh < nslip)')
         call check(error, maxval(abs(rows(:, 5:6, 1) - rows(:, 5:6, 2))), 0.0_dp, 'same Fx, Fy', abs=1e-5_dp*mu_cat*fn_cat)
-        call check(error, rows(1, 12, 1) == rows(1, 12, 2), 'point 1 (a cold start) unchanged')
-        call check(error, sum(rows(2:, 12, 1)) < 0.9_dp*sum(rows(2:, 12, 2)), &
+        call check(error, rows(1, 13, 1) == rows(1, 13, 2), 'point 1 (a cold start) unchanged')
+        call check(error, sum(rows(2:, 13, 1)) < 0.9_dp*sum(rows(2:, 13, 2)), &
             'resumed: at least 10 % fewer Krylov iterations with the FFT block inverse')
         write (*, '(a,2i6)') '    fft_resumed: Krylov iterations of points 2-8 with / without: ', &
-            nint(sum(rows(2:, 12, 1))), nint(sum(rows(2:, 12, 2)))
+            nint(sum(rows(2:, 13, 1))), nint(sum(rows(2:, 13, 2)))
     end subroutine test_fft_resumed
 
     !> The ξ sweep of the Cattaneo sphere (60×50, η = 0.001, φ = 0.003, ξ from `from` to
@@ -800,7 +880,7 @@ contains
         load%normal%force_prescribed = .true.; load%normal%fn = fn_cat
         load%tangential%mu = mu_cat; load%tangential%eta = 0.001_dp; load%tangential%phi = 0.003_dp
         seq%sweep = 'xi'; seq%sweep_from = from; seq%sweep_to = 0.006_dp; seq%sweep_n = n
-        allocate (rows(n, 14, 2))
+        allocate (rows(n, 15, 2))
         do k = 1, 2
             select case (option)
             case ('sweep_predictor'); set%rolling%sweep_predictor = k == 1
@@ -950,7 +1030,7 @@ contains
         type(fc_rolling_loading) :: rl
         type(fc_tangential_result) :: r1
         integer :: h, ierr, stat, itn, itt_cold, itt_warm, nb_n, nb_t, nc
-        real(dp) :: fn, fx, fy, mz, xi, eta, phi
+        real(dp) :: fn, fx, fy, mz, xi, eta, phi, diss
         character(len=msg_len) :: msg
         call cattaneo_setup(30, 25, grid, pn, top)
         rl%mu = mu_cat; rl%xi = 0.0021_dp; rl%eta = 0.001_dp; rl%phi = 0.003_dp
@@ -969,6 +1049,10 @@ contains
         call check(error, fx, r1%fx, 'Fx flat API = library', abs=1e-5_dp*mu_cat*fn_cat)
         call check(error, fy, r1%fy, 'Fy flat API = library', abs=1e-5_dp*mu_cat*fn_cat)
         call check(error, xi, rl%xi, 'creepage returned', rel=1e-15_dp)
+        call fc_get_dissipation(h, diss, ierr)
+        ! identical bodies: the creepages' work, per mm rolled (test dissipation_steady)
+        call check(error, ierr == FCL_OK .and. diss > 0, 'fc_get_dissipation')
+        call check(error, diss, -(fx*xi + fy*eta + mz*phi), 'dissipation = creepage work', rel=1e-8_dp)
         call check(error, itt_warm < itt_cold, 'warm start needs fewer iterations')
         call fc_get_rebuilds(h, nb_n, nb_t, nc, ierr)
         call check(error, nb_t == 1 .and. nc == 2, 'operators built once')
