@@ -131,11 +131,18 @@ NAMED_ERROR = re.compile(
 
 
 def shrink(text):
-    """Example cases on tiny grids: every nx/ny > 16 becomes 16 (powers of 2 stay powers of 2)."""
-    def sub(m):
-        v = int(m.group(2))
-        return m.group(1) + (str(min(v, 16)) if v > 16 else m.group(2))
-    return re.sub(r'(\b(?:nx|ny)\s*=\s*)(\d+)', sub, text, flags=re.I)
+    """Example cases on tiny grids: every nx/ny > 16 becomes 16 (powers of 2 stay powers of 2);
+    creep-force sweeps of at most 4 points and transient runs of at most 8 steps, so that a
+    mutation that enlarges the grid (nx = 4097) multiplies a few solves, not a hundred (the
+    20-point curves of rolling_curves.nml at 4097 x 16: 10 s of the run's 20)."""
+    def sub(limit):
+        def f(m):
+            v = int(m.group(2))
+            return m.group(1) + (str(limit) if v > limit else m.group(2))
+        return f
+    text = re.sub(r'(\b(?:nx|ny)\s*=\s*)(\d+)', sub(16), text, flags=re.I)
+    text = re.sub(r'(\bsweep_n\s*=\s*)(\d+)', sub(4), text, flags=re.I)
+    return re.sub(r'(\bnsteps\s*=\s*)(\d+)', sub(8), text, flags=re.I)
 
 
 def load_corpus():
