@@ -18,11 +18,15 @@
 !! Exit code: 0 all cases converged; 1 a case had an input error (or the command line /
 !! case file was bad); 2 no input error but a solver did not converge or diverged.
 !!
-!! Size (~790 lines): the case loop with its three outcomes (error, sweep or sequence,
+!! `--resume` and `--part K/N` ([[fc_driver_resume]]) skip the cases an earlier run finished
+!! with the same input, or keep one of N round-robin parts of the file.
+!!
+!! Size (~830 lines): the case loop with its three outcomes (error, sweep or sequence,
 !! single solve), its `--check` pass (each case's grid and memory, nothing solved), the
-!! `--case` selection and the summary it fills; what the MPI package's drivers share with it (exit codes, command
-!! line, case errors, output files, Hertz reference) lives in [[fc_driver_common]], the
-!! strip cases and the sequence tables in [[fc_driver_strip]] and [[fc_sequence_csv]].
+!! `--case`, `--part` and `--resume` selection and the summary it fills; what the MPI
+!! package's drivers share with it (exit codes, command line, case errors, output files,
+!! Hertz reference) lives in [[fc_driver_common]], the strip cases and the sequence tables
+!! in [[fc_driver_strip]] and [[fc_sequence_csv]].
 module fc_driver
     use, intrinsic :: iso_fortran_env, only: output_unit, int64, error_unit_default => error_unit
     use fc_kinds, only: dp, msg_len, FC_CONVERGED, FC_DIVERGED, FC_ERR_IO, status_name
@@ -45,6 +49,7 @@ module fc_driver
     use fc_memory, only: available_memory, memory_fits, format_bytes, memory_env
     use fc_version, only: fc_build_info
     use fc_driver_common
+    use fc_driver_resume, only: case_fingerprints, previous_outcome, fingerprint_len
     implicit none
     private
 
@@ -59,14 +64,16 @@ contains
     function driver_usage() result(text)
         character(len=:), allocatable :: text
         character(len=*), parameter :: nl = new_line('a')
-        text = 'usage: fastcontact CASES.nml [--out DIR] [--case NAME[,NAME...]]'//nl// &
+        text = 'usage: fastcontact CASES.nml [--out DIR] [--case NAME[,NAME...]] [--part K/N] [--resume]'//nl// &
             '       fastcontact CASES.nml --check [--case NAME]   (check cases, estimate their memory; solve nothing)'//nl// &
             '       fastcontact --help | --version'//nl//nl// &
             'Solves every case of the namelist file CASES.nml in order: groups &case, &material,'//nl// &
             '&grid, &geometry, &normal, &tangential, &solver, &output; a later case repeats only'//nl// &
             'what changes.  &case problem = normal, normal+tangential, tangential, rolling (steady'//nl// &
             'creep forces; sweeps write DIR/<name>_creep.csv), transient_rolling, hertz, strip_mp1..3.'//nl// &
-            '--case solves only the cases of those names (the others are read for what they pass on).'//nl// &
+            '--case solves only the cases of those names (the others are read for what they pass on);'//nl// &
+            '--part K/N only cases K, K+N, K+2N, ... (N processes, e.g. a job array, share the file);'//nl// &
+            '--resume skips the cases an earlier run finished with the same input (their JSON says so).'//nl// &
             'Writes DIR/<name>.json (summary) and DIR/<name>.csv (one row per element) per case'//nl// &
             "(DIR: --out, else &output dir, else 'out').  Threads: &solver threads or"//nl// &
             'OMP_NUM_THREADS.  See doc/user_guide.md and doc/namelist.md.'//nl//nl// &
@@ -86,7 +93,8 @@ contains
         integer, intent(in), optional :: error_unit    !! error messages (default: stderr)
         integer, intent(in), optional :: only_case     !! first case to solve (1-based)
         integer, intent(in), optional :: last_case     !! last case to solve (with only_case)
-        integer, allocatable, intent(out), optional :: statuses(:)  !! per solved case (with only_case)
+        !> per solved case (with only_case); + `STATUS_SKIPPED` ([[fc_driver_common]]) for a case `--resume` skipped
+        integer, allocatable, intent(out), optional :: statuses(:)
         !> operators kept by the caller across calls (the MPI batch: one set per rank); a call
         !! reuses them while grid and material match, exactly as consecutive cases of one file do
         type(fc_contact_operators), intent(inout), optional :: operators
@@ -102,8 +110,10 @@ contains
         character(len=64) :: name
         character(len=msg_len) :: errmsg
         type(fc_contact_operators) :: ops
-        integer :: case_status, nused_before
+        integer :: case_status, nused_before, nskipped, part(2)
         character(len=case_name_len), allocatable :: selected(:), case_names(:)
+        character(len=fingerprint_len), allocatable :: fingerprints(:)
+        logical :: resume, skipped
         rep = output_unit; err = error_unit_default
         if (present(report_unit)) rep = report_unit
         if (present(error_unit)) err = error_unit
@@ -111,10 +121,14 @@ contains
         if (present(memory_share)) share = max(1, memory_share)
         exit_code = EXIT_OK
         ! ---- command line
+        part = 0
         if (present(only_case)) then
-            call parse_driver_arguments(args, 'fastcontact', driver_usage(), case_file, out_dir, action, errtext)
+            ! the MPI batch: its ranks share the cases; --resume skips those done before
+            call parse_driver_arguments(args, 'fastcontact', driver_usage(), case_file, out_dir, action, errtext, &
+                                        resume=resume)
         else
-            call parse_driver_arguments(args, 'fastcontact', driver_usage(), case_file, out_dir, action, errtext, selected)
+            call parse_driver_arguments(args, 'fastcontact', driver_usage(), case_file, out_dir, action, errtext, selected, &
+                                        resume, part)
         end if
         select case (action)
         case ('help')
@@ -132,7 +146,8 @@ contains
             exit_code = EXIT_INPUT_ERROR; return
         end if
         allocate (used(0), used_case(0))
-        ncase_err = 0; ncase_fail = 0
+        ncase_err = 0; ncase_fail = 0; nskipped = 0
+        fingerprints = case_fingerprints(cases)
         if (allocated(selected)) then
             call check_selection(stat)
             if (stat /= 0) then
@@ -157,8 +172,16 @@ contains
             if (.not. is_selected(k)) then
                 call inherit_case(k); cycle
             end if
-            call run_one_case(k, case_status)
-            if (present(statuses) .and. present(only_case)) statuses(k - only_case + 1) = case_status
+            skipped = .false.
+            if (resume) skipped = done_before(k, case_status)
+            if (skipped) then
+                nskipped = nskipped + 1
+                call inherit_case(k)
+            else
+                call run_one_case(k, case_status)
+            end if
+            if (present(statuses) .and. present(only_case)) &
+                statuses(k - only_case + 1) = case_status + merge(STATUS_SKIPPED, 0, skipped)
             select case (case_status)
             case (0)
             case (1); ncase_err = ncase_err + 1
@@ -168,7 +191,7 @@ contains
         call ops%destroy()
         if (.not. present(only_case)) write (rep, '(a,i0,a,i0,a,i0,a,i0,a)') 'fastcontact: ', &
             nsolved(), ' case(s)'//selection_note()//': ', nsolved() - ncase_err - ncase_fail, ' converged, ', &
-            ncase_fail, ' not converged, ', ncase_err, ' with input errors'
+            ncase_fail, ' not converged, ', ncase_err, ' with input errors'//skipped_note()
         if (ncase_err > 0) then
             exit_code = EXIT_INPUT_ERROR
         else if (ncase_fail > 0) then
@@ -371,6 +394,7 @@ contains
             mat = s%outcome%material
             ! ---- summary
             s%name = state%name; s%title = state%title; s%problem = state%problem; s%geometry = state%kind
+            s%input_fingerprint = fingerprints(k)
             s%force_prescribed = state%force_prescribed
             s%tol = kase%settings%normal%tol
             if (s%outcome%tol > 0) s%tol = s%outcome%tol
@@ -522,6 +546,7 @@ contains
             end if
             call system_clock(t2)
             s%cpu_seconds = real(t2 - t0, dp)/rate
+            s%input_fingerprint = fingerprints(k)
             call write_case_json(dir//'/'//trim(state%name)//'.json', s, stat, errmsg)
             if (stat /= 0) then
                 call remove_file(dir//'/'//trim(state%name)//'.csv')
@@ -581,13 +606,14 @@ contains
             integer, intent(in) :: k
             is_selected = .true.
             if (allocated(selected)) is_selected = any(selected == case_names(k))
+            if (part(2) > 0) is_selected = is_selected .and. mod(k - 1, part(2)) == part(1) - 1
         end function is_selected
 
         !> Cases solved (or checked) in this run.
         integer function nsolved()
             integer :: j
             nsolved = size(cases)
-            if (allocated(selected)) nsolved = count([(is_selected(j), j = 1, size(cases))])
+            if (allocated(selected) .or. part(2) > 0) nsolved = count([(is_selected(j), j = 1, size(cases))])
         end function nsolved
 
         !> Prefix of the closing summary line when `--case` chose the cases.
@@ -595,7 +621,37 @@ contains
             character(len=:), allocatable :: note
             note = ''
             if (allocated(selected)) note = ' chosen by --case'
+            if (part(2) > 0) note = note//' of part '//fmt_int(part(1))//'/'//fmt_int(part(2))
         end function selection_note
+
+        !> End of the closing summary line with `--resume`: how many were done before.
+        function skipped_note() result(note)
+            character(len=:), allocatable :: note
+            note = ''
+            if (resume) note = ' ('//fmt_int(nskipped)//' of them done in an earlier run: skipped)'
+        end function skipped_note
+
+        !> `--resume`: case k was finished by an earlier run with the same inputs (its JSON has
+        !! its input fingerprint and a final status, [[previous_outcome]]); `case_status` from
+        !! that status, and the report says so.
+        logical function done_before(k, case_status) result(done)
+            integer, intent(in) :: k
+            integer, intent(out) :: case_status
+            type(fc_case_input) :: scratch
+            character(len=case_name_len) :: nm
+            character(len=:), allocatable :: what
+            integer :: st
+            character(len=msg_len) :: msg
+            done = .false.; case_status = 0
+            scratch = state
+            call apply_case(cases(k), k, scratch, nm, st, msg)
+            if (st /= 0) return
+            if (any(used == scratch%name)) return
+            done = previous_outcome(case_output_dir(scratch, out_dir)//'/'//trim(scratch%name)//'.json', &
+                                    fingerprints(k), case_status, what)
+            if (done) write (rep, '(a)') ' case '//trim(scratch%name)//': done in an earlier run with the same input ('// &
+                what//'), skipped (--resume)'//new_line('a')
+        end function done_before
 
         !> Apply and check case k without solving or writing: the state later cases inherit
         !! (as `run_one_case` leaves it, except after an error found only while solving).

@@ -9,12 +9,16 @@ module fc_driver_common
     use fc_influence, only: fc_material
     use fc_input, only: fc_case_input
     use fc_output, only: fc_case_summary
+    use fc_driver_resume, only: parse_part
     implicit none
     private
 
     integer, parameter, public :: EXIT_OK = 0           !! all cases converged
     integer, parameter, public :: EXIT_INPUT_ERROR = 1  !! bad command line, file or case input
     integer, parameter, public :: EXIT_NOT_CONVERGED = 2 !! a solver did not converge / diverged
+    !> added to a case status (0, 2) in `run_driver`'s `statuses` when `--resume` skipped the
+    !! case (done in an earlier run)
+    integer, parameter, public :: STATUS_SKIPPED = 10
     integer, parameter, public :: case_name_len = 64       !! length of `&case name` (output file stem)
     integer, parameter, public :: max_selected_cases = 10000 !! names given with `--case`, at most
 
@@ -64,7 +68,7 @@ contains
     !! and, for a caller that passes `selected`, `--case NAME[,NAME…]` (repeatable).
     !! `action` is 'run' (case_file and, when given, out_dir set), 'help', 'version' or
     !! 'error' (`errtext`: the message lines, prefixed by `prog`, with `usage` where it helps).
-    subroutine parse_driver_arguments(args, prog, usage, case_file, out_dir, action, errtext, selected)
+    subroutine parse_driver_arguments(args, prog, usage, case_file, out_dir, action, errtext, selected, resume, part)
         character(len=*), intent(in) :: args(:)
         character(len=*), intent(in) :: prog    !! program name for the messages
         character(len=*), intent(in) :: usage   !! usage text
@@ -72,8 +76,16 @@ contains
         !> the case names given with `--case` (allocated only when some were given); without
         !! this argument `--case` is an unexpected argument
         character(len=case_name_len), allocatable, intent(out), optional :: selected(:)
-        integer :: i
+        !> `--resume` given (without this argument it is an unexpected argument)
+        logical, intent(out), optional :: resume
+        !> `--part K/N` as [K, N] ([0, 0] when not given; without this argument `--part` is
+        !! an unexpected argument)
+        integer, intent(out), optional :: part(2)
+        integer :: i, stat_part
+        character(len=:), allocatable :: msg
         action = 'run'; errtext = ''
+        if (present(resume)) resume = .false.
+        if (present(part)) part = 0
         i = 1
         do while (i <= size(args))
             select case (trim(args(i)))
@@ -92,6 +104,28 @@ contains
                 if (len_trim(args(i)) > 6) then
                     if (args(i)(1:6) == '--out=') then
                         out_dir = trim(args(i)(7:)); i = i + 1; cycle
+                    end if
+                end if
+                if (present(resume)) then
+                    if (trim(args(i)) == '--resume') then
+                        resume = .true.; i = i + 1; cycle
+                    end if
+                end if
+                if (present(part)) then
+                    if (trim(args(i)) == '--part' .or. index(args(i), '--part=') == 1) then
+                        if (trim(args(i)) == '--part') then
+                            if (i == size(args)) then
+                                call fail(prog//': --part needs K/N'//new_line('a')//usage); return
+                            end if
+                            i = i + 1
+                            call parse_part(trim(args(i)), part(1), part(2), stat_part, msg)
+                        else
+                            call parse_part(trim(args(i)(8:)), part(1), part(2), stat_part, msg)
+                        end if
+                        if (stat_part /= 0) then
+                            call fail(prog//': '//msg); return
+                        end if
+                        i = i + 1; cycle
                     end if
                 end if
                 if (present(selected)) then

@@ -23,6 +23,9 @@ module fc_output
         character(len=64) :: name = ''               !! case name (file stem)
         character(len=128) :: title = ''             !! free text
         character(len=32) :: problem = 'normal'      !! problem type
+        !> hash of the version and of the groups of this and all earlier cases of the file
+        !! ([[fc_driver_resume]]: `--resume` skips a case whose JSON has the same)
+        character(len=16) :: input_fingerprint = ''
         character(len=16) :: geometry = ''           !! geometry kind
         character(len=16) :: status = 'error'        !! converged, not_converged, diverged, error
         character(len=24) :: solver = ''             !! solver(s) used: 'bccg' or 'bccg+tangcg'
@@ -98,6 +101,7 @@ contains
         write (u, '(a)') '{'
         call kv_str('name', s%name)
         call kv_str('version', fc_version_string)
+        if (len_trim(s%input_fingerprint) > 0) call kv_str('input_fingerprint', s%input_fingerprint)
         call kv_str('title', s%title)
         call kv_str('problem', s%problem)
         call kv_str('geometry', s%geometry)

@@ -23,6 +23,7 @@ program tester
     use test_reliability, only: collect_reliability
     use test_readme, only: collect_readme
     use test_summary, only: collect_summary
+    use test_batch, only: collect_batch
     implicit none
     character(len=64) :: suite, only
     integer :: npass, nfail
@@ -66,6 +67,9 @@ program tester
     end if
     if (want('summary')) then
         call collect_summary(tests); call run_suite('summary', tests, only, npass, nfail)
+    end if
+    if (want('batch')) then
+        call collect_batch(tests); call run_suite('batch', tests, only, npass, nfail)
     end if
     if (want('readme')) then
         call collect_readme(tests); call run_suite('readme', tests, only, npass, nfail)

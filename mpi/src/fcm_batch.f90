@@ -29,6 +29,8 @@ module fcm_batch
     use fc_contact, only: fc_contact_operators
     use fc_namelist, only: fc_case_chunk, read_case_file
     use fc_driver, only: run_driver, EXIT_OK, EXIT_INPUT_ERROR, EXIT_NOT_CONVERGED
+    use fc_driver_common, only: STATUS_SKIPPED
+    use fc_strings, only: fmt_int
     implicit none
     private
 
@@ -43,7 +45,9 @@ module fcm_batch
 
     !> Outcome of one chunk of consecutive cases.
     type :: case_outcome
-        integer, allocatable :: statuses(:)         !! per case: 0 converged, 1 input error, 2 solver failure
+        !> per case: 0 converged, 1 input error, 2 solver failure; + STATUS_SKIPPED when
+        !! `--resume` found it done in an earlier run
+        integer, allocatable :: statuses(:)
         character(len=:), allocatable :: report     !! report text
         character(len=:), allocatable :: errors     !! error messages
         integer :: rank = -1                        !! rank that solved it
@@ -81,7 +85,7 @@ contains
         integer, intent(out) :: exit_code
         integer, intent(in), optional :: report_unit, err_unit
         integer, allocatable, intent(out), optional :: case_ranks(:)
-        integer :: rank, nprocs, ierr, ncases, rep, err, k, nerr, nfail, r, win, nchunks
+        integer :: rank, nprocs, ierr, ncases, rep, err, k, nerr, nfail, nskip, r, win, nchunks
         type(case_outcome), allocatable :: out(:)
         type(fc_case_chunk), allocatable :: cases(:)
         type(fc_contact_operators) :: ops
@@ -151,15 +155,16 @@ contains
             do r = 1, nprocs - 1
                 call receive_outcomes(r, out)
             end do
+            nskip = count([(out(k)%statuses >= STATUS_SKIPPED, k=1, nchunks)])
             nerr = count([(out(k)%statuses == 1, k=1, nchunks)])
-            nfail = count([(out(k)%statuses >= 2 .or. out(k)%statuses < 0, k=1, nchunks)])
+            nfail = count([(mod(out(k)%statuses, STATUS_SKIPPED) >= 2 .or. out(k)%statuses < 0, k=1, nchunks)])
             do k = 1, nchunks
                 call write_lines(rep, out(k)%report)
                 call write_lines(err, out(k)%errors)
             end do
             flush (err)
             write (rep, '(a,i0,a,i0,a,i0,a,i0,a)') 'fastcontact: ', ncases, ' case(s): ', ncases - nerr - nfail, &
-                ' converged, ', nfail, ' not converged, ', nerr, ' with input errors'
+                ' converged, ', nfail, ' not converged, ', nerr, ' with input errors'//skipped_note()
             exit_code = EXIT_OK
             if (nerr > 0) then
                 exit_code = EXIT_INPUT_ERROR
@@ -196,6 +201,13 @@ contains
         end function next_chunk
 
         !> Solve chunk k with the serial driver; report and errors captured as text.
+        !> End of the closing line with `--resume` (as the serial driver's).
+        function skipped_note() result(note)
+            character(len=:), allocatable :: note
+            note = ''
+            if (any(args == '--resume')) note = ' ('//fmt_int(nskip)//' of them done in an earlier run: skipped)'
+        end function skipped_note
+
         subroutine solve_chunk(k, o)
             integer, intent(in) :: k
             type(case_outcome), intent(out) :: o

@@ -26,6 +26,7 @@ contains
         call run_mpi_test('batch_guided_chunks', only, test_guided, npass, nfail)
         call run_mpi_test('batch_shared_wisdom_file', only, test_shared_wisdom, npass, nfail)
         call run_mpi_test('batch_memory_share', only, test_memory_share, npass, nfail)
+        call run_mpi_test('batch_resume', only, test_resume, npass, nfail)
     end subroutine batch_tests
 
     !> The ranks of a batch on one node share its memory: with 30 MB available (given by
@@ -113,6 +114,73 @@ contains
             close (ur); close (ue)
         end subroutine run_batch
     end subroutine test_memory_share
+
+    !> `--resume` on the MPI batch: a second run of the file of [[test_equal]] skips the 8
+    !! cases with outputs (the input error and the duplicate name are met again: exit status 1,
+    !! as the first run), says so in its report and closing line, and rewrites no output; after
+    !! one JSON is deleted, only that case is solved again.
+    subroutine test_resume(msg)
+        character(len=:), allocatable, intent(out) :: msg
+        integer :: rank, ierr, code1, code2, code3, ur, ue
+        character(len=64) :: args(4)
+        character(len=:), allocatable :: before, rep
+        call mpi_comm_rank(MPI_COMM_WORLD, rank, ierr)
+        if (rank == 0) then
+            call execute_command_line('rm -rf '//dir//'/resume && mkdir -p '//dir//'/resume')
+            call write_cases(dir//'/resume/cases.nml')
+        end if
+        call mpi_barrier(MPI_COMM_WORLD, ierr)
+        args(1) = dir//'/resume/cases.nml'; args(2) = '--out'; args(3) = dir//'/resume/out'; args(4) = '--resume'
+        call run_batch(args(1:3), 'first', code1)
+        if (rank == 0) before = slurp_file(dir//'/resume/out/cat_force.json')
+        call run_batch(args, 'again', code2)
+        if (rank == 0) then
+            call execute_command_line('rm -f '//dir//'/resume/out/hz_b.json')
+        end if
+        call mpi_barrier(MPI_COMM_WORLD, ierr)
+        call run_batch(args, 'lost', code3)
+        if (rank /= 0) return
+        if (code1 /= 1 .or. code2 /= 1 .or. code3 /= 1) then
+            msg = 'exit status: '//fmt_int(code1)//', '//fmt_int(code2)//', '//fmt_int(code3)//' (1 expected: one input error)'
+            return
+        end if
+        rep = slurp_file(dir//'/resume/again.rep0')
+        if (count_of(rep, 'skipped (--resume)') /= 8 .or. index(rep, '10 case(s): 7 converged, 1 not converged, '// &
+            '2 with input errors (8 of them done in an earlier run: skipped)') == 0) then
+            msg = 'second run: 8 cases skipped expected: '//rep; return
+        end if
+        if (slurp_file(dir//'/resume/out/cat_force.json') /= before) then
+            msg = 'second run: cat_force.json rewritten'; return
+        end if
+        rep = slurp_file(dir//'/resume/lost.rep0')
+        if (count_of(rep, 'skipped (--resume)') /= 7 .or. index(rep, 'case hz_b: done') > 0) then
+            msg = 'after hz_b.json was deleted: 7 skipped and hz_b solved expected: '//rep; return
+        end if
+    contains
+        subroutine run_batch(a, tag, c)
+            character(len=*), intent(in) :: a(:), tag
+            integer, intent(out) :: c
+            if (rank == 0) then
+                open (newunit=ur, file=dir//'/resume/'//tag//'.rep0', status='replace')
+                open (newunit=ue, file=dir//'/resume/'//tag//'.err0', status='replace')
+                call run_mpi_batch(a, MPI_COMM_WORLD, c, ur, ue)
+                close (ur); close (ue)
+            else
+                call run_mpi_batch(a, MPI_COMM_WORLD, c)
+            end if
+        end subroutine run_batch
+        integer function count_of(text, what) result(n)
+            character(len=*), intent(in) :: text, what
+            integer :: a, b
+            n = 0; a = 1
+            do
+                b = index(text(a:), what)
+                if (b == 0) exit
+                n = n + 1; a = a + b + len(what) - 1
+                if (a > len(text)) exit
+            end do
+        end function count_of
+    end subroutine test_resume
 
     subroutine write_cases(path)
         character(len=*), intent(in) :: path
