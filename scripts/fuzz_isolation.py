@@ -9,13 +9,16 @@ periodic cells with and without friction, and with `--ic-tool` influence-coeffic
 half-space bodies written by `fastcontact-ic --analytic`, body 1 or both bodies); different grids,
 materials, loads, solvers, preconditioner forms and thread counts, small grids), runs each file whole, then every case of it alone with
 `--case NAME` (which reads the cases before it only for what they pass on and builds its
-operators afresh), and compares the outputs:
+operators afresh), then in two round-robin parts (`--part 1/2`, `--part 2/2`) into one
+directory, and compares the outputs:
 
 * the JSON summary, without the times and the `operator_built` flags;
 * the element table, the creep-force table and the transient steps table, without their
   `seconds` column.
 
-They must agree to the last digit (the same arithmetic in the same order).  A difference
+They must agree to the last digit (the same arithmetic in the same order).  A last run with
+`--resume` on the whole run's directory must skip every case that has a summary and
+rewrite none.  A difference
 prints the seed, the file and the first differing keys; the exit status is 1 when any case
 differed.
 
@@ -224,6 +227,23 @@ def main():
                     q = os.path.join(oned, n + suffix)
                     if not os.path.exists(q) or table(p) != table(q):
                         differs.append(f'{n}: {n}{suffix}')
+        # the file in two round-robin parts into one directory: every case as in the whole run
+        partd = os.path.join(work, 'parts')
+        for part in ('1/2', '2/2'):
+            subprocess.run([a.driver, nml, '--out', partd, '--part', part], capture_output=True, env=env,
+                           timeout=a.timeout)
+        for n in names:
+            p, q = os.path.join(alld, n + '.json'), os.path.join(partd, n + '.json')
+            if not os.path.exists(q) or summary(p) != summary(q):
+                differs.append(f'{n}: --part differs')
+        # --resume on the whole run's directory: every case with a summary skipped, none rewritten
+        before = {n: open(os.path.join(alld, n + '.json')).read() for n in names}
+        r = subprocess.run([a.driver, nml, '--out', alld, '--resume'], capture_output=True, env=env,
+                           timeout=a.timeout, text=True, errors='replace')
+        if f'({len(names)} of them done in an earlier run: skipped)' not in r.stdout:
+            differs.append(f'--resume: not all {len(names)} cases skipped')
+        if any(open(os.path.join(alld, n + '.json')).read() != before[n] for n in names):
+            differs.append('--resume rewrote a summary')
         nfiles += 1
         ncases += len(names)
         if differs:
