@@ -6,6 +6,7 @@ module test_batch
     use fc_test_driver, only: fresh_dir, run_namelist
     use fc_driver, only: parse_driver_arguments
     use fc_driver_resume, only: parse_part
+    use test_driver, only: without_times
     use fc_testing, only: error_type, unittest_type, new_unittest, check, read_all => file_lines
     implicit none
     private
@@ -178,21 +179,6 @@ contains
         out = text
         if (a > 0) out = text(1:a - 1)//new//text(a + len(old):)
     end function replace
-
-    !> `text` without its lines holding seconds or the operator-reuse flags.
-    function without_times(text) result(out)
-        character(len=*), intent(in) :: text
-        character(len=:), allocatable :: out
-        integer :: a, b
-        out = ''
-        a = 1
-        do while (a <= len(text))
-            b = index(text(a:), nl)
-            b = merge(len(text), a + b - 1, b == 0)
-            if (index(text(a:b), 'seconds') == 0 .and. index(text(a:b), 'operator_built') == 0) out = out//text(a:b)
-            a = b + 1
-        end do
-    end function without_times
 
     logical function file_exists(path)
         character(len=*), intent(in) :: path

@@ -20,6 +20,7 @@ module test_driver
     private
 
     public :: collect_driver
+    public :: without_times   ! shared with the suite `batch`
 
     character(len=*), parameter :: nl = new_line('a')
 
