@@ -124,7 +124,8 @@ contains
     end subroutine test_parts
 
     !> Bad `--part` values are refused naming the option, the value and the limit (exit 1,
-    !! nothing solved); the MPI drivers' command line (without these arguments) refuses both.
+    !! nothing solved); the MPI batch's command line refuses `--part`, and a caller that takes
+    !! neither refuses `--resume`.
     subroutine test_arguments(error)
         type(error_type), allocatable, intent(out) :: error
         character(len=:), allocatable :: dir, errors, case_file, out_dir, action, errtext
@@ -154,7 +155,7 @@ contains
         call parse_driver_arguments([character(len=16) :: 'x.nml', '--resume'], 'fastcontact-mpi', 'usage', &
             case_file, out_dir, action, errtext)
         call check(error, action == 'error' .and. index(errtext, "unexpected argument '--resume'") > 0, &
-            'the distributed driver has no --resume: '//errtext)
+            'a caller that takes no --resume refuses it: '//errtext)
         call execute_command_line("rm -rf '"//dir//"'")
     end subroutine test_arguments
 

@@ -47,6 +47,8 @@ module fcm_dist_driver
     use fc_driver_common, only: EXIT_OK, EXIT_INPUT_ERROR, EXIT_NOT_CONVERGED, make_directory, remove_file, &
         parse_driver_arguments, write_case_error, case_output_dir, remove_case_outputs, hertz_reference
     use fc_version, only: fc_build_info
+    use fc_driver_resume, only: case_fingerprints, previous_outcome, fingerprint_len
+    use fc_strings, only: fmt_int
     use fc_threads, only: set_thread_count
     use fcm_norm, only: fcm_normal_operator, build_dist_normal_operator, solve_dist_normal, dist_memory_per_rank
     use fc_memory, only: available_memory, process_resident_bytes, format_bytes, memory_env
@@ -71,7 +73,9 @@ contains
         integer, intent(in) :: comm
         integer, intent(out) :: exit_code
         integer, intent(in), optional :: report_unit, err_unit
-        integer :: rep, err, rank, nprocs, ierr, k, stat, ncase_err, ncase_fail, case_status
+        integer :: rep, err, rank, nprocs, ierr, k, stat, ncase_err, ncase_fail, case_status, nskipped
+        logical :: resume   !! --resume: skip the cases an earlier run finished with the same input
+        character(len=fingerprint_len), allocatable :: fingerprints(:)
         character(len=:), allocatable :: case_file, out_dir, action, errtext
         type(fc_case_chunk), allocatable :: cases(:)
         type(fc_case_input) :: state, saved_state
@@ -92,7 +96,8 @@ contains
         exit_code = EXIT_OK
         built = .false.; built_periodic = .false.; built_measured = .false.
         ! ---- command line (the same on every rank)
-        call parse_driver_arguments(args, 'fastcontact-mpi', dist_usage(), case_file, out_dir, action, errtext)
+        call parse_driver_arguments(args, 'fastcontact-mpi', dist_usage(), case_file, out_dir, action, errtext, &
+                                    resume=resume)
         select case (action)
         case ('help')
             if (rank == 0) write (rep, '(a)') dist_usage()
@@ -111,7 +116,8 @@ contains
             exit_code = EXIT_INPUT_ERROR; return
         end if
         allocate (used(0))
-        ncase_err = 0; ncase_fail = 0
+        ncase_err = 0; ncase_fail = 0; nskipped = 0
+        fingerprints = case_fingerprints(cases)
         do k = 1, size(cases)
             call run_one(k, case_status)
             select case (case_status)
@@ -127,7 +133,7 @@ contains
         else if (rank == 0) then
             write (rep, '(a,i0,a,i0,a,i0,a,i0,a,i0,a)') 'fastcontact-mpi: ', size(cases), &
                 ' case(s) on ', nprocs, ' ranks: ', size(cases) - ncase_err - ncase_fail, ' converged, ', ncase_fail, &
-                ' not converged, ', ncase_err, ' with input errors'
+                ' not converged, ', ncase_err, ' with input errors'//skipped_note()
         end if
         if (ncase_err > 0) then
             exit_code = EXIT_INPUT_ERROR
@@ -172,6 +178,9 @@ contains
             errmsg = dist_case_unsupported(state, kase)
             if (len_trim(errmsg) > 0) then
                 call case_error(nbefore); return
+            end if
+            if (resume .and. .not. check_only) then
+                if (done_before(k, dir, case_status)) return
             end if
             if (check_only) then
                 call check_dist_memory(kase, stat, errmsg, report=.true.)
@@ -267,6 +276,7 @@ contains
             end if
             ! ---- summary (the serial driver's keys)
             s%name = state%name; s%title = state%title; s%problem = state%problem; s%geometry = state%kind
+            s%input_fingerprint = fingerprints(k)
             s%force_prescribed = state%force_prescribed
             s%tol = kase%settings%normal%tol
             s%notes = state%notes//case_notes(state)//'distributed over '//fmt_int(nprocs)//' ranks. '
@@ -320,6 +330,37 @@ contains
                     trim(status_name(res%status))//': '//trim(s%message)
             end if
         end subroutine run_one
+
+        !> `--resume`: case k (its values applied to `state`) was finished by an earlier run
+        !! with the same input ([[previous_outcome]]); rank 0 reads its JSON and tells the
+        !! others.  `case_status` from the status the JSON records; the report says so.
+        logical function done_before(k, dir, case_status) result(done)
+            integer, intent(in) :: k
+            character(len=*), intent(in) :: dir
+            integer, intent(inout) :: case_status
+            character(len=:), allocatable :: what
+            integer :: buf(2)
+            buf = 0
+            if (rank == 0) then
+                if (previous_outcome(dir//'/'//trim(state%name)//'.json', fingerprints(k), buf(2), what)) then
+                    buf(1) = 1
+                    write (rep, '(a)') ' case '//trim(state%name)//': done in an earlier run with the same input ('// &
+                        what//'), skipped (--resume)'//new_line('a')
+                end if
+            end if
+            call mpi_bcast(buf, 2, MPI_INTEGER, 0, comm, ierr)
+            done = buf(1) == 1
+            if (done) then
+                case_status = buf(2); nskipped = nskipped + 1
+            end if
+        end function done_before
+
+        !> End of the closing line with `--resume`.
+        function skipped_note() result(note)
+            character(len=:), allocatable :: note
+            note = ''
+            if (resume) note = ' ('//fmt_int(nskipped)//' of them done in an earlier run: skipped)'
+        end function skipped_note
 
         !> The element table of this case (CSV, or `.npy` with `npy`), rank after rank (rank 0
         !! with the header), each appending its rows; stat and errmsg the same on every rank
@@ -521,10 +562,11 @@ contains
     function dist_usage() result(text)
         character(len=:), allocatable :: text
         character(len=1), parameter :: nl = achar(10)
-        text = 'usage: mpirun -np P fastcontact-mpi CASES.nml --distributed [--out DIR] [--check]'//nl// &
+        text = 'usage: mpirun -np P fastcontact-mpi CASES.nml --distributed [--out DIR] [--check] [--resume]'//nl// &
             '  every case solved by all P ranks together (normal problems, BCCG, grids generated'//nl// &
             '  row by row); without --distributed the cases are spread over the ranks.  --check:'//nl// &
-            '  check every case and estimate its memory per rank against the nodes; solve nothing'
+            '  check every case and estimate its memory per rank against the nodes; solve nothing.'//nl// &
+            '  --resume: skip the cases an earlier run finished with the same input'
     end function dist_usage
 
 end module fcm_dist_driver

@@ -29,7 +29,61 @@ contains
         call run_mpi_test('dist_driver_rejects_unsupported', only, test_unsupported, npass, nfail)
         call run_mpi_test('dist_driver_memory_check', only, test_memory, npass, nfail)
         call run_mpi_test('dist_driver_fft_wisdom', only, test_wisdom, npass, nfail)
+        call run_mpi_test('dist_driver_resume', only, test_resume, npass, nfail)
     end subroutine dist_driver_tests
+
+    !> `--resume` on the distributed driver: a second run of two cases skips both (report and
+    !! closing line say so, the JSON is not rewritten); after one JSON is deleted, only that
+    !! case is solved again, to the same force.
+    subroutine test_resume(msg)
+        character(len=:), allocatable, intent(out) :: msg
+        integer :: rank, ierr, code, u, k
+        character(len=4096), allocatable :: args(:)
+        character(len=:), allocatable :: rep, before_a, before_b
+        call mpi_comm_rank(MPI_COMM_WORLD, rank, ierr)
+        if (rank == 0) then
+            call execute_command_line('rm -rf '//dir//'/res && mkdir -p '//dir//'/res')
+            open (newunit=u, file=dir//'/res.nml', status='replace', action='write')
+            write (u, '(a)') "&case name = 'ra' /"
+            write (u, '(a)') "&material g1 = 82000.0, g2 = 82000.0, nu1 = 0.28, nu2 = 0.28 /"
+            write (u, '(a)') "&grid nx = 32, ny = 24, xmin = -1.2, xmax = 1.2, ymin = -1.0, ymax = 1.0 /"
+            write (u, '(a)') "&geometry kind = 'quadratic', rx = 40.0, ry = 30.0 /"
+            write (u, '(a)') "&normal approach = 0.004 /"
+            write (u, '(a)') "&case name = 'rb' /"
+            write (u, '(a)') "&normal fn = 300.0 /"
+            close (u)
+        end if
+        call mpi_barrier(MPI_COMM_WORLD, ierr)
+        args = [character(len=4096) :: dir//'/res.nml', '--out', dir//'/res/out', '--resume']
+        do k = 1, 3
+            if (k == 3 .and. rank == 0) call execute_command_line('rm -f '//dir//'/res/out/rb.json')
+            call mpi_barrier(MPI_COMM_WORLD, ierr)
+            call run_dist(args, 'res'//fmt_int(k), code)
+            if (code /= 0) then
+                msg = 'run '//fmt_int(k)//': exit status '//fmt_int(code); return
+            end if
+            if (rank == 0) then
+                rep = slurp_file(dir//'/res'//fmt_int(k)//'.rep'//rank_suffix(0))
+                select case (k)
+                case (1)
+                    before_a = slurp_file(dir//'/res/out/ra.json'); before_b = slurp_file(dir//'/res/out/rb.json')
+                    if (index(rep, '(0 of them done in an earlier run: skipped)') == 0) msg = 'run 1: '//rep
+                case (2)
+                    if (index(rep, 'case ra: done in an earlier run with the same input (converged), skipped') == 0 &
+                        .or. index(rep, '(2 of them done in an earlier run: skipped)') == 0) msg = 'run 2: '//rep
+                    if (slurp_file(dir//'/res/out/ra.json') /= before_a) msg = 'run 2 rewrote ra.json'
+                case (3)
+                    if (index(rep, '(1 of them done in an earlier run: skipped)') == 0 .or. index(rep, 'case rb: done') > 0) &
+                        msg = 'run 3 (rb.json deleted): '//rep
+                    if (.not. allocated(msg)) then
+                        if (.not. close_to(json_num(slurp_file(dir//'/res/out/rb.json'), 'fn'), json_num(before_b, 'fn'), &
+                                           1.0e-14_dp)) msg = 'run 3: rb solved again to another force'
+                    end if
+                end select
+            end if
+            if (rank0_failed(msg)) return
+        end do
+    end subroutine test_resume
 
     !> `&solver fft_wisdom`: the first case measures its plans and writes the file (rank 0,
     !! the wisdom of both ranks gathered), a second case of the same grid reuses nothing
