@@ -7,8 +7,10 @@
     .venv-plots/bin/python scripts/plot_creep.py --curves out/curves/*_creep.csv --out doc/rolling_curves.png
     .venv-plots/bin/python scripts/plot_creep.py --fastsim doc/bench_rolling_fastsim.csv --out doc/rolling_fastsim.png
 
-Curves: one panel per swept quantity (xi, eta, phi), Fx/(mu Fn) and Fy/(mu Fn) against the
-swept value, one line per file (label: file stem).  FASTSIM: |F_fastsim - F_full|/(mu Fn)
+Curves: one column per swept quantity (xi, eta, phi), one line per file (label: file stem);
+top row Fx/(mu Fn) and Fy/(mu Fn) against the swept value, bottom row the frictional
+dissipation per mm rolled over mu Fn (Tgamma / (mu Fn), the `dissipation` column) when the
+files have it.  FASTSIM: |F_fastsim - F_full|/(mu Fn)
 against the normalised creepage, one panel per direction, one line per a/b.
 """
 import argparse
@@ -36,9 +38,12 @@ def plot_curves(paths, out, plt):
     for p in paths:
         rows = read(p)
         groups.setdefault(swept(rows), []).append((os.path.basename(p).replace('_creep.csv', ''), rows))
-    fig, axes = plt.subplots(1, len(groups), figsize=(5 * len(groups), 4), squeeze=False)
+    tgamma = all('dissipation' in rows[0] for sets in groups.values() for _, rows in sets if rows)
+    nrow = 2 if tgamma else 1
+    fig, axes = plt.subplots(nrow, len(groups), figsize=(5 * len(groups), 4 * nrow), squeeze=False)
     units = {'xi': 'creepage xi [-]', 'eta': 'creepage eta [-]', 'phi': 'spin phi [1/mm]'}
-    for ax, (name, sets) in zip(axes[0], sorted(groups.items())):
+    for col, (name, sets) in enumerate(sorted(groups.items())):
+        ax = axes[0][col]
         for label, rows in sets:
             x = [float(r['value']) for r in rows]
             ax.plot(x, [float(r['fx_mufn']) for r in rows], 'o-', ms=3, label=label + ': Fx/(mu Fn)')
@@ -47,6 +52,19 @@ def plot_curves(paths, out, plt):
         ax.set_ylabel('creep force / (mu Fn)')
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize=7)
+        if tgamma:
+            ax = axes[1][col]
+            for label, rows in sets:
+                x = [float(r['value']) for r in rows]
+                # mu Fn from a point with a non-zero force: |F| / |F / (mu Fn)|
+                mufn = next((abs(float(r['fx'])) / abs(float(r['fx_mufn'])) for r in rows
+                             if float(r['fx_mufn']) != 0), None) or \
+                    next((abs(float(r['fy'])) / abs(float(r['fy_mufn'])) for r in rows if float(r['fy_mufn']) != 0), 1.0)
+                ax.plot(x, [float(r['dissipation']) / mufn for r in rows], 'o-', ms=3, label=label)
+            ax.set_xlabel(units.get(name, name))
+            ax.set_ylabel('dissipation per mm rolled / (mu Fn)  [T gamma / (mu Fn)]')
+            ax.grid(True, alpha=0.3)
+            ax.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(out, dpi=120)
 
