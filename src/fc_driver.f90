@@ -80,6 +80,20 @@ contains
             'Exit status: 0 all cases converged, 1 input error in some case, 2 some solver did not converge.'
     end function driver_usage
 
+    !> Usage text of the MPI batch driver, which runs [[run_driver]] on each rank.
+    function batch_usage() result(text)
+        character(len=:), allocatable :: text
+        character(len=*), parameter :: nl = new_line('a')
+        text = 'usage: mpirun -np P fastcontact-mpi CASES.nml [--out DIR] [--resume]'//nl// &
+            '       mpirun -np P fastcontact-mpi CASES.nml --check'//nl// &
+            '       mpirun -np P fastcontact-mpi CASES.nml --distributed [--out DIR] [--check] [--resume]'//nl//nl// &
+            'Solves the cases of CASES.nml as fastcontact does, spread over the P ranks (each case'//nl// &
+            'by one rank, dynamic load balance), with the same outputs, report and exit status.'//nl// &
+            '--resume skips the cases an earlier run finished with the same input.  --distributed'//nl// &
+            'solves every case by all ranks together (normal problems on very large grids).'//nl// &
+            'See doc/parallel.md.'
+    end function batch_usage
+
     !> Run the driver on the command-line arguments `args` (without the program name).
     !! With `only_case` = k (the MPI batch driver): cases before k are read and checked only,
     !! for what case k inherits; cases k … `last_case` (default k) are solved and written, their
@@ -124,7 +138,7 @@ contains
         part = 0
         if (present(only_case)) then
             ! the MPI batch: its ranks share the cases; --resume skips those done before
-            call parse_driver_arguments(args, 'fastcontact', driver_usage(), case_file, out_dir, action, errtext, &
+            call parse_driver_arguments(args, 'fastcontact-mpi', batch_usage(), case_file, out_dir, action, errtext, &
                                         resume=resume)
         else
             call parse_driver_arguments(args, 'fastcontact', driver_usage(), case_file, out_dir, action, errtext, selected, &
@@ -132,7 +146,12 @@ contains
         end if
         select case (action)
         case ('help')
-            write (rep, '(a)') driver_usage(); return
+            if (present(only_case)) then
+                write (rep, '(a)') batch_usage()
+            else
+                write (rep, '(a)') driver_usage()
+            end if
+            return
         case ('version')
             write (rep, '(a)') fc_build_info(); return
         case ('error')
