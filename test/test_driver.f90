@@ -20,7 +20,7 @@ module test_driver
     private
 
     public :: collect_driver
-    public :: without_times   ! shared with the suite `batch`
+    public :: without_times, json_num   ! shared with the suites `batch` and `auto`
 
     character(len=*), parameter :: nl = new_line('a')
 

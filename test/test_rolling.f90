@@ -1270,6 +1270,12 @@ contains
         call json_value(dir//'/fs.json', '"fx_over_mu_fn"', vf)
         call check(error, abs(vf) < 1, 'fastsim fx_over_mu_fn present')
         call check(error, vf, vg, 'FASTSIM Fx vs full theory', abs=0.05_dp)
+        ! dissipation per mm rolled: FASTSIM's is the creepages' work, the full theory's equals
+        ! it for K = 0 (rolling :: dissipation_steady); the two within 5 % like the forces
+        call json_value(dir//'/fs.json', '"dissipation"', vf)
+        call json_value(dir//'/full.json', '"dissipation"', vg)
+        call check(error, vf > 0 .and. vg > 0, 'dissipation reported by both')
+        call check(error, vf, vg, 'FASTSIM dissipation vs full theory', rel=0.05_dp)
         call execute_command_line("rm -rf '"//dir//"'")
         call drive(scene('nf', 'normal', 'mu = 0.4')//"&solver model = 'fastsim' /", dir, code, errors)
         call check(error, code /= 0 .and. index(errors, "&solver model = 'fastsim'") > 0, 'fastsim for normal: '//errors)
