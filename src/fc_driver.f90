@@ -29,7 +29,7 @@
 !! in [[fc_driver_strip]] and [[fc_sequence_csv]].
 module fc_driver
     use, intrinsic :: iso_fortran_env, only: output_unit, int64, error_unit_default => error_unit
-    use fc_kinds, only: dp, msg_len, FC_CONVERGED, FC_DIVERGED, FC_ERR_IO, status_name
+    use fc_kinds, only: dp, msg_len, FC_CONVERGED, FC_DIVERGED, FC_ERR_IO, FC_ERR_VALUE, status_name
     use fc_geometry, only: fc_grid
     use fc_influence, only: fc_material
     use fc_contact, only: fc_contact_operators, FC_PROBLEM_ROLLING
@@ -256,7 +256,7 @@ contains
             call apply_case(cases(k), k, state, name, stat, errmsg)
             if (stat == 0 .and. any(used == state%name)) then
                 errmsg = "&case name = '"//trim(state%name)//"': already used in this file (outputs would be overwritten)"
-                stat = 1
+                stat = FC_ERR_VALUE
             end if
             if (stat == 0) call validate_case(state, stat, errmsg)
             if (stat == 0) call available_memory(avail, source, stat, errmsg)
@@ -607,7 +607,7 @@ contains
                 if (size(cases) > 20) known = known//', …'
                 write (err, '(a)') "fastcontact: --case '"//trim(selected(j))//"': no case of that name in "// &
                     case_file//' (its cases: '//known(3:)//')'
-                stat = 1; return
+                stat = FC_ERR_VALUE; return
             end do
         end subroutine check_selection
 

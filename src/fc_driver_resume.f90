@@ -15,6 +15,7 @@
 !! share a file without MPI, round robin so that neighbouring cases of a sweep spread out.
 module fc_driver_resume
     use, intrinsic :: iso_fortran_env, only: int64
+    use fc_kinds, only: FC_ERR_VALUE
     use fc_namelist, only: fc_case_chunk
     use fc_version, only: fc_version_string
     implicit none
@@ -120,7 +121,7 @@ contains
         character(len=:), allocatable, intent(out) :: errmsg
         integer :: s, ios1, ios2
         character(len=16) :: lim
-        k = 0; n = 0; stat = 1; errmsg = ''
+        k = 0; n = 0; stat = FC_ERR_VALUE; errmsg = ''
         write (lim, '(i0)') max_parts
         s = index(text, '/')
         if (s > 1 .and. s < len(text) .and. len(text) <= 12 .and. verify(text, '0123456789/') == 0 .and. &
