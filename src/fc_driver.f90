@@ -49,7 +49,7 @@ module fc_driver
     use fc_memory, only: available_memory, memory_fits, format_bytes, memory_env
     use fc_version, only: fc_build_info
     use fc_driver_common
-    use fc_driver_resume, only: case_fingerprints, previous_outcome, fingerprint_len
+    use fc_driver_resume, only: case_fingerprints, with_files, case_files, previous_outcome, fingerprint_len
     implicit none
     private
 
@@ -127,6 +127,7 @@ contains
         integer :: case_status, nused_before, nskipped, part(2)
         character(len=case_name_len), allocatable :: selected(:), case_names(:)
         character(len=fingerprint_len), allocatable :: fingerprints(:)
+        logical, allocatable :: files_fed(:)
         logical :: resume, skipped
         rep = output_unit; err = error_unit_default
         if (present(report_unit)) rep = report_unit
@@ -167,6 +168,7 @@ contains
         allocate (used(0), used_case(0))
         ncase_err = 0; ncase_fail = 0; nskipped = 0
         fingerprints = case_fingerprints(cases)
+        allocate (files_fed(size(cases)), source=.false.)
         if (allocated(selected)) then
             call check_selection(stat)
             if (stat /= 0) then
@@ -413,7 +415,7 @@ contains
             mat = s%outcome%material
             ! ---- summary
             s%name = state%name; s%title = state%title; s%problem = state%problem; s%geometry = state%kind
-            s%input_fingerprint = fingerprints(k)
+            s%input_fingerprint = case_fingerprint(k, state)
             s%force_prescribed = state%force_prescribed
             s%tol = kase%settings%normal%tol
             if (s%outcome%tol > 0) s%tol = s%outcome%tol
@@ -565,7 +567,7 @@ contains
             end if
             call system_clock(t2)
             s%cpu_seconds = real(t2 - t0, dp)/rate
-            s%input_fingerprint = fingerprints(k)
+            s%input_fingerprint = case_fingerprint(k, state)
             call write_case_json(dir//'/'//trim(state%name)//'.json', s, stat, errmsg)
             if (stat /= 0) then
                 call remove_file(dir//'/'//trim(state%name)//'.csv')
@@ -650,6 +652,19 @@ contains
             if (resume) note = ' ('//fmt_int(nskipped)//' of them done in an earlier run: skipped)'
         end function skipped_note
 
+        !> Case k's input fingerprint with the contents of the files it reads (`st`: its
+        !! values applied), hashed once per case.
+        function case_fingerprint(k, st) result(fp)
+            integer, intent(in) :: k
+            type(fc_case_input), intent(in) :: st
+            character(len=fingerprint_len) :: fp
+            if (.not. files_fed(k)) then
+                fingerprints(k) = with_files(fingerprints(k), case_files(st))
+                files_fed(k) = .true.
+            end if
+            fp = fingerprints(k)
+        end function case_fingerprint
+
         !> `--resume`: case k was finished by an earlier run with the same inputs (its JSON has
         !! its input fingerprint and a final status, [[previous_outcome]]); `case_status` from
         !! that status, and the report says so.
@@ -667,7 +682,7 @@ contains
             if (st /= 0) return
             if (any(used == scratch%name)) return
             done = previous_outcome(case_output_dir(scratch, out_dir)//'/'//trim(scratch%name)//'.json', &
-                                    fingerprints(k), case_status, what)
+                                    case_fingerprint(k, scratch), case_status, what)
             if (done) write (rep, '(a)') ' case '//trim(scratch%name)//': done in an earlier run with the same input ('// &
                 what//'), skipped (--resume)'//new_line('a')
         end function done_before

@@ -8,8 +8,9 @@
 !! whose JSON, written last of its outputs, records a final solver status (converged,
 !! not_converged, diverged) and the same fingerprint: an interrupted run (a job's time limit, a
 !! lost node) goes on where it stopped, and a case whose inputs (or any earlier case's) have
-!! changed since is solved again.  Files a case names (geometry tables, coefficient files) are
-!! not part of the fingerprint.
+!! changed since is solved again.  The contents of the files a case reads (its geometry table,
+!! its coefficient files) are part of its own fingerprint too ([[with_files]]): a case whose
+!! table was edited between two runs is solved again.
 !!
 !! `--part K/N` keeps the cases k with mod(k − 1, N) = K − 1: N processes (a Slurm job array)
 !! share a file without MPI, round robin so that neighbouring cases of a sweep spread out.
@@ -17,6 +18,7 @@ module fc_driver_resume
     use, intrinsic :: iso_fortran_env, only: int64
     use fc_kinds, only: FC_ERR_VALUE
     use fc_namelist, only: fc_case_chunk
+    use fc_input, only: fc_case_input
     use fc_version, only: fc_version_string
     implicit none
     private
@@ -24,7 +26,7 @@ module fc_driver_resume
     integer, parameter, public :: fingerprint_len = 16   !! hexadecimal digits of a fingerprint
     integer, parameter, public :: max_parts = 10000      !! N of `--part K/N`, at most (the case limit)
 
-    public :: case_fingerprints, previous_outcome, parse_part
+    public :: case_fingerprints, with_files, case_files, previous_outcome, parse_part
 
 contains
 
@@ -34,31 +36,87 @@ contains
     function case_fingerprints(cases) result(fp)
         type(fc_case_chunk), intent(in) :: cases(:)
         character(len=fingerprint_len) :: fp(size(cases))
-        integer(int64) :: h1, h2
+        integer(int64) :: h(2)
         integer :: k, g
-        h1 = 2166136261_int64; h2 = 3735928559_int64
-        call feed(fc_version_string)
+        h = [2166136261_int64, 3735928559_int64]
+        call fnv_feed(h, fc_version_string)
         do k = 1, size(cases)
             if (allocated(cases(k)%groups)) then
                 do g = 1, size(cases(k)%groups)
-                    if (allocated(cases(k)%groups(g)%text)) call feed(cases(k)%groups(g)%text)
-                    call feed(new_line('a'))
+                    if (allocated(cases(k)%groups(g)%text)) call fnv_feed(h, cases(k)%groups(g)%text)
+                    call fnv_feed(h, new_line('a'))
                 end do
             end if
-            call feed('&&')   ! the case boundary
-            write (fp(k), '(2z8.8)') h1, h2
+            call fnv_feed(h, '&&')   ! the case boundary
+            write (fp(k), '(2z8.8)') h
         end do
-    contains
-        subroutine feed(text)
-            character(len=*), intent(in) :: text
-            integer(int64), parameter :: prime = 16777619_int64, mask = 4294967295_int64
-            integer :: i
-            do i = 1, len(text)
-                h1 = iand(ieor(h1, int(ichar(text(i:i)), int64))*prime, mask)
-                h2 = iand(ieor(h2, int(ichar(text(i:i)), int64))*prime, mask)
-            end do
-        end subroutine feed
     end function case_fingerprints
+
+    !> The fingerprint `fp` continued over the contents of the files in `paths` (blank names
+    !! skipped): a case's fingerprint with the files it reads.  Without files it is `fp`
+    !! itself.  A file that cannot be read adds a marker in place of its contents, so that its
+    !! case matches no finished run (the solve then reports the missing file).
+    function with_files(fp, paths) result(fpf)
+        character(len=*), intent(in) :: fp
+        character(len=*), intent(in) :: paths(:)
+        character(len=fingerprint_len) :: fpf
+        integer, parameter :: chunk = 65536
+        character(len=chunk) :: buf
+        integer(int64) :: h(2), size_bytes, pos
+        integer :: i, u, ios, n
+        fpf = fp
+        if (all(len_trim(paths) == 0)) return
+        read (fp, '(2z8)', iostat=ios) h
+        if (ios /= 0) return
+        do i = 1, size(paths)
+            if (len_trim(paths(i)) == 0) cycle
+            call fnv_feed(h, '&file')
+            size_bytes = -1
+            open (newunit=u, file=trim(paths(i)), status='old', action='read', access='stream', &
+                  form='unformatted', iostat=ios)
+            if (ios == 0) inquire (unit=u, size=size_bytes)
+            if (ios /= 0 .or. size_bytes < 0) then
+                call fnv_feed(h, '<unreadable>')
+                if (ios == 0) close (u)
+                cycle
+            end if
+            pos = 0
+            do while (pos < size_bytes)
+                n = int(min(int(chunk, int64), size_bytes - pos))
+                read (u, iostat=ios) buf(1:n)
+                if (ios /= 0) then
+                    call fnv_feed(h, '<unreadable>'); exit
+                end if
+                call fnv_feed(h, buf(1:n))
+                pos = pos + n
+            end do
+            close (u)
+        end do
+        write (fpf, '(2z8.8)') h
+    end function with_files
+
+    !> The files case `c` reads, as [[with_files]] takes them: its coefficient files and, for
+    !! a table geometry, its table ('' where there is none).
+    function case_files(c) result(paths)
+        type(fc_case_input), intent(in) :: c
+        character(len=len(c%file)) :: paths(3)
+        paths = [character(len=len(c%file)) :: c%ic_file, c%ic_file2, '']
+        if (trim(c%kind) == 'table') paths(3) = c%file
+    end function case_files
+
+    !> Feed `text` to the two 32-bit FNV-1a hashes `h`.
+    pure subroutine fnv_feed(h, text)
+        integer(int64), intent(inout) :: h(2)
+        character(len=*), intent(in) :: text
+        integer(int64), parameter :: prime = 16777619_int64, mask = 4294967295_int64
+        integer(int64) :: c
+        integer :: i
+        do i = 1, len(text)
+            c = int(ichar(text(i:i)), int64)
+            h(1) = iand(ieor(h(1), c)*prime, mask)
+            h(2) = iand(ieor(h(2), c)*prime, mask)
+        end do
+    end subroutine fnv_feed
 
     !> Whether the JSON at `path` is a finished run of the case with `fingerprint`: it records
     !! that fingerprint and a final solver status.  `status`: 0 converged, 2 not converged or

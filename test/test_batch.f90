@@ -5,8 +5,8 @@ module test_batch
     use fc_kinds, only: dp
     use fc_test_driver, only: fresh_dir, run_namelist
     use fc_driver, only: parse_driver_arguments
-    use fc_driver_resume, only: parse_part
-    use test_driver, only: without_times
+    use fc_driver_resume, only: parse_part, with_files
+    use test_driver, only: without_times, json_num
     use fc_testing, only: error_type, unittest_type, new_unittest, check, read_all => file_lines
     implicit none
     private
@@ -20,6 +20,7 @@ contains
         type(unittest_type), allocatable, intent(out) :: tests(:)
         tests = [ &
             new_unittest('resume_skips_finished_cases', test_resume), &
+            new_unittest('resume_reads_named_files', test_resume_files), &
             new_unittest('parts_make_the_whole_run', test_parts), &
             new_unittest('part_and_resume_arguments', test_arguments) ]
     end subroutine collect_batch
@@ -95,6 +96,67 @@ contains
             't2 solved again after the others were skipped: summary differs')
         call execute_command_line("rm -rf '"//dir//"'")
     end subroutine test_resume
+
+    !> `--resume` and the files a case reads: a table geometry's case is skipped while its
+    !! table is unchanged and solved again once the table is edited (the namelist the same),
+    !! to the answer of the new table; a quadratic case in the same file is skipped
+    !! throughout.  [[with_files]] leaves a fingerprint without files as it is and tells an
+    !! unreadable file from a readable one.  Fails when the fingerprint ignores the files.
+    subroutine test_resume_files(error)
+        type(error_type), allocatable, intent(out) :: error
+        character(len=:), allocatable :: dir, errors, report, text, tab_before
+        character(len=256) :: path(1), other(1)
+        integer :: code
+        dir = fresh_dir('batch')
+        text = "&case name = 'q1' /"//nl// &
+            '&material g1 = 82000.0, g2 = 82000.0, nu1 = 0.28, nu2 = 0.28 /'//nl// &
+            '&grid nx = 16, ny = 16, xmin = -10.0, xmax = 10.0, ymin = -6.0, ymax = 6.0 /'//nl// &
+            "&geometry kind = 'quadratic', rx = 300.0, ry = 163.0 /"//nl//'&normal approach = 0.1091 /'//nl// &
+            "&case name = 'tab' /"//nl//"&geometry kind = 'table', file = '"//dir//"/h0.txt' /"//nl
+        call write_table(dir//'/h0.txt', 1.0_dp)
+        call run_namelist(dir, text, code, errors)
+        call check(error, code == 0, 'first run: '//errors)
+        if (allocated(error)) return
+        tab_before = read_all(dir//'/tab.json')
+        call run_namelist(dir, text, code, errors, extra=[character(len=16) :: '--resume'])
+        report = read_all(dir//'/report.txt')
+        call check(error, count_of(report, 'skipped (--resume)') == 2, 'table unchanged: both cases skipped: '//report)
+        if (allocated(error)) return
+        call write_table(dir//'/h0.txt', 1.25_dp)   ! a flatter body: a larger contact
+        call run_namelist(dir, text, code, errors, extra=[character(len=16) :: '--resume'])
+        report = read_all(dir//'/report.txt')
+        call check(error, count_of(report, 'skipped (--resume)') == 1 .and. index(report, 'case q1: done in an earlier') > 0, &
+            'table edited: only q1 skipped: '//report)
+        call check(error, read_all(dir//'/tab.json') /= tab_before .and. &
+            json_num(read_all(dir//'/tab.json'), 'fn') > 1.1_dp*json_num(tab_before, 'fn'), &
+            'table edited: tab solved again with the new table (a larger force at the same approach)')
+        call run_namelist(dir, text, code, errors, extra=[character(len=16) :: '--resume'])
+        call check(error, count_of(read_all(dir//'/report.txt'), 'skipped (--resume)') == 2, &
+            'after the new solve: both cases skipped again')
+        call check(error, with_files('0123456789ABCDEF', [character(len=8) :: '', '']) == '0123456789ABCDEF', &
+            'no files: the fingerprint unchanged')
+        path(1) = dir//'/h0.txt'; other(1) = dir//'/none.txt'   ! (no constructors of dir: gfortran)
+        call check(error, with_files('0123456789ABCDEF', path) /= with_files('0123456789ABCDEF', other), &
+            'a readable and an unreadable file give different fingerprints')
+        call execute_command_line("rm -rf '"//dir//"'")
+    contains
+        !> h0 of the Hertz body of q1 (rx = 300, ry = 163) on its 16 × 16 grid, radii times `scale`.
+        subroutine write_table(path, scale)
+            character(len=*), intent(in) :: path
+            real(dp), intent(in) :: scale
+            integer :: u, i, j
+            real(dp) :: x, y
+            open (newunit=u, file=path, status='replace', action='write')
+            write (u, '(a)') '# h0 [mm], x fastest'
+            do j = 1, 16
+                do i = 1, 16
+                    x = -10.0_dp + (i - 0.5_dp)*20.0_dp/16; y = -6.0_dp + (j - 0.5_dp)*12.0_dp/16
+                    write (u, '(es24.16)') x**2/(2*300.0_dp*scale) + y**2/(2*163.0_dp*scale)
+                end do
+            end do
+            close (u)
+        end subroutine write_table
+    end subroutine test_resume_files
 
     !> `--part K/N`: three processes' parts of the file in one directory give every case, each
     !! with the summary of the whole run (but the operator-reuse flags and the times); each

@@ -47,7 +47,7 @@ module fcm_dist_driver
     use fc_driver_common, only: EXIT_OK, EXIT_INPUT_ERROR, EXIT_NOT_CONVERGED, make_directory, remove_file, &
         parse_driver_arguments, write_case_error, case_output_dir, remove_case_outputs, hertz_reference
     use fc_version, only: fc_build_info
-    use fc_driver_resume, only: case_fingerprints, previous_outcome, fingerprint_len
+    use fc_driver_resume, only: case_fingerprints, with_files, case_files, previous_outcome, fingerprint_len
     use fc_strings, only: fmt_int
     use fc_threads, only: set_thread_count
     use fcm_norm, only: fcm_normal_operator, build_dist_normal_operator, solve_dist_normal, dist_memory_per_rank
@@ -276,7 +276,7 @@ contains
             end if
             ! ---- summary (the serial driver's keys)
             s%name = state%name; s%title = state%title; s%problem = state%problem; s%geometry = state%kind
-            s%input_fingerprint = fingerprints(k)
+            s%input_fingerprint = with_files(fingerprints(k), case_files(state))
             s%force_prescribed = state%force_prescribed
             s%tol = kase%settings%normal%tol
             s%notes = state%notes//case_notes(state)//'distributed over '//fmt_int(nprocs)//' ranks. '
@@ -342,7 +342,8 @@ contains
             integer :: buf(2)
             buf = 0
             if (rank == 0) then
-                if (previous_outcome(dir//'/'//trim(state%name)//'.json', fingerprints(k), buf(2), what)) then
+                if (previous_outcome(dir//'/'//trim(state%name)//'.json', with_files(fingerprints(k), case_files(state)), &
+                                     buf(2), what)) then
                     buf(1) = 1
                     write (rep, '(a)') ' case '//trim(state%name)//': done in an earlier run with the same input ('// &
                         what//'), skipped (--resume)'//new_line('a')
