@@ -110,7 +110,7 @@ contains
             call next_direction(self, done)
             return
         end if
-        if (norm2(r_trial) < norm2(self%r) .or. self%halvings == max_halvings .or. self%reeval) then
+        if (norm_2(r_trial) < norm_2(self%r) .or. self%halvings == max_halvings .or. self%reeval) then
             self%reeval = .false.
             ! Broyden update of the Jacobian with the step actually taken
             accepted = .true.
@@ -131,7 +131,7 @@ contains
             if (self%halvings == 3 .and. .not. self%refreshed) then
                 ! three trials of this direction rejected: measure the Jacobian here instead
                 self%refreshed = .true.
-                self%fd_h = 0.02_dp*max(norm2(self%x), self%xscale)
+                self%fd_h = 0.02_dp*max(norm_2(self%x), self%xscale)
                 self%x_trial = self%x + [self%fd_h, 0.0_dp]
                 self%fd_stage = 1
                 return
@@ -148,10 +148,10 @@ contains
         logical, intent(out) :: done
         real(dp) :: det
         done = .false.
-        if (norm2(self%r) <= self%ftol .and. self%tol_inner <= self%tol) then
+        if (norm_2(self%r) <= self%ftol .and. self%tol_inner <= self%tol) then
             self%converged = .true.; done = .true.; return
         end if
-        if (norm2(self%r) <= self%ftol) then
+        if (norm_2(self%r) <= self%ftol) then
             ! the force tolerance met by a loosely solved iterate: solve the same point to the
             ! final tolerance before stepping on (else trials at that accuracy, whose residual
             ! includes the loose solve's force error, were all rejected and the step halved to
@@ -161,7 +161,7 @@ contains
             self%reeval = .true.
             return
         end if
-        self%tol_inner = max(self%tol, min(self%tol_inner, 0.01_dp*norm2(self%r)/self%flimit))
+        self%tol_inner = max(self%tol, min(self%tol_inner, 0.01_dp*norm_2(self%r)/self%flimit))
         det = self%jac(1, 1)*self%jac(2, 2) - self%jac(1, 2)*self%jac(2, 1)
         if (det == 0) then
             done = .true.; return
@@ -171,5 +171,12 @@ contains
         self%step = 1; self%halvings = 0
         self%x_trial = self%x + self%dx
     end subroutine next_direction
+
+    !> |v| of a 2-vector without underflow or overflow of the squares (gfortran's norm2
+    !! squares unscaled: a residual of 1e−200 N had the norm 0).
+    pure real(dp) function norm_2(v)
+        real(dp), intent(in) :: v(2)
+        norm_2 = hypot(v(1), v(2))
+    end function norm_2
 
 end module fc_force_newton

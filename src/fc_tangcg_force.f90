@@ -150,7 +150,9 @@ contains
                 ! the probe's secant from zero shift (zero force in partial contact) is a better
                 ! stiffness than Mindlin's, which the many contacts of a cell exceed severalfold
                 ! (480 random cells: 17 % fewer TangCG iterations than with Mindlin's)
-                if (probed) k0 = hypot(trial%fx, trial%fy)/norm2(x)
+                ! (hypot: norm2 of gfortran squares without scaling, so that a shift near the
+                ! smallest normal number, as for a force of 1e−300 N, gave 0 and a division by it)
+                if (probed) k0 = hypot(trial%fx, trial%fy)/hypot(x(1), x(2))
                 jac = 0; jac(1, 1) = -k0; jac(2, 2) = -k0
             end if
             inner = settings

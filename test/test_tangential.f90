@@ -399,12 +399,12 @@ contains
     !! √(c²−r²)] decreasing with refinement (40² → 80² → 120²).
     !> The force loop alone on a smooth saturating law F(x) = −Fs·tanh(K x/Fs) (componentwise,
     !! coupled through a rotation), started from a wrong Jacobian: it must reach |r| ≤ tol·flimit
-    !! with the inner tolerance at tol, accept only decreasing trial points, and stop
-    !! unconverged on a singular Jacobian.
+    !! with the inner tolerance at tol, accept only decreasing trial points, stop unconverged
+    !! on a singular Jacobian, and converge as well on the law scaled to forces of 1e−200 N.
     subroutine test_force_newton(error)
         type(error_type), allocatable, intent(out) :: error
         type(fc_force_newton_t) :: nw
-        real(dp), parameter :: fs = 3.0_dp, target(2) = [-1.2_dp, 0.7_dp], tol = 1.0e-8_dp
+        real(dp), parameter :: fs = 3.0_dp, target(2) = [-1.2_dp, 0.7_dp], tol = 1.0e-8_dp, tiny_scale = 1.0e-200_dp
         real(dp) :: r(2), rprev, jac0(2, 2)
         logical :: accepted, done
         integer :: evals
@@ -443,6 +443,20 @@ contains
         call nw%start([0.0_dp, 0.0_dp], reshape([1.0_dp, 2.0_dp, 2.0_dp, 4.0_dp], [2, 2]), tol, norm2(target), fs)
         call nw%update(law(nw%x_trial) - target, accepted, done)
         call check(error, done .and. .not. nw%converged, 'singular Jacobian: stop, not converged')
+        if (allocated(error)) return
+        ! the same law with forces of 1e−200 N: the loop must work in that scale too (its norms
+        ! of the residual once squared without scaling, 1e−400 → 0, and stopped at the first
+        ! point as converged)
+        jac0 = 0; jac0(1, 1) = -50; jac0(2, 2) = -50
+        call nw%start([0.0_dp, 0.0_dp], jac0, tol, tiny_scale*hypot(target(1), target(2)), tiny_scale*fs)
+        evals = 0
+        do
+            evals = evals + 1
+            call nw%update(tiny_scale*(law(nw%x_trial/tiny_scale) - target), accepted, done)
+            if (done .or. evals > 2000) exit
+        end do
+        call check(error, nw%converged .and. hypot(nw%r(1), nw%r(2)) <= tol*tiny_scale*fs .and. nw%outer > 2, &
+            'forces of 1e-200 N: converged to tol*flimit after more than the first point')
     contains
         pure function law(x) result(f)
             real(dp), intent(in) :: x(2)
