@@ -21,7 +21,7 @@
 !! `--resume` and `--part K/N` ([[fc_driver_resume]]) skip the cases an earlier run finished
 !! with the same input, or keep one of N round-robin parts of the file.
 !!
-!! Size (~870 lines): the case loop with its three outcomes (error, sweep or sequence,
+!! Size (~880 lines): the case loop with its three outcomes (error, sweep or sequence,
 !! single solve), its `--check` pass (each case's grid and memory, nothing solved), the
 !! `--case`, `--part` and `--resume` selection and the summary it fills; what the MPI
 !! package's drivers share with it (exit codes, command line, case errors, output files,

@@ -45,7 +45,8 @@ contains
         type(fc_tangential_settings) :: inner
         type(fc_force_newton_t) :: nw
         real(dp) :: fn, flimit, k0, a, jac(2, 2), x(2), probe_s, beta, cell, qbar(2)
-        real(dp) :: k0_mindlin, x0(2), s, s_lo, s_hi
+        real(dp) :: k0_mindlin, x0(2), s, s_lo, s_hi, xnorm, fnorm
+        real(dp), parameter :: max_secant = 1000   !! the probes' secant stiffness, at most, over Mindlin's
         integer :: nx, ny, k, probe_it, probe_mv
         logical :: probed
         logical :: accepted, done
@@ -149,10 +150,18 @@ contains
                 end do
                 ! the probe's secant from zero shift (zero force in partial contact) is a better
                 ! stiffness than Mindlin's, which the many contacts of a cell exceed severalfold
-                ! (480 random cells: 17 % fewer TangCG iterations than with Mindlin's)
-                ! (hypot: norm2 of gfortran squares without scaling, so that a shift near the
-                ! smallest normal number, as for a force of 1e−300 N, gave 0 and a division by it)
-                if (probed) k0 = hypot(trial%fx, trial%fy)/hypot(x(1), x(2))
+                ! (480 random cells: 17 % fewer TangCG iterations than with Mindlin's).  Not
+                ! from a zero shift or force, nor above 1000 times Mindlin's stiffness: a
+                ! prescribed force far below the loop's tolerance (1e−20 N … 5e−324 N) gives a
+                ! shift near 0, or 0, where dissimilar bodies' cells still carry the force that
+                ! the pressure's coupling leaves at zero shift; the secant through the origin
+                ! then exceeded Mindlin's by up to 1e300 (its Jacobian's determinant overflowed,
+                ! or the loop's steps came to nothing), and Mindlin's stiffness stays.  (hypot:
+                ! gfortran's norm2 squares unscaled and gave 0 for shifts near 1e−305 mm.)
+                if (probed) then
+                    xnorm = hypot(x(1), x(2)); fnorm = hypot(trial%fx, trial%fy)
+                    if (xnorm > 0 .and. fnorm > 0 .and. fnorm <= max_secant*k0_mindlin*xnorm) k0 = fnorm/xnorm
+                end if
                 jac = 0; jac(1, 1) = -k0; jac(2, 2) = -k0
             end if
             inner = settings
