@@ -8,7 +8,7 @@ module fc_geometry
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use fc_kinds, only: dp, i8, pi, msg_len, FC_ERR_VALUE, FC_ERR_IO, FC_ERR_AREA
     use fc_table_io, only: read_real_table
-    use fc_limits, only: max_length
+    use fc_limits, only: max_length, min_length
     use fc_geometry_grid, only: fc_grid, h_no_contact
     implicit none
     private
@@ -16,7 +16,7 @@ module fc_geometry
     public :: fc_grid, h_no_contact   ! (from [[fc_geometry_grid]])
 
     !> Smallest element size [mm]: below it the influence coefficients lose every digit.
-    real(dp), parameter, public :: min_element_size = 1.0e-9_dp
+    real(dp), parameter, public :: min_element_size = min_length
 
     !> Parameters of the random rough surface, thesis eqs. (2.13)–(2.16).
     type, public :: fc_rough_params

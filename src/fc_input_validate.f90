@@ -162,9 +162,10 @@ contains
                 return
             end if
         end if
-        if (s%kind == 'cylinder' .and. .not. (s%length > 0 .and. s%length <= 2*max_length)) then
+        if (s%kind == 'cylinder' .and. .not. (s%length >= min_length .and. s%length <= 2*max_length)) then
             errmsg = '&geometry length = '//fmt_real(s%length)//": must be > 0 for kind = 'cylinder' "// &
-                '(cylinder length along y [mm], at most '//fmt_limit(2*max_length)//')'
+                '(cylinder length along y [mm], at least '//fmt_limit(min_length)//', at most '// &
+                fmt_limit(2*max_length)//')'
             return
         end if
         select case (s%kind)
@@ -211,9 +212,10 @@ contains
             else if (.not. (s%amplitude > 0 .and. s%amplitude <= max_length)) then
                 errmsg = '&geometry amplitude = '//fmt_real(s%amplitude)//': must be > 0 (at most '// &
                     fmt_limit(max_length)//' mm)'
-            else if (.not. (s%wavelength_x >= 0 .and. s%wavelength_y >= 0)) then
+            else if (.not. ((s%wavelength_x == 0 .or. s%wavelength_x >= min_length) .and. &
+                            (s%wavelength_y == 0 .or. s%wavelength_y >= min_length))) then
                 errmsg = '&geometry wavelength_x = '//fmt_real(s%wavelength_x)//', wavelength_y = '// &
-                    fmt_real(s%wavelength_y)//': must be >= 0 (0: flat)'
+                    fmt_real(s%wavelength_y)//': must be 0 (flat) or at least '//fmt_limit(min_length)//' mm'
             end if
         case ('table')
             if (len_trim(s%file) == 0) then

@@ -16,6 +16,10 @@ module fc_limits
 
     real(dp), parameter, public :: max_length = 1.0e6_dp         !! |coordinate|, |approach|, |shift|, |gap| [mm]
     real(dp), parameter, public :: min_radius = 1.0e-6_dp        !! smallest radius of curvature > 0 [mm]
+    !> smallest cylinder length and wavelength > 0 [mm]: the grid's smallest element size
+    !! (fc_geometry's min_element_size); below it, lengths near the smallest double overflowed
+    !! the line load Fn/length and the phase 2πx/λ
+    real(dp), parameter, public :: min_length = 1.0e-9_dp
     real(dp), parameter, public :: max_radius = 1.0e8_dp         !! largest radius of curvature [mm] (0: flat);
         !! with min_radius it bounds the curvature ratio to 1e14, the thinnest Hertz ellipse
         !! (1 − e² ≥ 4.4e-16) that double precision resolves

@@ -72,6 +72,7 @@ contains
             new_unittest('force_above_limit_approach', test_force_limit_approach), &
             new_unittest('strip2d_needs_ny_1', test_strip2d_ny), &
             new_unittest('missing_table_file', test_missing_table), &
+            new_unittest('lengths_below_the_limit', test_tiny_lengths), &
             new_unittest('bad_command_line', test_bad_command_line), &
             new_unittest('version_option_and_json', test_version_option), &
             new_unittest('version_matches_manifest', test_version_manifest), &
@@ -869,6 +870,21 @@ contains
         call expect_bad(error, replace(base_case('bad'), "kind = 'quadratic'", "kind = 'strip2d'"), &
             [character(len=16) :: '&grid', 'ny', '16', 'strip2d'])
     end subroutine test_strip2d_ny
+
+    !> A cylinder length or a wavelength near the smallest double (the driver fuzz: 4.9e−324)
+    !! is an input error naming the key and the limit 1e−9 mm; before, the line load Fn/length
+    !! and the phase 2πx/λ overflowed (SIGFPE in the sanitizer build, or a grid of infinite
+    !! extent reported as a grid error).
+    subroutine test_tiny_lengths(error)
+        type(error_type), allocatable, intent(out) :: error
+        call expect_bad(error, replace(base_case('bad'), "kind = 'quadratic', rx = 300.0, ry = 163.0", &
+            "kind = 'cylinder', rx = 100.0, length = 4.9e-324"), [character(len=20) :: '&geometry', 'length', &
+            'at least', '1.0E-09'])
+        if (allocated(error)) return
+        call expect_bad(error, replace(base_case('bad'), "kind = 'quadratic', rx = 300.0, ry = 163.0", &
+            "kind = 'wavy', amplitude = 0.001, wavelength_x = 4.9e-324, wavelength_y = 1.0"), &
+            [character(len=20) :: '&geometry', 'wavelength_x', 'at least', '1.0E-09'])
+    end subroutine test_tiny_lengths
 
     subroutine test_missing_table(error)
         type(error_type), allocatable, intent(out) :: error
